@@ -1,0 +1,60 @@
+// Pipeline config files (JSON). Loading has two steps so that plugins named
+// in the config can be loaded before pass types are checked:
+//   ConfigDocument doc = ConfigDocument::parseFile(path, diags);
+//   ... load doc.plugins() into the registry ...
+//   PipelineConfig pipe = doc.build(registry, diags);
+// Every diagnostic carries file, line, column and JSON path of the value at fault.
+// The format is documented in docs/pipeline-format.md.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rgraph/diagnostics.h"
+#include "rgraph/graph.h"
+#include "rgraph/params.h"
+
+namespace rgraph {
+
+class PassRegistry;
+
+struct PipelineConfig {
+  std::string file;
+  int version = 1;
+  std::vector<std::string> plugins;
+  GraphDesc graph;                 // passes in config order
+  std::vector<ParamSet> params;    // one per graph.passes entry, defaults filled in
+};
+
+class ConfigDocument {
+ public:
+  ConfigDocument();
+  ~ConfigDocument();
+  ConfigDocument(ConfigDocument&&) noexcept;
+  ConfigDocument& operator=(ConfigDocument&&) noexcept;
+
+  // Malformed JSON or a missing file: a diagnostic with the parser's position; ok() is false.
+  static ConfigDocument parseFile(const std::string& path, Diagnostics& diags);
+  static ConfigDocument parseText(const std::string& text, const std::string& file, Diagnostics& diags);
+
+  bool ok() const;
+  const std::string& file() const;
+  // The top-level "plugins" array (names or paths), with their locations.
+  std::vector<std::string> plugins() const;
+  SourceLocation pluginLocation(size_t index) const;
+
+  // Checks the document against the pass declarations and builds the graph.
+  // Problems are appended to diags; the result is usable only when no error was added.
+  PipelineConfig build(const PassRegistry& registry, Diagnostics& diags) const;
+
+  // Location of the value at a JSON pointer (e.g. "/passes/1/type");
+  // falls back to the closest existing parent.
+  SourceLocation locate(const std::string& jsonPointer) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rgraph

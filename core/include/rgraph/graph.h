@@ -1,0 +1,196 @@
+// The render graph: a declarative description (GraphDesc) and its compiled
+// plan (Plan). Compiling is pure C++: no GL context, no GL include.
+//
+// Contract (read this before writing a pass or a config):
+//  * A *resource* is declared once (texture or buffer, transient or imported).
+//  * Every write creates a new *version* of a resource. A version has a name:
+//    the first written version of resource R is called R; a pass that modifies
+//    a resource in place (blending into it, loading it as an attachment) binds
+//    the version it reads and names the version it produces, e.g. reads "hdr",
+//    writes "hdr_lit". Both names refer to the same physical memory.
+//  * A version is written by exactly one pass. Read-after-write order follows
+//    from names; write-after-read order follows from versions: the pass that
+//    produces version k+1 runs after every reader of version k.
+//  * compile() validates, orders passes topologically (ties keep declaration
+//    order), culls passes that feed no output and have no side effect,
+//    computes lifetimes over the order, and aliases transient textures whose
+//    descriptors match and whose lifetimes do not overlap.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rgraph/diagnostics.h"
+#include "rgraph/format.h"
+
+namespace rgraph {
+
+// ---------------------------------------------------------------- resources
+
+struct SizeSpec {
+  enum class Kind { output, absolute, scale };
+  Kind kind = Kind::output;
+  uint32_t width = 0, height = 0;  // Kind::absolute
+  float scale = 1.0f;              // Kind::scale: relative to the output size
+
+  static SizeSpec output() { return {}; }
+  static SizeSpec absolute(uint32_t w, uint32_t h) { return {Kind::absolute, w, h, 1.0f}; }
+  static SizeSpec relative(float s) { return {Kind::scale, 0, 0, s}; }
+};
+
+struct Extent {
+  uint32_t width = 0, height = 0;
+  bool operator==(const Extent& o) const { return width == o.width && height == o.height; }
+  bool operator!=(const Extent& o) const { return !(*this == o); }
+};
+
+// Resolve a size against the output extent (scale rounds, never below 1).
+Extent resolveSize(const SizeSpec& s, Extent output);
+
+struct TextureDesc {
+  Format format = Format::rgba8;
+  SizeSpec size;
+  uint32_t mips = 1;     // 0 means a full mip chain
+  uint32_t samples = 1;
+  std::optional<std::vector<float>> clear;  // clear value applied by the first writer
+};
+
+enum class ResourceKind { texture, buffer };
+
+struct ResourceDecl {
+  std::string name;
+  ResourceKind kind = ResourceKind::texture;
+  TextureDesc texture;          // kind == texture
+  uint64_t bufferBytes = 0;     // kind == buffer
+  bool imported = false;        // owned outside the graph (the output image, caller textures)
+  // Imported resources usually arrive with content (version 0 is readable);
+  // the output image does not.
+  bool importedHasContent = true;
+  SourceLocation where;
+};
+
+// ---------------------------------------------------------------- passes
+
+enum class Access {
+  color_attachment,        // write
+  depth_attachment,        // write (depth/stencil test + write)
+  depth_attachment_read,   // read-only depth/stencil test
+  sampled,                 // read
+  storage_read,            // read (image or buffer)
+  storage_write,           // write (image or buffer)
+  blit_src,                // read
+  blit_dst,                // write
+};
+
+bool isWriteAccess(Access a);
+bool isAttachmentAccess(Access a);
+std::string_view accessName(Access a);
+
+// One slot of a pass bound to resources.
+//  * Reading access: `input` names the version read; `output` is empty.
+//  * Writing access: `output` names the version produced. If `input` is set,
+//    the pass loads that version (read-modify-write) and `output` is its
+//    successor; if `input` is empty, `output` must name a declared resource
+//    whose first version this pass writes (contents start cleared/undefined).
+struct ResourceUse {
+  std::string slot;
+  Access access = Access::sampled;
+  std::string input;
+  std::string output;
+  bool acceptsMultisample = false;  // sampled through sampler2DMS / resolved by the pass itself
+  SourceLocation inputWhere, outputWhere;
+};
+
+struct PassDecl {
+  std::string name;
+  std::string type;
+  std::vector<ResourceUse> uses;
+  bool sideEffect = false;  // never culled (e.g. writes a file, reads back stats)
+  bool enabled = true;      // disabled in-place passes become pass-throughs
+  SourceLocation where;
+};
+
+struct GraphDesc {
+  std::vector<ResourceDecl> resources;
+  std::vector<PassDecl> passes;
+  std::string output;  // resource (or version) name that becomes the output image
+  SourceLocation outputWhere;
+};
+
+// ---------------------------------------------------------------- the plan
+
+struct CompileOptions {
+  Extent output{1280, 720};
+  bool alias = true;  // false: every transient gets its own physical texture
+};
+
+struct PlannedPass {
+  uint32_t decl = 0;          // index into GraphDesc::passes
+  std::string name, type;
+  int order = -1;             // position in execution order, -1 when culled
+  bool culled = false;
+  std::string reason;         // why culled ("disabled", "its outputs reach no output ...")
+};
+
+struct PlannedResource {
+  std::string name;
+  ResourceKind kind = ResourceKind::texture;
+  bool imported = false;
+  Extent extent;              // resolved size (textures)
+  uint64_t bytes = 0;         // memory it would need on its own
+  int firstPass = -1;         // execution-order index of first use, -1 when unused
+  int lastPass = -1;          // execution-order index of last use
+  int physical = -1;          // index into Plan::physical, -1 for imported/unused
+  std::vector<std::string> versions;  // version names in write order
+};
+
+struct PhysicalTexture {
+  ResourceKind kind = ResourceKind::texture;
+  Format format = Format::rgba8;
+  Extent extent;
+  uint32_t mips = 1, samples = 1;
+  uint64_t bytes = 0;
+  std::vector<uint32_t> resources;  // indices into Plan::resources sharing it, in first-use order
+};
+
+// A resolved binding of one slot for the executor: which resource and which
+// versions it touches.
+struct BoundUse {
+  std::string slot;
+  Access access = Access::sampled;
+  int resource = -1;        // index into Plan::resources
+  std::string readVersion;  // empty for a fresh write
+  std::string writeVersion; // empty for a read
+  bool firstWrite = false;  // writes version 0: apply the resource's clear here
+};
+
+struct Plan {
+  Extent output;
+  std::vector<PlannedPass> passes;          // one per GraphDesc pass, declaration order
+  std::vector<uint32_t> order;              // indices into passes, execution order (culled excluded)
+  std::vector<PlannedResource> resources;   // one per GraphDesc resource, declaration order
+  std::vector<PhysicalTexture> physical;
+  std::vector<std::vector<BoundUse>> bindings;  // per pass (declaration order)
+  int outputResource = -1;
+  std::string outputVersion;                // the final version that becomes the image
+  uint64_t naiveBytes = 0;                  // every live transient on its own
+  uint64_t allocatedBytes = 0;              // after aliasing
+  Diagnostics diagnostics;
+  bool ok() const { return !hasErrors(diagnostics); }
+};
+
+// Validate and compile. Never throws for bad input: problems are diagnostics.
+// When diagnostics contain errors, the plan's order/physical may be partial.
+Plan compile(const GraphDesc& desc, const CompileOptions& options = {});
+
+// Size in bytes of a texture with this descriptor at this extent (mips, samples included).
+uint64_t textureBytes(Format f, Extent e, uint32_t mips, uint32_t samples);
+
+// Graphviz DOT of a compiled graph: passes (boxes) and resource versions
+// (ellipses), read/write edges, culled passes dashed grey, aliased resources
+// sharing a physical texture in one colour and labelled "phys #N".
+std::string toDot(const GraphDesc& desc, const Plan& plan);
+
+}  // namespace rgraph

@@ -1,0 +1,48 @@
+// The pass registry: every pass type the config may name. Built-in passes
+// register themselves at static-initialisation time with RGRAPH_REGISTER_PASS;
+// plugins register through the entry point the plugin loader calls.
+#pragma once
+
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rgraph/pass.h"
+
+namespace rgraph {
+
+class PassRegistry {
+ public:
+  // Adds a type. Returns false (and sets *error) on a duplicate name or an
+  // inconsistent declaration (duplicate slot/param, default out of range).
+  bool add(PassTypeDesc desc, std::string* error = nullptr);
+  const PassTypeDesc* find(std::string_view name) const;
+  std::vector<const PassTypeDesc*> all() const;  // sorted by name
+  // Closest registered name within a small edit distance, or "".
+  std::string suggest(std::string_view name) const;
+
+  // The process-wide registry holding the built-in pass types.
+  static PassRegistry& builtins();
+  // Built-in types that failed to register (a bug in rgraph itself); the CLI
+  // prints these instead of aborting during static initialisation.
+  static std::vector<std::string>& builtinErrors();
+
+ private:
+  std::map<std::string, PassTypeDesc, std::less<>> types_;
+};
+
+// Closest candidate by edit distance (<= max(2, len/3)), or "".
+std::string closestMatch(std::string_view word, const std::vector<std::string>& candidates);
+
+struct PassRegistrar {
+  explicit PassRegistrar(PassTypeDesc (*make)());
+};
+
+}  // namespace rgraph
+
+#define RGRAPH_CONCAT_INNER(a, b) a##b
+#define RGRAPH_CONCAT(a, b) RGRAPH_CONCAT_INNER(a, b)
+// In a pass folder's .cpp: RGRAPH_REGISTER_PASS(makeMyPassType);
+#define RGRAPH_REGISTER_PASS(fn) \
+  static const ::rgraph::PassRegistrar RGRAPH_CONCAT(rgraph_registrar_, __LINE__){fn}

@@ -1,0 +1,121 @@
+#include "rgraph/registry.h"
+
+#include <algorithm>
+#include <set>
+
+namespace rgraph {
+
+const SlotDecl* PassTypeDesc::findSlot(std::string_view slot) const {
+  for (const auto& s : slots)
+    if (s.name == slot) return &s;
+  return nullptr;
+}
+
+const ParamDecl* PassTypeDesc::findParam(std::string_view param) const {
+  for (const auto& p : params)
+    if (p.name == param) return &p;
+  return nullptr;
+}
+
+namespace {
+bool fail(std::string* error, std::string msg) {
+  if (error) *error = std::move(msg);
+  return false;
+}
+
+bool defaultInRange(const ParamDecl& p) {
+  auto inRange = [&](double v) { return (!p.min || v >= *p.min) && (!p.max || v <= *p.max); };
+  if (auto* d = std::get_if<double>(&p.defaultValue)) return inRange(*d);
+  if (auto* i = std::get_if<int64_t>(&p.defaultValue)) return inRange(static_cast<double>(*i));
+  if (auto* v = std::get_if<std::vector<double>>(&p.defaultValue))
+    return std::all_of(v->begin(), v->end(), inRange);
+  return true;
+}
+}  // namespace
+
+bool PassRegistry::add(PassTypeDesc desc, std::string* error) {
+  if (desc.name.empty()) return fail(error, "pass type has an empty name");
+  if (types_.count(desc.name)) {
+    const auto& existing = types_.find(desc.name)->second;
+    return fail(error, "pass type '" + desc.name + "' is already registered (from " + existing.origin + ")");
+  }
+  std::set<std::string> seen;
+  for (const auto& s : desc.slots)
+    if (!seen.insert(s.name).second)
+      return fail(error, "pass type '" + desc.name + "' declares slot '" + s.name + "' twice");
+  seen.clear();
+  for (const auto& p : desc.params) {
+    if (!seen.insert(p.name).second)
+      return fail(error, "pass type '" + desc.name + "' declares parameter '" + p.name + "' twice");
+    if (!defaultInRange(p))
+      return fail(error, "pass type '" + desc.name + "': default of parameter '" + p.name + "' is out of its range");
+  }
+  if (!desc.create) return fail(error, "pass type '" + desc.name + "' has no factory");
+  std::string name = desc.name;
+  types_.emplace(std::move(name), std::move(desc));
+  return true;
+}
+
+const PassTypeDesc* PassRegistry::find(std::string_view name) const {
+  auto it = types_.find(name);
+  return it == types_.end() ? nullptr : &it->second;
+}
+
+std::vector<const PassTypeDesc*> PassRegistry::all() const {
+  std::vector<const PassTypeDesc*> out;
+  for (const auto& [name, desc] : types_) out.push_back(&desc);
+  return out;
+}
+
+std::string PassRegistry::suggest(std::string_view name) const {
+  std::vector<std::string> names;
+  for (const auto& [n, d] : types_) names.push_back(n);
+  return closestMatch(name, names);
+}
+
+PassRegistry& PassRegistry::builtins() {
+  static PassRegistry registry;
+  return registry;
+}
+
+std::vector<std::string>& PassRegistry::builtinErrors() {
+  static std::vector<std::string> errors;
+  return errors;
+}
+
+namespace {
+size_t editDistance(std::string_view a, std::string_view b) {
+  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      size_t sub = prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
+    }
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+}  // namespace
+
+std::string closestMatch(std::string_view word, const std::vector<std::string>& candidates) {
+  size_t limit = std::max<size_t>(2, word.size() / 3);
+  std::string best;
+  size_t bestDistance = limit + 1;
+  for (const auto& c : candidates) {
+    size_t d = editDistance(word, c);
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+PassRegistrar::PassRegistrar(PassTypeDesc (*make)()) {
+  std::string error;
+  if (!PassRegistry::builtins().add(make(), &error)) PassRegistry::builtinErrors().push_back(error);
+}
+
+}  // namespace rgraph
