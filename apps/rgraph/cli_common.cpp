@@ -1,0 +1,65 @@
+#include "cli_common.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "rgraph/registry.h"
+
+namespace rgraph::cli {
+
+std::optional<PipelineConfig> loadPipeline(const std::string& path, Diagnostics& diags) {
+  ConfigDocument doc = ConfigDocument::parseFile(path, diags);
+  if (!doc.ok() || hasErrors(diags)) return std::nullopt;
+  PipelineConfig pipeline = doc.build(PassRegistry::builtins(), diags);
+  if (hasErrors(diags)) return std::nullopt;
+  return pipeline;
+}
+
+void printDiagnostics(const Diagnostics& diags) {
+  for (const auto& d : diags) std::cerr << formatDiagnostic(d) << "\n";
+}
+
+std::string diagnosticsJson(const Diagnostics& diags) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& d : diags) {
+    out.push_back({{"severity", severityName(d.severity)},
+                   {"code", diagCodeName(d.code)},
+                   {"message", d.message},
+                   {"file", d.where.file},
+                   {"line", d.where.line},
+                   {"column", d.where.column},
+                   {"path", d.where.path},
+                   {"pass", d.pass},
+                   {"slot", d.slot},
+                   {"resource", d.resource}});
+  }
+  return out.dump(2);
+}
+
+namespace {
+std::filesystem::path executableDir() {
+  std::error_code ec;
+  auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::path{} : exe.parent_path();
+}
+}  // namespace
+
+std::string defaultPipelinePath() {
+  const std::string name = "default.json";
+  // An installed rgraph finds its pipelines beside its shaders; a build tree
+  // finds them in the source tree it was configured from.
+  std::vector<std::filesystem::path> candidates;
+  if (const char* env = std::getenv("RGRAPH_PIPELINE_DIR")) candidates.emplace_back(env);
+  candidates.push_back(executableDir() / ".." / "share" / "rgraph" / "pipelines");
+  candidates.emplace_back(RGRAPH_PIPELINE_SOURCE_DIR);
+  for (const auto& dir : candidates) {
+    std::error_code ec;
+    if (std::filesystem::exists(dir / name, ec)) return (dir / name).lexically_normal().string();
+  }
+  return (std::filesystem::path(RGRAPH_PIPELINE_SOURCE_DIR) / name).string();
+}
+
+}  // namespace rgraph::cli

@@ -1,0 +1,215 @@
+// validate, plan, dot, passes: everything that needs no GL context.
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "rgraph/registry.h"
+
+namespace rgraph::cli {
+namespace {
+
+// Loads and compiles; prints nothing. Returns nullopt only when the config
+// itself could not be built (the plan's own diagnostics stay in the plan).
+std::optional<std::pair<PipelineConfig, Plan>> loadAndCompile(const std::string& path, const SizeOptions& size,
+                                                              Diagnostics& diags) {
+  auto pipeline = loadPipeline(path, diags);
+  if (!pipeline) return std::nullopt;
+  Plan plan = compile(pipeline->graph, CompileOptions{Extent{size.width, size.height}});
+  diags.insert(diags.end(), plan.diagnostics.begin(), plan.diagnostics.end());
+  return std::make_pair(std::move(*pipeline), std::move(plan));
+}
+
+nlohmann::json passName(const Plan& plan, int order) {
+  if (order < 0 || order >= static_cast<int>(plan.order.size())) return nullptr;
+  return plan.passes[plan.order[order]].name;
+}
+
+nlohmann::json planJson(const Plan& plan) {
+  nlohmann::json passes = nlohmann::json::array();
+  for (const auto& p : plan.passes) {
+    passes.push_back({{"name", p.name},
+                      {"type", p.type},
+                      {"order", p.culled ? nlohmann::json(nullptr) : nlohmann::json(p.order)},
+                      {"culled", p.culled},
+                      {"reason", p.reason}});
+  }
+  nlohmann::json resources = nlohmann::json::array();
+  for (const auto& r : plan.resources) {
+    resources.push_back({{"name", r.name},
+                         {"kind", r.kind == ResourceKind::texture ? "texture" : "buffer"},
+                         {"imported", r.imported},
+                         {"width", r.extent.width},
+                         {"height", r.extent.height},
+                         {"first_pass", passName(plan, r.firstPass)},
+                         {"last_pass", passName(plan, r.lastPass)},
+                         {"first_order", r.firstPass < 0 ? nlohmann::json(nullptr) : nlohmann::json(r.firstPass)},
+                         {"last_order", r.lastPass < 0 ? nlohmann::json(nullptr) : nlohmann::json(r.lastPass)},
+                         {"physical", r.physical < 0 ? nlohmann::json(nullptr) : nlohmann::json(r.physical)},
+                         {"bytes", r.bytes},
+                         {"versions", r.versions}});
+  }
+  nlohmann::json physical = nlohmann::json::array();
+  for (const auto& ph : plan.physical) {
+    nlohmann::json names = nlohmann::json::array();
+    for (uint32_t r : ph.resources) names.push_back(plan.resources[r].name);
+    physical.push_back({{"format", formatName(ph.format)},
+                        {"width", ph.extent.width},
+                        {"height", ph.extent.height},
+                        {"bytes", ph.bytes},
+                        {"resources", names}});
+  }
+  return {{"output", {{"width", plan.output.width}, {"height", plan.output.height}}},
+          {"passes", passes},
+          {"resources", resources},
+          {"physical", physical},
+          {"memory", {{"naive_bytes", plan.naiveBytes}, {"allocated_bytes", plan.allocatedBytes}}}};
+}
+
+std::string mib(uint64_t bytes) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(2) << static_cast<double>(bytes) / (1024.0 * 1024.0) << " MiB";
+  return s.str();
+}
+
+void printPlanText(const Plan& plan) {
+  std::cout << "passes (" << plan.order.size() << " run, " << plan.passes.size() - plan.order.size()
+            << " culled) at " << plan.output.width << "x" << plan.output.height << ":\n";
+  for (uint32_t idx : plan.order) {
+    const auto& p = plan.passes[idx];
+    std::cout << "  " << std::setw(3) << p.order << "  " << std::left << std::setw(24) << p.name << std::right << " ("
+              << p.type << ")\n";
+  }
+  for (const auto& p : plan.passes)
+    if (p.culled) std::cout << "  cut  " << std::left << std::setw(24) << p.name << std::right << " " << p.reason << "\n";
+  std::cout << "resources:\n";
+  for (const auto& r : plan.resources) {
+    std::cout << "  " << std::left << std::setw(20) << r.name << std::right;
+    if (r.firstPass < 0) {
+      std::cout << " unused\n";
+      continue;
+    }
+    std::cout << " passes " << r.firstPass << ".." << r.lastPass;
+    if (r.imported)
+      std::cout << "  imported";
+    else
+      std::cout << "  physical #" << r.physical;
+    std::cout << "  " << mib(r.bytes) << "\n";
+  }
+  std::cout << "memory: naive " << mib(plan.naiveBytes) << ", allocated " << mib(plan.allocatedBytes) << " in "
+            << plan.physical.size() << " physical textures\n";
+}
+
+}  // namespace
+
+int runValidate(const std::string& path, const SizeOptions& size, bool json) {
+  Diagnostics diags;
+  loadAndCompile(path, size, diags);
+  if (json)
+    std::cout << diagnosticsJson(diags) << "\n";
+  else
+    printDiagnostics(diags);
+  if (hasErrors(diags)) return kExitFailure;
+  if (!json) std::cout << path << ": valid\n";
+  return kExitOk;
+}
+
+int runPlan(const std::string& path, const SizeOptions& size, bool json) {
+  Diagnostics diags;
+  auto result = loadAndCompile(path, size, diags);
+  printDiagnostics(diags);
+  if (!result || hasErrors(diags)) return kExitFailure;
+  if (json)
+    std::cout << planJson(result->second).dump(2) << "\n";
+  else
+    printPlanText(result->second);
+  return kExitOk;
+}
+
+int runDot(const std::string& path, const SizeOptions& size) {
+  Diagnostics diags;
+  auto result = loadAndCompile(path, size, diags);
+  printDiagnostics(diags);
+  if (!result || hasErrors(diags)) return kExitFailure;
+  std::cout << toDot(result->first.graph, result->second);
+  return kExitOk;
+}
+
+namespace {
+nlohmann::json paramValueJson(const ParamValue& v) {
+  return std::visit([](const auto& x) { return nlohmann::json(x); }, v);
+}
+
+std::string_view loadName(SlotDecl::Load l) {
+  switch (l) {
+    case SlotDecl::Load::never: return "never";
+    case SlotDecl::Load::optional: return "optional";
+    case SlotDecl::Load::required: return "required";
+  }
+  return "never";
+}
+}  // namespace
+
+int runPasses(bool json) {
+  const auto types = PassRegistry::builtins().all();
+  for (const auto& e : PassRegistry::builtinErrors()) std::cerr << "error: built-in pass failed to register: " << e << "\n";
+  nlohmann::json out = nlohmann::json::array();
+  for (const PassTypeDesc* t : types) {
+    nlohmann::json slots = nlohmann::json::array();
+    for (const auto& s : t->slots) {
+      nlohmann::json formats = nlohmann::json::array();
+      for (Format f : s.formats) formats.push_back(formatName(f));
+      slots.push_back({{"name", s.name},
+                       {"access", accessName(s.access)},
+                       {"required", s.required},
+                       {"load", loadName(s.load)},
+                       {"formats", formats},
+                       {"description", s.description}});
+    }
+    nlohmann::json params = nlohmann::json::array();
+    for (const auto& p : t->params) {
+      nlohmann::json pj = {{"name", p.name},
+                           {"type", paramTypeName(p.type)},
+                           {"default", paramValueJson(p.defaultValue)},
+                           {"description", p.description}};
+      if (p.min) pj["min"] = *p.min;
+      if (p.max) pj["max"] = *p.max;
+      if (!p.choices.empty()) pj["choices"] = p.choices;
+      params.push_back(pj);
+    }
+    out.push_back({{"type", t->name},
+                   {"description", t->description},
+                   {"origin", t->origin},
+                   {"side_effect", t->sideEffect},
+                   {"shaders", t->shaders},
+                   {"slots", slots},
+                   {"params", params}});
+  }
+  if (json) {
+    std::cout << out.dump(2) << "\n";
+    return kExitOk;
+  }
+  for (const auto& t : out) {
+    std::cout << t["type"].get<std::string>() << "  (" << t["origin"].get<std::string>() << ")\n    "
+              << t["description"].get<std::string>() << "\n";
+    for (const auto& s : t["slots"]) {
+      std::cout << "    slot  " << std::left << std::setw(14) << s["name"].get<std::string>() << std::setw(22)
+                << s["access"].get<std::string>() << std::right << (s["required"].get<bool>() ? "required" : "optional");
+      if (s["load"] != "never") std::cout << ", load " << s["load"].get<std::string>();
+      std::cout << "\n";
+    }
+    for (const auto& p : t["params"]) {
+      std::cout << "    param " << std::left << std::setw(14) << p["name"].get<std::string>() << std::setw(8)
+                << p["type"].get<std::string>() << std::right << " = " << p["default"].dump();
+      if (p.contains("min") || p.contains("max"))
+        std::cout << "  [" << (p.contains("min") ? p["min"].dump() : "") << ", "
+                  << (p.contains("max") ? p["max"].dump() : "") << "]";
+      std::cout << "  " << p["description"].get<std::string>() << "\n";
+    }
+  }
+  return PassRegistry::builtinErrors().empty() ? kExitOk : kExitFailure;
+}
+
+}  // namespace rgraph::cli
