@@ -49,8 +49,13 @@ class ConfigDocument {
   PipelineConfig build(const PassRegistry& registry, Diagnostics& diags) const;
 
   // Location of the value at a JSON pointer (e.g. "/passes/1/type");
-  // falls back to the closest existing parent.
+  // falls back to the closest existing parent (whose pointer is then the
+  // returned path).
   SourceLocation locate(const std::string& jsonPointer) const;
+  // Location of the key of the object member at a JSON pointer (e.g.
+  // "/passes/0/inputs/albedo" -> the opening quote of "albedo"); falls back
+  // to locate() when the pointer names no object member.
+  SourceLocation locateKey(const std::string& jsonPointer) const;
 
  private:
   struct Impl;
