@@ -1,0 +1,323 @@
+// CPU-side scenes: geometry, materials, textures, lights and a camera, ready
+// to upload. No GL include; GL enum values (wrap modes, filters) travel as the
+// plain integers glTF uses, which are the GL values.
+//
+// Layout, chosen for upload:
+//   Scene::meshes      geometry in its own local space, one per glTF primitive
+//                      (separate attribute arrays, uint32 indices, CCW triangles);
+//   Scene::primitives  draws: a mesh, a material and a world transform (node
+//                      hierarchy flattened). Several draws may share a mesh;
+//   Scene::materials   PBR metallic-roughness + a Blinn-Phong specular intensity;
+//   Scene::textures    an image + a sampler; Scene::images decoded RGBA8 pixels
+//                      (one image per colour space: an sRGB and a linear use of
+//                      the same glTF image are two images);
+//   lights, ambient term, camera.
+//
+// Units: lengths in scene units, angles in degrees unless named otherwise.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace rgraph {
+
+// ---------------------------------------------------------------- bounds
+
+struct Bounds {
+  glm::vec3 min{std::numeric_limits<float>::infinity()};
+  glm::vec3 max{-std::numeric_limits<float>::infinity()};
+
+  bool empty() const { return !(min.x <= max.x && min.y <= max.y && min.z <= max.z); }
+  void expand(const glm::vec3& p);
+  void expand(const Bounds& b);
+  glm::vec3 center() const { return empty() ? glm::vec3(0.0f) : (min + max) * 0.5f; }
+  glm::vec3 size() const { return empty() ? glm::vec3(0.0f) : max - min; }
+  float radius() const { return empty() ? 0.0f : glm::length(max - min) * 0.5f; }
+  // The box around the 8 transformed corners.
+  Bounds transformed(const glm::mat4& m) const;
+};
+
+// ---------------------------------------------------------------- geometry
+
+// One vertex of the interleaved layout (48 bytes): position, normal, uv0, tangent.
+struct MeshVertex {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec2 uv;
+  glm::vec4 tangent;  // (0,0,0,1) when the mesh has no tangents
+};
+static_assert(sizeof(MeshVertex) == 48, "MeshVertex must stay tightly packed");
+
+// Triangle-list geometry in local space. Invariants (checked by valid()):
+// positions, normals and uv0 have the same size; tangents and uv1 are empty or
+// that size too; indices.size() % 3 == 0 and every index < vertexCount().
+// Triangles are counter-clockwise seen from their front side.
+struct MeshData {
+  std::string name;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;   // unit length
+  std::vector<glm::vec2> uv0;       // zeros when the source had none (hasUv0 false)
+  std::vector<glm::vec2> uv1;       // empty unless the source had TEXCOORD_1
+  std::vector<glm::vec4> tangents;  // empty unless a material using the mesh has a normal map;
+                                    // xyz unit, orthogonal to the normal; w = +-1 handedness
+                                    // (bitangent = w * cross(normal, tangent.xyz))
+  std::vector<uint32_t> indices;
+  bool hasUv0 = false;
+  Bounds bounds;                    // local space; see updateBounds()
+
+  size_t vertexCount() const { return positions.size(); }
+  size_t triangleCount() const { return indices.size() / 3; }
+  bool hasTangents() const { return !tangents.empty(); }
+  void updateBounds();
+  // Checks the invariants above; on failure writes the reason to *why.
+  bool valid(std::string* why = nullptr) const;
+  // The interleaved form of the attributes (same vertex order as the arrays).
+  std::vector<MeshVertex> interleaved() const;
+};
+
+// Per-vertex tangents from the UV layout: per-triangle accumulation, then
+// Gram-Schmidt against the normal, handedness in w. Vertices without a usable
+// UV gradient get an arbitrary unit tangent orthogonal to the normal.
+void generateTangents(MeshData& mesh);
+// Smooth normals: area-weighted average of the faces sharing each vertex.
+void computeSmoothNormals(MeshData& mesh);
+// Flat normals: unwelds the mesh (3 vertices per triangle) and gives each
+// triangle its face normal (what glTF asks for when NORMAL is missing).
+void computeFlatNormals(MeshData& mesh);
+
+// Procedural meshes (with normals and uv0, no tangents: call generateTangents()).
+MeshData makeCube(float halfExtent = 1.0f);  // 24 vertices, per-face normals, 12 triangles
+MeshData makeUvSphere(float radius = 1.0f, int segments = 32, int rings = 16);
+MeshData makePlane(float halfSizeX = 1.0f, float halfSizeZ = 1.0f, float uvScale = 1.0f);  // y = 0, facing +Y
+// A closed unit icosphere for light volumes: shared vertices (every edge used
+// by exactly two triangles), outward CCW winding, normals = positions.
+// subdivisions 0 gives the icosahedron (12 vertices, 20 triangles); each level
+// multiplies the triangle count by 4. Valid range 0..7.
+MeshData makeIcosphere(int subdivisions);
+
+// ---------------------------------------------------------------- materials and textures
+
+enum class AlphaMode : uint8_t { opaque, mask, blend };
+const char* alphaModeName(AlphaMode m);
+
+// glTF sampler values (= GL enums).
+struct SamplerDesc {
+  static constexpr int kNearest = 9728, kLinear = 9729, kNearestMipmapNearest = 9984,
+                       kLinearMipmapNearest = 9985, kNearestMipmapLinear = 9986,
+                       kLinearMipmapLinear = 9987;
+  static constexpr int kRepeat = 10497, kClampToEdge = 33071, kMirroredRepeat = 33648;
+  int wrapS = kRepeat;
+  int wrapT = kRepeat;
+  int minFilter = kLinearMipmapLinear;  // glTF leaves it to the renderer when unset: we pick trilinear
+  int magFilter = kLinear;
+  bool usesMipmaps() const;
+  bool operator==(const SamplerDesc&) const = default;
+};
+
+// Decoded pixels: RGBA8, rows top to bottom as stored in the file
+// (uploading to GL as-is puts the first row at v = 0, which is what glTF UVs expect).
+struct ImageData {
+  std::string name;
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> rgba;  // width * height * 4
+  bool srgb = false;          // base colour and emissive textures; upload as SRGB8_ALPHA8
+};
+
+struct SceneTexture {
+  int image = -1;  // index into Scene::images
+  SamplerDesc sampler;
+};
+
+struct TextureRef {
+  int texture = -1;  // index into Scene::textures; -1: none
+  int texCoord = 0;  // 0: uv0, 1: uv1
+  bool valid() const { return texture >= 0; }
+};
+
+struct Material {
+  std::string name;
+  glm::vec4 baseColorFactor{1.0f};
+  float metallicFactor = 1.0f;
+  float roughnessFactor = 1.0f;
+  glm::vec3 emissiveFactor{0.0f};  // includes KHR_materials_emissive_strength
+  TextureRef baseColorTexture;          // sRGB, alpha = coverage
+  TextureRef metallicRoughnessTexture;  // linear: G roughness, B metallic
+  TextureRef normalTexture;             // linear, tangent space
+  TextureRef occlusionTexture;          // linear, R
+  TextureRef emissiveTexture;           // sRGB
+  float normalScale = 1.0f;
+  float occlusionStrength = 1.0f;
+  AlphaMode alphaMode = AlphaMode::opaque;
+  float alphaCutoff = 0.5f;  // used by AlphaMode::mask
+  bool doubleSided = false;
+  // Blinn-Phong specular intensity for the LearnOpenGL lighting model (the
+  // G-buffer's albedo alpha). Not part of glTF: 0.5 unless a scene sets it.
+  float specular = 0.5f;
+
+  bool hasNormalMap() const { return normalTexture.valid(); }
+};
+
+// ---------------------------------------------------------------- draws
+
+struct Primitive {
+  int mesh = -1;      // index into Scene::meshes
+  int material = -1;  // index into Scene::materials (always valid in a loaded scene)
+  glm::mat4 transform{1.0f};  // local -> world
+  Bounds bounds;              // world space
+  std::string name;           // node name, for diagnostics
+
+  glm::mat3 normalMatrix() const { return glm::transpose(glm::inverse(glm::mat3(transform))); }
+  // A negative determinant flips the winding: draw with the front face reversed.
+  bool mirrored() const { return glm::determinant(glm::mat3(transform)) < 0.0f; }
+};
+
+// ---------------------------------------------------------------- lights and camera
+
+// Default brightness threshold for light volumes (LearnOpenGL: 5/256).
+inline constexpr float kLightThreshold = 5.0f / 256.0f;
+
+struct DirectionalLight {
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit; the direction the light travels (shaders use -direction)
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+};
+
+// Radiance at distance d: color * intensity / (constant + linear d + quadratic d^2),
+// zero beyond radius.
+struct PointLight {
+  glm::vec3 position{0.0f};
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+  float constant = 1.0f;
+  float linear = 0.7f;
+  float quadratic = 1.8f;
+  float radius = 0.0f;  // light-volume radius; lightRadius(*this) unless the source gave one
+};
+
+// Distance at which the light falls to `threshold`: solves
+// constant + linear d + quadratic d^2 = max(color.r, color.g, color.b) * intensity / threshold.
+// quadratic == 0: the linear solution. quadratic == 0 and linear == 0 (no falloff):
+// +infinity (callers cap it, e.g. to the scene's bounds). 0 when the light never
+// reaches the threshold. Negative coefficients are treated as 0.
+float lightRadius(const PointLight& light, float threshold = kLightThreshold);
+
+struct Camera {
+  glm::vec3 position{0.0f, 0.0f, 5.0f};
+  glm::vec3 target{0.0f, 0.0f, 0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fovY = 45.0f;  // vertical, degrees
+  float near = 0.1f;
+  float far = 100.0f;
+
+  glm::vec3 forward() const;  // unit, position -> target
+  glm::mat4 view() const;     // glm::lookAt (right-handed, looks down -Z)
+  glm::mat4 projection(float aspect) const;  // glm::perspective, GL clip space (-1..1 depth)
+  glm::mat4 viewProjection(float aspect) const { return projection(aspect) * view(); }
+};
+
+// A camera with the given vertical fov that sees all of `bounds`, looking at
+// its centre from the +Z side and slightly above.
+Camera frameBounds(const Bounds& bounds, float fovY = 45.0f);
+
+// ---------------------------------------------------------------- scene
+
+struct Scene {
+  std::string source;  // file or procedural spec it came from
+  std::vector<MeshData> meshes;
+  std::vector<Primitive> primitives;
+  std::vector<Material> materials;
+  std::vector<SceneTexture> textures;
+  std::vector<ImageData> images;
+  std::vector<DirectionalLight> directionalLights;
+  std::vector<PointLight> pointLights;
+  // Ambient light; the lighting pass adds albedo * ambient (LearnOpenGL: 0.1).
+  glm::vec3 ambient{0.1f};
+  Camera camera;
+  bool hasCamera = false;  // false: `camera` is the default, not from the source
+
+  // Queries, so that a pipeline models no more than the scene needs. Material
+  // queries look only at materials used by some primitive.
+  bool hasPointLights() const { return !pointLights.empty(); }
+  bool hasDirectionalLights() const { return !directionalLights.empty(); }
+  bool hasBlendMaterials() const;
+  bool hasMaskMaterials() const;
+  bool hasNormalMaps() const;
+  bool hasTextures() const;
+  // Any used material with a metallic-roughness texture, or metallic/roughness
+  // factors that differ between used materials.
+  bool hasMetallicRoughnessVariation() const;
+  size_t triangleCount() const;  // over primitives (a shared mesh counts per draw)
+  size_t vertexCount() const;    // over primitives
+  Bounds bounds() const;         // world space, over primitives
+  // Throws RuntimeError when an index is out of range or a mesh breaks its invariants.
+  void validate() const;
+};
+
+// Appends `src` to `dst` under `transform` (primitives, point and directional
+// lights; src's camera is taken only when dst has none). Indices are rebased.
+void appendScene(Scene& dst, Scene src, const glm::mat4& transform = glm::mat4(1.0f));
+
+// When the scene has no camera: frameBounds(bounds()). When it has no lights at
+// all: one directional light from above-front-right (ambient is kept).
+void applySceneDefaults(Scene& scene);
+
+// ---------------------------------------------------------------- loading
+// Every loader throws rgraph::RuntimeError naming the file and the problem.
+
+// glTF 2.0 (.gltf with external or embedded buffers, .glb). Default scene (or
+// all root nodes), TRIANGLES primitives (others skipped with a warning),
+// materials, textures, samplers, KHR_lights_punctual (spot lights become point
+// lights), the first perspective camera. No defaults added: see loadSceneAny.
+Scene loadGltf(const std::string& path);
+
+// Scene file (JSON), documented in scenes/README.md:
+// {"models": [{"file": "x.gltf", "transform": {"translation": [..], "rotation_euler_deg": [..],
+//   "scale": s | [..]}} | {"shape": "cube"|"sphere"|"plane", "material": {..}, "transform": ..}],
+//  "lights": [{"type": "point", ...}, {"type": "directional", ...}], "ambient": s | [..],
+//  "camera": {"position": [..], "target": [..], "up": [..], "fov": 45, "near": 0.1, "far": 100}}
+// Relative paths resolve against the scene file's folder. Without "camera" one frames the scene; without
+// "lights" (and none in the models) applySceneDefaults adds one; radii of lights without falloff are capped
+// to reach the whole scene.
+Scene loadSceneFile(const std::string& path);
+Scene parseSceneText(const std::string& text, const std::string& file, const std::string& baseDir);
+
+// "path.json" -> loadSceneFile; "path.gltf" / "path.glb" -> loadGltf + applySceneDefaults;
+// "learnopengl" -> makeLearnOpenGLScene(); "many-lights:N[:seed]" -> makeManyLightsScene(N, seed).
+Scene loadSceneAny(const std::string& spec);
+
+// ---------------------------------------------------------------- procedural scenes
+
+// The LearnOpenGL deferred-shading demo: 9 objects (cubes and spheres in a
+// checkerboard, edge 1 / diameter 1 = the chapter's 0.5 scale of a [-1,1] model)
+// at x,z in {-3,0,3}, y = -0.5, no floor (the chapter has none); 32 point lights
+// placed as the chapter's code does (srand(13), rand() reproduced by GlibcRandom),
+// constant 1, linear 0.7, quadratic 1.8; camera at (0,0,5) looking down -Z, fov 45,
+// near 0.1, far 100; ambient 0.1; one material with a procedural albedo texture, specular 0.5.
+Scene makeLearnOpenGLScene();
+
+// A field of cubes and spheres on a floor plane with n point lights (0..100000)
+// spread over it from a seeded PRNG. The field grows with n; each light's
+// attenuation is chosen so its radius keeps ~16 lights overlapping on average.
+Scene makeManyLightsScene(int n, uint32_t seed = 1);
+
+// glibc's rand()/random() (TYPE_3 additive feedback generator) reimplemented, so
+// the LearnOpenGL light placement is the same on every platform.
+class GlibcRandom {
+ public:
+  explicit GlibcRandom(uint32_t seed = 1);
+  int next();  // 0 .. 2^31-1, the sequence glibc's rand() gives after srand(seed)
+  static constexpr int kMax = 2147483647;
+
+ private:
+  int32_t state_[31];
+  int f_ = 3;
+  int r_ = 0;
+};
+
+}  // namespace rgraph

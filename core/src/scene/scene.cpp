@@ -1,0 +1,321 @@
+// Scene data: bounds, mesh helpers, lights, camera, scene queries and merging.
+#include "rgraph/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <utility>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "rgraph/error.h"
+
+namespace rgraph {
+
+// ---------------------------------------------------------------- Bounds
+
+void Bounds::expand(const glm::vec3& p) {
+  min = glm::min(min, p);
+  max = glm::max(max, p);
+}
+
+void Bounds::expand(const Bounds& b) {
+  if (b.empty()) return;
+  expand(b.min);
+  expand(b.max);
+}
+
+Bounds Bounds::transformed(const glm::mat4& m) const {
+  Bounds out;
+  if (empty()) return out;
+  for (int i = 0; i < 8; ++i) {
+    glm::vec3 c((i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z);
+    out.expand(glm::vec3(m * glm::vec4(c, 1.0f)));
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- MeshData
+
+void MeshData::updateBounds() {
+  bounds = Bounds{};
+  for (const glm::vec3& p : positions) bounds.expand(p);
+}
+
+bool MeshData::valid(std::string* why) const {
+  auto fail = [&](const std::string& msg) {
+    if (why) *why = msg;
+    return false;
+  };
+  const size_t n = positions.size();
+  if (normals.size() != n) return fail("normals count " + std::to_string(normals.size()) + " != vertex count " + std::to_string(n));
+  if (uv0.size() != n) return fail("uv0 count " + std::to_string(uv0.size()) + " != vertex count " + std::to_string(n));
+  if (!uv1.empty() && uv1.size() != n) return fail("uv1 count " + std::to_string(uv1.size()) + " != vertex count " + std::to_string(n));
+  if (!tangents.empty() && tangents.size() != n)
+    return fail("tangent count " + std::to_string(tangents.size()) + " != vertex count " + std::to_string(n));
+  if (indices.size() % 3 != 0) return fail("index count " + std::to_string(indices.size()) + " is not a multiple of 3");
+  for (size_t i = 0; i < indices.size(); ++i)
+    if (indices[i] >= n)
+      return fail("index " + std::to_string(indices[i]) + " at position " + std::to_string(i) + " >= vertex count " + std::to_string(n));
+  return true;
+}
+
+std::vector<MeshVertex> MeshData::interleaved() const {
+  std::vector<MeshVertex> out(positions.size());
+  for (size_t i = 0; i < out.size(); ++i) {
+    out[i].position = positions[i];
+    out[i].normal = i < normals.size() ? normals[i] : glm::vec3(0.0f, 0.0f, 1.0f);
+    out[i].uv = i < uv0.size() ? uv0[i] : glm::vec2(0.0f);
+    out[i].tangent = i < tangents.size() ? tangents[i] : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- materials
+
+const char* alphaModeName(AlphaMode m) {
+  switch (m) {
+    case AlphaMode::opaque: return "OPAQUE";
+    case AlphaMode::mask: return "MASK";
+    case AlphaMode::blend: return "BLEND";
+  }
+  return "?";
+}
+
+bool SamplerDesc::usesMipmaps() const {
+  return minFilter == kNearestMipmapNearest || minFilter == kLinearMipmapNearest || minFilter == kNearestMipmapLinear ||
+         minFilter == kLinearMipmapLinear;
+}
+
+// ---------------------------------------------------------------- lights
+
+float lightRadius(const PointLight& light, float threshold) {
+  const float c = std::max(light.constant, 0.0f);
+  const float l = std::max(light.linear, 0.0f);
+  const float q = std::max(light.quadratic, 0.0f);
+  const float brightest = std::max({light.color.r, light.color.g, light.color.b}) * std::max(light.intensity, 0.0f);
+  if (!(threshold > 0.0f)) return std::numeric_limits<float>::infinity();
+  const double k = double(brightest) / double(threshold);  // attenuation at which the light reaches the threshold
+  if (k <= c) return 0.0f;                                 // never as bright as the threshold
+  if (q > 0.0f) {
+    const double disc = double(l) * l - 4.0 * q * (c - k);  // > l^2 since c < k
+    return float((-double(l) + std::sqrt(disc)) / (2.0 * q));
+  }
+  if (l > 0.0f) return float((k - c) / l);
+  return std::numeric_limits<float>::infinity();
+}
+
+// ---------------------------------------------------------------- camera
+
+glm::vec3 Camera::forward() const {
+  glm::vec3 d = target - position;
+  float len = glm::length(d);
+  return len > 0.0f ? d / len : glm::vec3(0.0f, 0.0f, -1.0f);
+}
+
+glm::mat4 Camera::view() const {
+  glm::vec3 f = forward();
+  glm::vec3 u = up;
+  // lookAt degenerates when up is parallel to the view direction.
+  if (glm::length(glm::cross(f, u)) < 1e-6f) u = std::abs(f.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, -1);
+  return glm::lookAt(position, position + f, u);
+}
+
+glm::mat4 Camera::projection(float aspect) const {
+  float a = aspect > 0.0f ? aspect : 1.0f;
+  float n = near > 0.0f ? near : 0.1f;
+  float f = far > n ? far : n * 1000.0f;
+  return glm::perspective(glm::radians(fovY), a, n, f);
+}
+
+Camera frameBounds(const Bounds& bounds, float fovY) {
+  Camera cam;
+  cam.fovY = fovY;
+  if (bounds.empty()) return cam;
+  const glm::vec3 c = bounds.center();
+  const float r = std::max(bounds.radius(), 1e-3f);
+  const float halfFov = glm::radians(fovY) * 0.5f;
+  const float dist = r / std::sin(halfFov) * 1.05f;
+  const glm::vec3 dir = glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f));  // +Z side, slightly above
+  cam.position = c + dir * dist;
+  cam.target = c;
+  cam.up = glm::vec3(0.0f, 1.0f, 0.0f);
+  cam.near = std::max(dist - r * 1.5f, dist * 0.01f);
+  cam.near = std::max(cam.near, 1e-3f);
+  cam.far = dist + r * 2.0f;
+  return cam;
+}
+
+// ---------------------------------------------------------------- Scene queries
+
+namespace {
+std::vector<const Material*> usedMaterials(const Scene& s) {
+  std::set<int> ids;
+  for (const Primitive& p : s.primitives)
+    if (p.material >= 0 && size_t(p.material) < s.materials.size()) ids.insert(p.material);
+  std::vector<const Material*> out;
+  for (int i : ids) out.push_back(&s.materials[size_t(i)]);
+  return out;
+}
+}  // namespace
+
+bool Scene::hasBlendMaterials() const {
+  for (const Material* m : usedMaterials(*this))
+    if (m->alphaMode == AlphaMode::blend) return true;
+  return false;
+}
+
+bool Scene::hasMaskMaterials() const {
+  for (const Material* m : usedMaterials(*this))
+    if (m->alphaMode == AlphaMode::mask) return true;
+  return false;
+}
+
+bool Scene::hasNormalMaps() const {
+  for (const Material* m : usedMaterials(*this))
+    if (m->hasNormalMap()) return true;
+  return false;
+}
+
+bool Scene::hasTextures() const {
+  for (const Material* m : usedMaterials(*this))
+    if (m->baseColorTexture.valid() || m->metallicRoughnessTexture.valid() || m->normalTexture.valid() ||
+        m->occlusionTexture.valid() || m->emissiveTexture.valid())
+      return true;
+  return false;
+}
+
+bool Scene::hasMetallicRoughnessVariation() const {
+  std::vector<const Material*> used = usedMaterials(*this);
+  for (const Material* m : used)
+    if (m->metallicRoughnessTexture.valid()) return true;
+  for (const Material* m : used)
+    if (m->metallicFactor != used.front()->metallicFactor || m->roughnessFactor != used.front()->roughnessFactor) return true;
+  return false;
+}
+
+size_t Scene::triangleCount() const {
+  size_t n = 0;
+  for (const Primitive& p : primitives)
+    if (p.mesh >= 0 && size_t(p.mesh) < meshes.size()) n += meshes[size_t(p.mesh)].triangleCount();
+  return n;
+}
+
+size_t Scene::vertexCount() const {
+  size_t n = 0;
+  for (const Primitive& p : primitives)
+    if (p.mesh >= 0 && size_t(p.mesh) < meshes.size()) n += meshes[size_t(p.mesh)].vertexCount();
+  return n;
+}
+
+Bounds Scene::bounds() const {
+  Bounds b;
+  for (const Primitive& p : primitives) b.expand(p.bounds);
+  return b;
+}
+
+void Scene::validate() const {
+  const std::string where = source.empty() ? std::string("scene") : source;
+  auto fail = [&](const std::string& msg) { throw RuntimeError(where + ": " + msg); };
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    std::string why;
+    if (!meshes[i].valid(&why)) fail("mesh " + std::to_string(i) + " ('" + meshes[i].name + "'): " + why);
+  }
+  for (size_t i = 0; i < primitives.size(); ++i) {
+    const Primitive& p = primitives[i];
+    if (p.mesh < 0 || size_t(p.mesh) >= meshes.size()) fail("primitive " + std::to_string(i) + ": mesh index out of range");
+    if (p.material < 0 || size_t(p.material) >= materials.size())
+      fail("primitive " + std::to_string(i) + ": material index out of range");
+    if (materials[size_t(p.material)].hasNormalMap() && !meshes[size_t(p.mesh)].hasTangents())
+      fail("primitive " + std::to_string(i) + ": normal-mapped material on a mesh without tangents");
+  }
+  auto checkRef = [&](const TextureRef& r, size_t mi, const char* what) {
+    if (r.texture >= 0 && size_t(r.texture) >= textures.size())
+      fail("material " + std::to_string(mi) + ": " + what + " texture index out of range");
+  };
+  for (size_t i = 0; i < materials.size(); ++i) {
+    const Material& m = materials[i];
+    checkRef(m.baseColorTexture, i, "baseColor");
+    checkRef(m.metallicRoughnessTexture, i, "metallicRoughness");
+    checkRef(m.normalTexture, i, "normal");
+    checkRef(m.occlusionTexture, i, "occlusion");
+    checkRef(m.emissiveTexture, i, "emissive");
+  }
+  for (size_t i = 0; i < textures.size(); ++i)
+    if (textures[i].image < 0 || size_t(textures[i].image) >= images.size())
+      fail("texture " + std::to_string(i) + ": image index out of range");
+  for (size_t i = 0; i < images.size(); ++i) {
+    const ImageData& im = images[i];
+    if (im.width <= 0 || im.height <= 0 || im.rgba.size() != size_t(im.width) * size_t(im.height) * 4)
+      fail("image " + std::to_string(i) + " ('" + im.name + "'): pixel data does not match its size");
+  }
+}
+
+// ---------------------------------------------------------------- merging and defaults
+
+void appendScene(Scene& dst, Scene src, const glm::mat4& transform) {
+  const int meshBase = int(dst.meshes.size());
+  const int materialBase = int(dst.materials.size());
+  const int textureBase = int(dst.textures.size());
+  const int imageBase = int(dst.images.size());
+
+  for (MeshData& m : src.meshes) dst.meshes.push_back(std::move(m));
+  auto rebase = [&](TextureRef& r) {
+    if (r.texture >= 0) r.texture += textureBase;
+  };
+  for (Material& m : src.materials) {
+    rebase(m.baseColorTexture);
+    rebase(m.metallicRoughnessTexture);
+    rebase(m.normalTexture);
+    rebase(m.occlusionTexture);
+    rebase(m.emissiveTexture);
+    dst.materials.push_back(std::move(m));
+  }
+  for (SceneTexture& t : src.textures) {
+    if (t.image >= 0) t.image += imageBase;
+    dst.textures.push_back(t);
+  }
+  for (ImageData& im : src.images) dst.images.push_back(std::move(im));
+  for (Primitive& p : src.primitives) {
+    p.mesh += meshBase;
+    p.material += materialBase;
+    p.transform = transform * p.transform;
+    p.bounds = dst.meshes[size_t(p.mesh)].bounds.transformed(p.transform);
+    dst.primitives.push_back(std::move(p));
+  }
+  const glm::mat3 dirXf(transform);
+  for (PointLight l : src.pointLights) {
+    l.position = glm::vec3(transform * glm::vec4(l.position, 1.0f));
+    dst.pointLights.push_back(l);
+  }
+  for (DirectionalLight l : src.directionalLights) {
+    glm::vec3 d = dirXf * l.direction;
+    if (glm::length(d) > 0.0f) l.direction = glm::normalize(d);
+    dst.directionalLights.push_back(l);
+  }
+  if (!dst.hasCamera && src.hasCamera) {
+    Camera c = src.camera;
+    c.position = glm::vec3(transform * glm::vec4(c.position, 1.0f));
+    c.target = glm::vec3(transform * glm::vec4(src.camera.target, 1.0f));
+    glm::vec3 u = dirXf * c.up;
+    if (glm::length(u) > 0.0f) c.up = glm::normalize(u);
+    dst.camera = c;
+    dst.hasCamera = true;
+  }
+}
+
+void applySceneDefaults(Scene& scene) {
+  if (!scene.hasCamera) {
+    scene.camera = frameBounds(scene.bounds());
+    scene.hasCamera = true;
+  }
+  if (scene.pointLights.empty() && scene.directionalLights.empty()) {
+    DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, -0.6f));
+    sun.color = glm::vec3(1.0f);
+    sun.intensity = 1.0f;
+    scene.directionalLights.push_back(sun);
+  }
+}
+
+}  // namespace rgraph

@@ -1,0 +1,404 @@
+// Scene files (JSON) and the scene spec dispatcher (loadSceneAny).
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "rgraph/error.h"
+#include "rgraph/scene.h"
+
+namespace rgraph {
+
+namespace {
+
+using json = nlohmann::json;
+
+class SceneFileParser {
+ public:
+  SceneFileParser(std::string file, std::string baseDir) : file_(std::move(file)), baseDir_(std::move(baseDir)) {}
+
+  Scene parse(const std::string& text) {
+    json doc;
+    try {
+      doc = json::parse(text);
+    } catch (const json::parse_error& e) {
+      auto [line, col] = lineCol(text, e.byte);
+      throw RuntimeError(file_ + ":" + std::to_string(line) + ":" + std::to_string(col) + ": invalid JSON: " + stripPrefix(e.what()));
+    }
+    if (!doc.is_object()) fail("", "the scene file must be a JSON object");
+    for (auto it = doc.begin(); it != doc.end(); ++it) {
+      static const char* known[] = {"models", "lights", "ambient", "camera", "name", "description", "$schema"};
+      if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return it.key() == k; }) == std::end(known))
+        spdlog::warn("{}: /{}: unknown key ignored", file_, it.key());
+    }
+
+    Scene scene;
+    scene.source = file_;
+    if (doc.contains("models")) {
+      const json& models = doc["models"];
+      if (!models.is_array()) fail("/models", "expected an array");
+      for (size_t i = 0; i < models.size(); ++i) addModel(scene, models[i], "/models/" + std::to_string(i));
+    }
+    const bool hasLightsKey = doc.contains("lights");
+    if (hasLightsKey) {
+      const json& lights = doc["lights"];
+      if (!lights.is_array()) fail("/lights", "expected an array");
+      for (size_t i = 0; i < lights.size(); ++i) addLight(scene, lights[i], "/lights/" + std::to_string(i));
+    }
+    if (doc.contains("ambient")) scene.ambient = vec3OrScalar(doc["ambient"], "/ambient", 0.0f);
+    if (doc.contains("camera")) {
+      scene.camera = camera(doc["camera"], "/camera");
+      scene.hasCamera = true;
+    }
+    if (!scene.hasCamera) {
+      scene.camera = frameBounds(scene.bounds());
+      scene.hasCamera = true;
+    }
+    // Default light only when the file says nothing about lights ("lights": [] means none).
+    if (!hasLightsKey) applySceneDefaults(scene);
+    // Lights without falloff (linear = quadratic = 0) have an infinite radius: cap it to reach the whole scene.
+    const Bounds b = scene.bounds();
+    for (size_t i = 0; i < scene.pointLights.size(); ++i) {
+      PointLight& l = scene.pointLights[i];
+      if (std::isfinite(l.radius)) continue;
+      float reach = scene.camera.far;
+      if (!b.empty())
+        for (int c = 0; c < 8; ++c)
+          reach = std::max(reach, glm::distance(l.position, glm::vec3((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y,
+                                                                       (c & 4) ? b.max.z : b.min.z)));
+      spdlog::warn("{}: /lights/{}: no falloff (linear and quadratic are 0): radius capped to {}", file_, i, reach);
+      l.radius = reach;
+    }
+    scene.validate();
+    return scene;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& ptr, const std::string& msg) const {
+    throw RuntimeError(file_ + ": " + (ptr.empty() ? std::string("/") : ptr) + ": " + msg);
+  }
+
+  static std::pair<size_t, size_t> lineCol(const std::string& text, size_t byte) {
+    // nlohmann reports the byte count read so far (1-based position of the offending byte).
+    size_t end = std::min(byte > 0 ? byte - 1 : 0, text.size());
+    size_t line = 1, col = 1;
+    for (size_t i = 0; i < end; ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        col = 1;
+      } else {
+        ++col;
+      }
+    }
+    return {line, col};
+  }
+
+  static std::string stripPrefix(const std::string& what) {
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error ..." -> "syntax error ..."
+    const std::string key = ": ";
+    size_t p = what.find("parse error");
+    if (p != std::string::npos) {
+      size_t q = what.find(key, p);
+      if (q != std::string::npos) return what.substr(q + key.size());
+    }
+    return what;
+  }
+
+  float number(const json& j, const std::string& ptr) const {
+    if (!j.is_number()) fail(ptr, std::string("expected a number, got ") + j.type_name());
+    const double d = j.get<double>();
+    if (!std::isfinite(d)) fail(ptr, "expected a finite number");
+    return float(d);
+  }
+
+  float numberOr(const json& obj, const char* key, const std::string& ptr, float fallback) const {
+    auto it = obj.find(key);
+    return it == obj.end() ? fallback : number(*it, ptr + "/" + key);
+  }
+
+  glm::vec3 vec3(const json& j, const std::string& ptr) const {
+    if (!j.is_array() || j.size() != 3) fail(ptr, "expected an array of 3 numbers");
+    return glm::vec3(number(j[0], ptr + "/0"), number(j[1], ptr + "/1"), number(j[2], ptr + "/2"));
+  }
+
+  glm::vec3 vec3OrScalar(const json& j, const std::string& ptr, float minValue) const {
+    glm::vec3 v;
+    if (j.is_number()) {
+      v = glm::vec3(number(j, ptr));
+    } else if (j.is_array() && j.size() == 3) {
+      v = vec3(j, ptr);
+    } else {
+      fail(ptr, "expected a number or an array of 3 numbers");
+    }
+    if (v.x < minValue || v.y < minValue || v.z < minValue) fail(ptr, "values must be >= " + std::to_string(minValue));
+    return v;
+  }
+
+  std::string string(const json& j, const std::string& ptr) const {
+    if (!j.is_string()) fail(ptr, std::string("expected a string, got ") + j.type_name());
+    return j.get<std::string>();
+  }
+
+  const json& object(const json& j, const std::string& ptr) const {
+    if (!j.is_object()) fail(ptr, std::string("expected an object, got ") + j.type_name());
+    return j;
+  }
+
+  void unknownKeys(const json& obj, const std::string& ptr, std::initializer_list<const char*> known) const {
+    for (auto it = obj.begin(); it != obj.end(); ++it)
+      if (std::find_if(known.begin(), known.end(), [&](const char* k) { return it.key() == k; }) == known.end())
+        spdlog::warn("{}: {}/{}: unknown key ignored", file_, ptr, it.key());
+  }
+
+  // translation * Rz * Ry * Rx * scale: rotation_euler_deg rotates about X, then Y, then Z (fixed axes).
+  glm::mat4 transform(const json& j, const std::string& ptr) const {
+    object(j, ptr);
+    unknownKeys(j, ptr, {"translation", "rotation_euler_deg", "scale"});
+    glm::mat4 m(1.0f);
+    if (j.contains("translation")) m = glm::translate(m, vec3(j["translation"], ptr + "/translation"));
+    if (j.contains("rotation_euler_deg")) {
+      const glm::vec3 r = glm::radians(vec3(j["rotation_euler_deg"], ptr + "/rotation_euler_deg"));
+      m = glm::rotate(m, r.z, glm::vec3(0, 0, 1));
+      m = glm::rotate(m, r.y, glm::vec3(0, 1, 0));
+      m = glm::rotate(m, r.x, glm::vec3(1, 0, 0));
+    }
+    if (j.contains("scale")) {
+      const glm::vec3 s = vec3OrScalar(j["scale"], ptr + "/scale", -std::numeric_limits<float>::max());
+      if (s.x == 0.0f || s.y == 0.0f || s.z == 0.0f) fail(ptr + "/scale", "scale must not be zero");
+      m = glm::scale(m, s);
+    }
+    return m;
+  }
+
+  Material material(const json& j, const std::string& ptr) const {
+    object(j, ptr);
+    unknownKeys(j, ptr, {"name", "baseColor", "metallic", "roughness", "emissive", "specular", "alphaMode", "alphaCutoff", "doubleSided"});
+    Material m;
+    m.name = j.contains("name") ? string(j["name"], ptr + "/name") : std::string("material");
+    m.metallicFactor = 0.0f;
+    m.roughnessFactor = 0.5f;
+    if (j.contains("baseColor")) {
+      const json& c = j["baseColor"];
+      const std::string cp = ptr + "/baseColor";
+      if (!c.is_array() || (c.size() != 3 && c.size() != 4)) fail(cp, "expected an array of 3 or 4 numbers");
+      for (size_t i = 0; i < c.size(); ++i) m.baseColorFactor[int(i)] = number(c[i], cp + "/" + std::to_string(i));
+    }
+    auto unit = [&](const char* key, float fallback) {
+      const float v = numberOr(j, key, ptr, fallback);
+      if (v < 0.0f || v > 1.0f) fail(ptr + "/" + key, "must be in [0, 1]");
+      return v;
+    };
+    m.metallicFactor = unit("metallic", m.metallicFactor);
+    m.roughnessFactor = unit("roughness", m.roughnessFactor);
+    m.specular = unit("specular", m.specular);
+    m.alphaCutoff = unit("alphaCutoff", m.alphaCutoff);
+    if (j.contains("emissive")) m.emissiveFactor = vec3OrScalar(j["emissive"], ptr + "/emissive", 0.0f);
+    if (j.contains("alphaMode")) {
+      const std::string a = string(j["alphaMode"], ptr + "/alphaMode");
+      if (a == "opaque" || a == "OPAQUE") m.alphaMode = AlphaMode::opaque;
+      else if (a == "mask" || a == "MASK") m.alphaMode = AlphaMode::mask;
+      else if (a == "blend" || a == "BLEND") m.alphaMode = AlphaMode::blend;
+      else fail(ptr + "/alphaMode", "expected \"opaque\", \"mask\" or \"blend\", got \"" + a + "\"");
+    }
+    if (j.contains("doubleSided")) {
+      if (!j["doubleSided"].is_boolean()) fail(ptr + "/doubleSided", "expected true or false");
+      m.doubleSided = j["doubleSided"].get<bool>();
+    }
+    return m;
+  }
+
+  void addModel(Scene& scene, const json& j, const std::string& ptr) const {
+    object(j, ptr);
+    unknownKeys(j, ptr, {"file", "shape", "material", "transform", "name", "size"});
+    const glm::mat4 xf = j.contains("transform") ? transform(j["transform"], ptr + "/transform") : glm::mat4(1.0f);
+    const bool hasFile = j.contains("file"), hasShape = j.contains("shape");
+    if (hasFile == hasShape) fail(ptr, "a model needs exactly one of \"file\" or \"shape\"");
+    if (hasFile) {
+      const std::string rel = string(j["file"], ptr + "/file");
+      if (rel.empty()) fail(ptr + "/file", "empty path");
+      std::filesystem::path p(rel);
+      if (p.is_relative()) p = std::filesystem::path(baseDir_) / p;
+      const std::string path = p.lexically_normal().string();
+      std::error_code ec;
+      if (!std::filesystem::exists(path, ec)) fail(ptr + "/file", "model file not found: " + path);
+      Scene model;
+      try {
+        model = loadGltf(path);
+      } catch (const RuntimeError& e) {
+        fail(ptr + "/file", e.what());
+      }
+      appendScene(scene, std::move(model), xf);
+      return;
+    }
+    const std::string shape = string(j["shape"], ptr + "/shape");
+    Scene s;
+    if (shape == "cube") {
+      s.meshes.push_back(makeCube(0.5f));
+    } else if (shape == "sphere") {
+      s.meshes.push_back(makeUvSphere(0.5f));
+    } else if (shape == "plane") {
+      glm::vec3 size(1.0f);
+      if (j.contains("size")) size = vec3OrScalar(j["size"], ptr + "/size", 0.0f);
+      s.meshes.push_back(makePlane(size.x * 0.5f, size.z * 0.5f, std::max(size.x, size.z) * 0.5f));
+    } else {
+      fail(ptr + "/shape", "expected \"cube\", \"sphere\" or \"plane\", got \"" + shape + "\"");
+    }
+    s.materials.push_back(j.contains("material") ? material(j["material"], ptr + "/material") : Material{});
+    if (!j.contains("material")) {
+      s.materials.back().name = "default";
+      s.materials.back().metallicFactor = 0.0f;
+      s.materials.back().roughnessFactor = 0.5f;
+    }
+    Primitive p;
+    p.mesh = 0;
+    p.material = 0;
+    p.name = j.contains("name") ? string(j["name"], ptr + "/name") : shape;
+    p.bounds = s.meshes[0].bounds;
+    s.primitives.push_back(p);
+    appendScene(scene, std::move(s), xf);
+  }
+
+  void addLight(Scene& scene, const json& j, const std::string& ptr) const {
+    object(j, ptr);
+    if (!j.contains("type")) fail(ptr, "missing \"type\" (\"point\" or \"directional\")");
+    const std::string type = string(j["type"], ptr + "/type");
+    const float intensity = numberOr(j, "intensity", ptr, 1.0f);
+    if (intensity < 0.0f) fail(ptr + "/intensity", "must be >= 0");
+    const glm::vec3 color = j.contains("color") ? vec3OrScalar(j["color"], ptr + "/color", 0.0f) : glm::vec3(1.0f);
+    if (type == "point") {
+      unknownKeys(j, ptr, {"type", "position", "color", "intensity", "constant", "linear", "quadratic", "radius"});
+      if (!j.contains("position")) fail(ptr, "a point light needs \"position\"");
+      PointLight l;
+      l.position = vec3(j["position"], ptr + "/position");
+      l.color = color;
+      l.intensity = intensity;
+      l.constant = numberOr(j, "constant", ptr, 1.0f);
+      l.linear = numberOr(j, "linear", ptr, 0.7f);
+      l.quadratic = numberOr(j, "quadratic", ptr, 1.8f);
+      if (l.constant < 0.0f) fail(ptr + "/constant", "must be >= 0");
+      if (l.linear < 0.0f) fail(ptr + "/linear", "must be >= 0");
+      if (l.quadratic < 0.0f) fail(ptr + "/quadratic", "must be >= 0");
+      if (l.constant + l.linear + l.quadratic <= 0.0f) fail(ptr, "constant, linear and quadratic cannot all be 0");
+      if (j.contains("radius")) {
+        l.radius = number(j["radius"], ptr + "/radius");
+        if (l.radius <= 0.0f) fail(ptr + "/radius", "must be > 0");
+      } else {
+        l.radius = lightRadius(l);
+      }
+      scene.pointLights.push_back(l);
+    } else if (type == "directional") {
+      unknownKeys(j, ptr, {"type", "direction", "color", "intensity"});
+      if (!j.contains("direction")) fail(ptr, "a directional light needs \"direction\"");
+      DirectionalLight l;
+      const glm::vec3 d = vec3(j["direction"], ptr + "/direction");
+      if (glm::length(d) == 0.0f) fail(ptr + "/direction", "must not be the zero vector");
+      l.direction = glm::normalize(d);
+      l.color = color;
+      l.intensity = intensity;
+      scene.directionalLights.push_back(l);
+    } else {
+      fail(ptr + "/type", "expected \"point\" or \"directional\", got \"" + type + "\"");
+    }
+  }
+
+  Camera camera(const json& j, const std::string& ptr) const {
+    object(j, ptr);
+    unknownKeys(j, ptr, {"position", "target", "forward", "up", "fov", "near", "far"});
+    Camera c;
+    if (!j.contains("position")) fail(ptr, "a camera needs \"position\"");
+    c.position = vec3(j["position"], ptr + "/position");
+    if (j.contains("target") && j.contains("forward")) fail(ptr, "give \"target\" or \"forward\", not both");
+    if (j.contains("target")) {
+      c.target = vec3(j["target"], ptr + "/target");
+      if (c.target == c.position) fail(ptr + "/target", "must differ from the position");
+    } else if (j.contains("forward")) {
+      const glm::vec3 f = vec3(j["forward"], ptr + "/forward");
+      if (glm::length(f) == 0.0f) fail(ptr + "/forward", "must not be the zero vector");
+      c.target = c.position + glm::normalize(f);
+    } else {
+      c.target = c.position + glm::vec3(0, 0, -1);
+    }
+    if (j.contains("up")) {
+      c.up = vec3(j["up"], ptr + "/up");
+      if (glm::length(c.up) == 0.0f) fail(ptr + "/up", "must not be the zero vector");
+      c.up = glm::normalize(c.up);
+    }
+    c.fovY = numberOr(j, "fov", ptr, 45.0f);
+    if (!(c.fovY > 0.0f && c.fovY < 180.0f)) fail(ptr + "/fov", "must be in (0, 180) degrees");
+    c.near = numberOr(j, "near", ptr, 0.1f);
+    if (!(c.near > 0.0f)) fail(ptr + "/near", "must be > 0");
+    c.far = numberOr(j, "far", ptr, 100.0f);
+    if (!(c.far > c.near)) fail(ptr + "/far", "must be greater than near");
+    return c;
+  }
+
+  std::string file_;
+  std::string baseDir_;
+};
+
+std::string lowerExtension(const std::string& spec) {
+  std::string ext = std::filesystem::path(spec).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+bool parseUint(std::string_view s, uint64_t& out) {
+  if (s.empty()) return false;
+  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+  return ec == std::errc() && p == s.data() + s.size();
+}
+
+}  // namespace
+
+Scene parseSceneText(const std::string& text, const std::string& file, const std::string& baseDir) {
+  return SceneFileParser(file, baseDir).parse(text);
+}
+
+Scene loadSceneFile(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw RuntimeError(path + ": scene file not found");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw RuntimeError(path + ": cannot open the scene file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string base = std::filesystem::absolute(std::filesystem::path(path), ec).parent_path().string();
+  return parseSceneText(ss.str(), path, base);
+}
+
+Scene loadSceneAny(const std::string& spec) {
+  if (spec == "learnopengl") return makeLearnOpenGLScene();
+  const std::string prefix = "many-lights:";
+  if (spec.rfind(prefix, 0) == 0) {
+    std::string_view rest(spec);
+    rest.remove_prefix(prefix.size());
+    std::string_view countText = rest, seedText;
+    if (size_t colon = rest.find(':'); colon != std::string_view::npos) {
+      countText = rest.substr(0, colon);
+      seedText = rest.substr(colon + 1);
+    }
+    uint64_t count = 0, seed = 1;
+    if (!parseUint(countText, count) || count > 100000)
+      throw RuntimeError("scene '" + spec + "': expected many-lights:N[:seed] with N in 0..100000");
+    if (!seedText.empty() && (!parseUint(seedText, seed) || seed > UINT32_MAX))
+      throw RuntimeError("scene '" + spec + "': the seed must be an unsigned 32-bit integer");
+    return makeManyLightsScene(int(count), uint32_t(seed));
+  }
+  const std::string ext = lowerExtension(spec);
+  if (ext == ".json") return loadSceneFile(spec);
+  if (ext == ".gltf" || ext == ".glb") {
+    Scene s = loadGltf(spec);
+    applySceneDefaults(s);
+    return s;
+  }
+  throw RuntimeError("unknown scene '" + spec +
+                     "': expected a scene file (.json), a glTF model (.gltf, .glb), 'learnopengl' or 'many-lights:N'");
+}
+
+}  // namespace rgraph
