@@ -17,6 +17,7 @@ namespace rgraph {
 
 struct Scene;          // defined by the scene module
 class ShaderLibrary;   // defined by the GL backend
+class GpuScene;        // the scene uploaded to the GPU (rgraph/gl/gpu_scene.h)
 
 // How a slot may be bound in a config.
 struct SlotDecl {
@@ -88,6 +89,10 @@ class PassContext {
 
   virtual ShaderLibrary& shaders() = 0;
   virtual const Scene* scene() const = 0;  // nullptr when the pipeline runs without a scene
+  // The scene on the GPU, created once per executor; its Frame block is
+  // updated for the output extent before the first pass of every frame.
+  // nullptr without a scene.
+  virtual GpuScene* gpuScene() { return nullptr; }
 };
 
 }  // namespace rgraph

@@ -1,0 +1,85 @@
+// Runs a compiled render graph on the current GL context.
+//
+//   ShaderLibrary shaders;
+//   Executor exec(pipeline, PassRegistry::builtins(), shaders, scene);
+//   exec.resize({1280, 720});   // compile + create textures, framebuffers, pass instances
+//   exec.renderFrame();          // every frame
+//   auto rgba = exec.readOutputRGBA8();
+//
+// One GL texture per Plan::physical entry (aliased resources share it), one
+// per imported or un-aliased resource, one framebuffer per pass with
+// attachments. All of it is created in resize() and reused every frame.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rgraph/config.h"
+#include "rgraph/graph.h"
+#include "rgraph/pass.h"
+
+namespace rgraph {
+
+class PassRegistry;
+class GpuScene;
+
+class Executor {
+ public:
+  // Keeps a copy of the pipeline and references to registry and shaders
+  // (they must outlive the executor). Needs a current GL 4.5 context.
+  Executor(const PipelineConfig& pipeline, const PassRegistry& registry, ShaderLibrary& shaders,
+           const Scene* scene = nullptr);
+  ~Executor();
+  Executor(const Executor&) = delete;
+  Executor& operator=(const Executor&) = delete;
+
+  // Compiles the plan for this output size and (re)creates GL objects and pass
+  // instances. A no-op when the size is unchanged. Throws RuntimeError when the
+  // plan has errors (one formatDiagnostic line each), a pass type is unknown, a
+  // framebuffer is incomplete (names the pass and status) or a pass's setup fails.
+  void resize(Extent output);
+  // Executes every planned pass in order (clears first-written resources that
+  // have a clear value, then Pass::execute). Times each pass.
+  void renderFrame();
+
+  const Plan& plan() const;
+  // The scene uploaded to the GPU (created by the first resize() when a scene
+  // was given; its Frame block is updated for the output extent at the start
+  // of every frame). nullptr without a scene.
+  GpuScene* gpuScene() const;
+  struct PassTiming {
+    std::string name;
+    double ms = 0.0;
+  };
+  // Per executed pass, in execution order, of the last frame.
+  const std::vector<PassTiming>& timings() const;
+  // Whether timings come from the CPU clock around glFinish (software renderers)
+  // rather than GL_TIME_ELAPSED queries.
+  bool cpuTimed() const;
+
+  uint32_t outputTexture() const;
+  Extent outputExtent() const;
+  Format outputFormat() const;
+  // Output image as RGBA8, rows top-down, 4 bytes per pixel (stored bytes:
+  // an srgb8_alpha8 output gives its encoded values).
+  std::vector<uint8_t> readOutputRGBA8() const;
+  // Any resource (or one of its version names) as RGBA32F, rows top-down, 4
+  // floats per pixel; depth formats give depth in R (G = B = 0, A = 1). Level 0.
+  // With aliasing, a resource whose lifetime ended may have been overwritten.
+  std::vector<float> readTextureRGBA32F(const std::string& resourceOrVersionName) const;
+  // GL texture (or buffer) name of a resource or version; 0 when it has none.
+  uint32_t textureOf(const std::string& resourceOrVersionName) const;
+  uint32_t bufferOf(const std::string& resourceOrVersionName) const;
+
+  // GL objects this executor owns right now (textures + buffers + framebuffers + queries).
+  size_t ownedObjects() const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rgraph

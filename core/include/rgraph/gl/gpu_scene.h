@@ -1,0 +1,95 @@
+// A Scene uploaded to the GPU: one vertex/index buffer pair per mesh, textures
+// with their samplers, the per-frame uniform block and point-light buffers.
+// Scene passes share one GpuScene through PassContext::gpuScene().
+//
+// Shader conventions (see shaders/include/frame.glsl and scene.vert):
+//   vertex attributes  0 position, 1 normal, 2 uv0, 3 tangent (MeshVertex)
+//   uniform block 0    Frame (camera, viewport, ambient, directional light, counts)
+//   storage buffer 0   PointLight[] (bindPointLights)
+//   per draw           u_model, u_normalMatrix, material uniforms u_baseColorFactor,
+//                      u_metallicFactor, u_roughnessFactor, u_specular, u_normalScale,
+//                      u_occlusionStrength, u_alphaCutoff, u_alphaMode (0 opaque,
+//                      1 mask, 2 blend), u_emissive, u_hasBaseColorTex,
+//                      u_hasMetallicRoughnessTex, u_hasNormalTex, u_hasOcclusionTex
+//   texture units      0 base colour, 1 metallic-roughness, 2 normal, 3 occlusion, 4 emissive
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "rgraph/gl/objects.h"
+#include "rgraph/graph.h"
+
+namespace rgraph {
+
+struct Scene;
+
+class GpuScene {
+ public:
+  explicit GpuScene(const Scene& scene);  // uploads; needs a current GL context
+  ~GpuScene();
+  GpuScene(const GpuScene&) = delete;
+  GpuScene& operator=(const GpuScene&) = delete;
+
+  const Scene& scene() const { return scene_; }
+
+  // Fills the Frame block for this viewport (camera aspect) and binds it at 0.
+  void updateFrame(Extent viewport);
+  void bindFrame() const;
+
+  // Point lights with radii solved for `threshold` (LearnOpenGL: 5/256 of the
+  // brightest channel) and capped at the distance beyond which the scene has
+  // no geometry. threshold <= 0: no cut-off (radius -1). Cached per threshold.
+  // Binds the buffer at shader storage binding 0.
+  void bindPointLights(float threshold);
+  uint32_t pointLightBuffer(float threshold);
+  uint32_t pointLightCount() const;
+  // The radius each light gets for a threshold (CPU copy of what the buffer holds).
+  std::vector<float> pointLightRadii(float threshold) const;
+
+  enum class Filter { opaque, blend, all };  // opaque includes alpha-mask materials
+  struct DrawOptions {
+    Filter filter = Filter::opaque;
+    bool backToFront = false;    // sort by distance of bounds centre (blended surfaces)
+    bool cullBackFaces = true;   // per material: double-sided materials are never culled
+  };
+  // Draws every matching primitive with `program` (already in use or not):
+  // sets per-draw and material uniforms, binds textures and samplers.
+  void drawPrimitives(uint32_t program, const DrawOptions& options) const;
+  size_t primitiveCount(Filter filter) const;
+
+  // Closed unit icosphere (light volumes) and unit cube (light markers), drawn
+  // `instances` times; vertex attribute 0 is the position.
+  void drawIcosphere(uint32_t instances) const;
+  // The icosphere's flat faces lie inside the unit sphere; scaling a light's
+  // volume by radius * icosphereScale() makes the mesh enclose the whole sphere.
+  float icosphereScale() const { return icosphereScale_; }
+  void drawCube(uint32_t instances) const;
+
+ private:
+  struct GpuMesh {
+    gl::VertexArray vao;
+    gl::Buffer vertices, indices;
+    uint32_t indexCount = 0;
+  };
+  struct Locations;
+  GpuMesh upload(const struct MeshData& mesh) const;
+  const Locations& locations(uint32_t program) const;
+  void bindMaterial(uint32_t program, int material) const;
+
+  const Scene& scene_;
+  std::vector<GpuMesh> meshes_;
+  GpuMesh icosphere_, cube_;
+  float icosphereScale_ = 1.0f;
+  std::vector<gl::Texture> images_;
+  std::vector<gl::Sampler> samplers_;  // one per SceneTexture
+  gl::Texture white_, flatNormal_;
+  gl::Sampler defaultSampler_;
+  gl::Buffer frame_;
+  std::map<float, gl::Buffer> lightBuffers_;
+  mutable std::map<uint32_t, std::unique_ptr<Locations>> locations_;
+};
+
+}  // namespace rgraph

@@ -1,0 +1,33 @@
+// Parameters shared by every pass that shades lights (deferred lighting,
+// light volumes, tiled, forward_lit): one declaration, one meaning, the same
+// shader defines, so that methods compared against each other differ only in
+// how they visit lights.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "rgraph/pass.h"
+
+namespace rgraph::lighting {
+
+// model, attenuation, threshold parameter declarations.
+std::vector<ParamDecl> params(double defaultThreshold = 5.0 / 256.0, bool allowNoCutoff = true);
+// The G-buffer layout parameter (learnopengl, pbr, compact, fp32).
+ParamDecl layoutParam();
+
+// Shader defines for the lighting model and attenuation of these params.
+std::vector<std::string> defines(const ParamSet& params);
+// GBUFFER_* define of the layout param.
+std::string layoutDefine(const ParamSet& params);
+float threshold(const ParamSet& params);
+
+// Binds the sampled G-buffer slots (position, normal, albedo, material, depth)
+// to texture units 0..4; unbound slots get texture 0.
+void bindGBuffer(PassContext& ctx);
+// Checks that the slots a layout reads are bound; throws RuntimeError naming what is missing.
+void requireGBuffer(PassContext& ctx, const std::string& passKind);
+// Sampled G-buffer slot declarations (position, normal, albedo, material, depth).
+std::vector<SlotDecl> gbufferSlots();
+
+}  // namespace rgraph::lighting

@@ -1,0 +1,66 @@
+// Loads GLSL files from the shader directories, compiles and links programs
+// once (cached by files + defines). Compile and link errors throw
+// rgraph::RuntimeError naming the file and line: `shaders/NAME.frag:LINE: message`.
+//
+// Search order for a relative name: directories added with addSearchDirectory
+// (latest first), $RGRAPH_SHADER_DIR (':'-separated), <exe dir>/../share/rgraph/shaders,
+// the install directory, the source tree's shaders/. Absolute paths are used as is.
+//
+// Sources may `#include "file"` (one level: included files may not include),
+// resolved like any shader name (relative to the including file's directory first).
+// Defines ("NAME" or "NAME=VALUE") are inserted after the #version line.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rgraph/gl/objects.h"
+
+namespace rgraph {
+
+class ShaderLibrary {
+ public:
+  ShaderLibrary();
+  ~ShaderLibrary();
+  ShaderLibrary(const ShaderLibrary&) = delete;
+  ShaderLibrary& operator=(const ShaderLibrary&) = delete;
+
+  // Vertex + fragment program. Needs a current GL context. Returns the GL program name.
+  uint32_t program(const std::string& vert, const std::string& frag, const std::vector<std::string>& defines = {});
+  // Compute program.
+  uint32_t computeProgram(const std::string& comp, const std::vector<std::string>& defines = {});
+
+  // Full path of a shader file; throws RuntimeError listing the directories searched.
+  std::string resolve(const std::string& file) const;
+  // Like resolve() but returns "" when not found.
+  std::string find(const std::string& file) const;
+  // Source after #include expansion and define insertion (what the driver
+  // compiles; no #line directives: errors are mapped back through a line
+  // table). Throws RuntimeError when a file is missing.
+  std::string preprocess(const std::string& file, const std::vector<std::string>& defines = {}) const;
+
+  void addSearchDirectory(const std::string& dir);  // searched before the defaults
+  std::vector<std::string> searchDirectories() const;
+
+  // Drops every cached program (e.g. to reload edited shaders). Needs the context current.
+  void clear();
+  size_t cachedPrograms() const { return programs_.size(); }
+
+ private:
+  struct Source {
+    std::string text;
+    std::vector<std::string> files;  // 0: the shader itself, then included files (display paths)
+    std::vector<std::pair<int, int>> lines;  // expanded line - 1 -> (file index, line in that file)
+  };
+  Source load(const std::string& file, const std::vector<std::string>& defines) const;
+  gl::Shader compileStage(unsigned stage, const std::string& file, const std::vector<std::string>& defines) const;
+  uint32_t link(const std::string& key, std::vector<gl::Shader> stages, const std::string& what);
+
+  std::vector<std::string> extraDirs_;
+  std::map<std::string, gl::Program> programs_;
+};
+
+}  // namespace rgraph

@@ -1,0 +1,616 @@
+#include "rgraph/gl/executor.h"
+
+#include <GL/glcorearb.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <map>
+
+#include "rgraph/error.h"
+#include "rgraph/gl/format.h"
+#include "rgraph/gl/gpu_scene.h"
+#include "rgraph/gl/objects.h"
+#include "rgraph/gl/shader_library.h"
+#include "rgraph/registry.h"
+
+namespace rgraph {
+
+namespace {
+
+struct SlotBinding {
+  std::string slot;
+  Access access = Access::sampled;
+  int resource = -1;
+  uint32_t texture = 0, buffer = 0;
+  Format format = Format::rgba8;
+  Extent extent;
+  uint32_t samples = 1;
+  uint32_t mips = 1;
+  bool loads = false;
+  bool firstWrite = false;
+  int colorIndex = -1;    // GL_COLOR_ATTACHMENT0 + colorIndex
+  bool depthAttachment = false;
+};
+
+struct ResourceObject {
+  gl::Texture ownTexture;
+  gl::Buffer ownBuffer;
+  uint32_t texture = 0, buffer = 0;
+  Format format = Format::rgba8;
+  Extent extent;
+  uint32_t samples = 1, mips = 1;
+};
+
+std::string statusName(GLenum s) {
+  switch (s) {
+    case GL_FRAMEBUFFER_COMPLETE: return "GL_FRAMEBUFFER_COMPLETE";
+    case GL_FRAMEBUFFER_UNDEFINED: return "GL_FRAMEBUFFER_UNDEFINED";
+    case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
+    case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT";
+    case GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER: return "GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER";
+    case GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER: return "GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER";
+    case GL_FRAMEBUFFER_UNSUPPORTED: return "GL_FRAMEBUFFER_UNSUPPORTED";
+    case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE: return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
+    case GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS: return "GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS";
+    default: {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "status 0x%04x", s);
+      return buf;
+    }
+  }
+}
+
+float linearToSrgb(float c) {
+  c = std::clamp(c, 0.0f, 1.0f);
+  return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+bool isSoftwareRenderer() {
+  const GLubyte* r = glGetString(GL_RENDERER);
+  std::string s = r ? reinterpret_cast<const char*>(r) : "";
+  for (const char* n : {"llvmpipe", "softpipe", "swrast", "SWR", "Software Rasterizer"})
+    if (s.find(n) != std::string::npos) return true;
+  return false;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------ pass runs
+
+namespace {
+class PassRun final : public PassContext {
+ public:
+  std::string name;
+  std::string typeName;
+  uint32_t decl = 0;
+  ParamSet paramSet;
+  std::vector<SlotBinding> slots;
+  gl::Framebuffer fbo;
+  Extent fbExtent;
+  gl::Query query;
+  std::unique_ptr<PassInstance> instance;
+  ShaderLibrary* shaderLib = nullptr;
+  const Scene* scenePtr = nullptr;
+  GpuScene* gpuScenePtr = nullptr;
+  Extent output;
+  bool readOnlyDepth = false;
+
+  const SlotBinding* find(std::string_view slot) const {
+    for (const auto& s : slots)
+      if (s.slot == slot) return &s;
+    return nullptr;
+  }
+
+  const std::string& passName() const override { return name; }
+  const ParamSet& params() const override { return paramSet; }
+  Extent outputExtent() const override { return output; }
+  bool bound(std::string_view slot) const override { return find(slot) != nullptr; }
+  uint32_t texture(std::string_view slot) const override {
+    const SlotBinding* s = find(slot);
+    return s ? s->texture : 0;
+  }
+  uint32_t buffer(std::string_view slot) const override {
+    const SlotBinding* s = find(slot);
+    return s ? s->buffer : 0;
+  }
+  Format format(std::string_view slot) const override {
+    const SlotBinding* s = find(slot);
+    return s ? s->format : Format::rgba8;
+  }
+  Extent extent(std::string_view slot) const override {
+    const SlotBinding* s = find(slot);
+    return s ? s->extent : Extent{};
+  }
+  uint32_t samples(std::string_view slot) const override {
+    const SlotBinding* s = find(slot);
+    return s ? s->samples : 0;
+  }
+  bool loads(std::string_view slot) const override {
+    const SlotBinding* s = find(slot);
+    return s && s->loads;
+  }
+  uint32_t framebuffer() const override { return fbo.id(); }
+  Extent framebufferExtent() const override { return fbExtent; }
+  ShaderLibrary& shaders() override { return *shaderLib; }
+  const Scene* scene() const override { return scenePtr; }
+  GpuScene* gpuScene() override { return gpuScenePtr; }
+};
+}  // namespace
+
+struct Executor::Impl {
+  PipelineConfig pipeline;
+  const PassRegistry& registry;
+  ShaderLibrary& shaders;
+  const Scene* scene;
+  std::unique_ptr<GpuScene> gpuScene;  // created once per executor when there is a scene
+  bool software = false;
+
+  bool built = false;
+  Extent size;
+  Plan plan;
+  std::vector<gl::Texture> physicalTextures;
+  std::vector<gl::Buffer> physicalBuffers;
+  std::vector<ResourceObject> resources;
+  std::map<std::string, int, std::less<>> byName;  // resource and version names -> resource index
+  std::vector<std::unique_ptr<PassRun>> runs;      // execution order
+  std::vector<PassTiming> timings;
+
+  Impl(const PipelineConfig& p, const PassRegistry& r, ShaderLibrary& s, const Scene* sc)
+      : pipeline(p), registry(r), shaders(s), scene(sc) {}
+
+  void teardown() {
+    runs.clear();  // pass instances first: they may hold GL objects of their own
+    resources.clear();
+    physicalTextures.clear();
+    physicalBuffers.clear();
+    byName.clear();
+    timings.clear();
+    built = false;
+  }
+
+  void build(Extent output);
+  void createResources(Extent output);
+  std::unique_ptr<PassRun> createRun(uint32_t passIndex, Extent output);
+  void applyClears(PassRun& run);
+  void resetState(const PassRun& run);
+
+  int resourceIndex(std::string_view name) const {
+    auto it = byName.find(name);
+    return it == byName.end() ? -1 : it->second;
+  }
+};
+
+void Executor::Impl::createResources(Extent output) {
+  physicalTextures.resize(plan.physical.size());
+  physicalBuffers.resize(plan.physical.size());
+  for (size_t i = 0; i < plan.physical.size(); ++i) {
+    const PhysicalTexture& p = plan.physical[i];
+    if (p.kind == ResourceKind::texture) {
+      physicalTextures[i] = gl::createTexture2D(p.format, p.extent, p.mips, p.samples);
+    } else {
+      physicalBuffers[i] = gl::createBuffer();
+      glNamedBufferStorage(physicalBuffers[i].id(), static_cast<GLsizeiptr>(std::max<uint64_t>(p.bytes, 4)), nullptr,
+                           GL_DYNAMIC_STORAGE_BIT);
+    }
+  }
+
+  const auto& decls = pipeline.graph.resources;
+  resources.resize(plan.resources.size());
+  for (size_t r = 0; r < plan.resources.size(); ++r) {
+    const PlannedResource& pr = plan.resources[r];
+    ResourceObject& obj = resources[r];
+    const ResourceDecl* decl = r < decls.size() ? &decls[r] : nullptr;
+    byName[pr.name] = static_cast<int>(r);
+    for (const auto& v : pr.versions) byName.emplace(v, static_cast<int>(r));
+    if (pr.kind == ResourceKind::texture) {
+      obj.extent = pr.extent;
+      if ((obj.extent.width == 0 || obj.extent.height == 0) && decl) obj.extent = resolveSize(decl->texture.size, output);
+      if (decl) {
+        obj.format = decl->texture.format;
+        obj.samples = std::max<uint32_t>(1, decl->texture.samples);
+        obj.mips = decl->texture.mips;
+      }
+      if (pr.physical >= 0 && static_cast<size_t>(pr.physical) < physicalTextures.size() &&
+          physicalTextures[pr.physical]) {
+        const PhysicalTexture& p = plan.physical[pr.physical];
+        obj.texture = physicalTextures[pr.physical].id();
+        obj.format = p.format;
+        obj.extent = p.extent;
+        obj.samples = std::max<uint32_t>(1, p.samples);
+        obj.mips = p.mips;
+      } else if (pr.imported || pr.firstPass >= 0 || static_cast<int>(r) == plan.outputResource) {
+        obj.ownTexture = gl::createTexture2D(obj.format, obj.extent, obj.mips, obj.samples);
+        obj.texture = obj.ownTexture.id();
+      }
+      if (obj.mips == 0) obj.mips = gl::fullMipCount(obj.extent);
+      if (obj.texture) {
+        GLint levels = 1;
+        if (obj.samples <= 1) glGetTextureParameteriv(obj.texture, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
+        obj.mips = static_cast<uint32_t>(std::max(levels, 1));
+      }
+    } else {
+      if (pr.physical >= 0 && static_cast<size_t>(pr.physical) < physicalBuffers.size() &&
+          physicalBuffers[pr.physical]) {
+        obj.buffer = physicalBuffers[pr.physical].id();
+      } else if (pr.imported || pr.firstPass >= 0) {
+        uint64_t bytes = pr.bytes ? pr.bytes : (decl ? decl->bufferBytes : 0);
+        obj.ownBuffer = gl::createBuffer();
+        glNamedBufferStorage(obj.ownBuffer.id(), static_cast<GLsizeiptr>(std::max<uint64_t>(bytes, 4)), nullptr,
+                             GL_DYNAMIC_STORAGE_BIT);
+        obj.buffer = obj.ownBuffer.id();
+      }
+    }
+  }
+}
+
+std::unique_ptr<PassRun> Executor::Impl::createRun(uint32_t passIndex, Extent output) {
+  const PlannedPass& pp = plan.passes[passIndex];
+  uint32_t declIndex = pp.decl;
+  const PassDecl& pd = pipeline.graph.passes.at(declIndex);
+  const PassTypeDesc* type = registry.find(pd.type);
+  if (!type) throw RuntimeError("pass '" + pd.name + "': unknown pass type '" + pd.type + "'");
+
+  auto run = std::make_unique<PassRun>();
+  run->name = pd.name;
+  run->typeName = pd.type;
+  run->decl = declIndex;
+  run->shaderLib = &shaders;
+  run->scenePtr = scene;
+  run->gpuScenePtr = gpuScene.get();
+  run->output = output;
+  run->paramSet = defaultParams(type->params);
+  if (declIndex < pipeline.params.size())
+    for (const auto& [k, v] : pipeline.params[declIndex].values()) run->paramSet.set(k, v);
+
+  auto slotOrder = [&](const std::string& slot) {
+    for (size_t i = 0; i < type->slots.size(); ++i)
+      if (type->slots[i].name == slot) return i;
+    return type->slots.size();
+  };
+
+  const std::vector<BoundUse>& uses =
+      passIndex < plan.bindings.size() ? plan.bindings[passIndex] : std::vector<BoundUse>{};
+  for (const BoundUse& u : uses) {
+    SlotBinding b;
+    b.slot = u.slot;
+    b.access = u.access;
+    b.resource = u.resource;
+    b.loads = isWriteAccess(u.access) && !u.readVersion.empty();
+    b.firstWrite = u.firstWrite;
+    if (u.resource >= 0 && static_cast<size_t>(u.resource) < resources.size()) {
+      const ResourceObject& obj = resources[u.resource];
+      b.texture = obj.texture;
+      b.buffer = obj.buffer;
+      b.format = obj.format;
+      b.extent = obj.extent;
+      b.samples = obj.samples;
+      b.mips = obj.mips;
+    }
+    run->slots.push_back(std::move(b));
+  }
+  std::stable_sort(run->slots.begin(), run->slots.end(),
+                   [&](const SlotBinding& a, const SlotBinding& b) { return slotOrder(a.slot) < slotOrder(b.slot); });
+
+  // Framebuffer: colour attachments in slot-declaration order, then depth.
+  std::vector<GLenum> drawBuffers;
+  SlotBinding* depth = nullptr;
+  bool any = false;
+  for (auto& s : run->slots) {
+    if (s.access == Access::color_attachment) {
+      s.colorIndex = static_cast<int>(drawBuffers.size());
+      drawBuffers.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(drawBuffers.size()));
+      any = true;
+    } else if (s.access == Access::depth_attachment || s.access == Access::depth_attachment_read) {
+      if (depth) throw RuntimeError("pass '" + pd.name + "': more than one depth attachment ('" + depth->slot +
+                                    "' and '" + s.slot + "')");
+      depth = &s;
+      s.depthAttachment = true;
+      run->readOnlyDepth = s.access == Access::depth_attachment_read;
+      any = true;
+    }
+  }
+  if (any) {
+    GLint maxDraw = 8;
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDraw);
+    if (static_cast<GLint>(drawBuffers.size()) > maxDraw)
+      throw RuntimeError("pass '" + pd.name + "': " + std::to_string(drawBuffers.size()) +
+                         " colour attachments, the GL allows " + std::to_string(maxDraw));
+    run->fbo = gl::createFramebuffer();
+    bool extentSet = false;
+    for (const auto& s : run->slots) {
+      if (s.colorIndex < 0 && !s.depthAttachment) continue;
+      if (!s.texture) throw RuntimeError("pass '" + pd.name + "' slot '" + s.slot + "': bound resource has no texture");
+      GLenum point = s.depthAttachment ? gl::attachmentPoint(s.format) : GL_COLOR_ATTACHMENT0 + s.colorIndex;
+      glNamedFramebufferTexture(run->fbo.id(), point, s.texture, 0);
+      if (!extentSet) {
+        run->fbExtent = s.extent;
+        extentSet = true;
+      } else {
+        run->fbExtent.width = std::min(run->fbExtent.width, s.extent.width);
+        run->fbExtent.height = std::min(run->fbExtent.height, s.extent.height);
+      }
+    }
+    if (drawBuffers.empty()) {
+      glNamedFramebufferDrawBuffer(run->fbo.id(), GL_NONE);
+      glNamedFramebufferReadBuffer(run->fbo.id(), GL_NONE);
+    } else {
+      glNamedFramebufferDrawBuffers(run->fbo.id(), static_cast<GLsizei>(drawBuffers.size()), drawBuffers.data());
+      glNamedFramebufferReadBuffer(run->fbo.id(), GL_COLOR_ATTACHMENT0);
+    }
+    GLenum status = glCheckNamedFramebufferStatus(run->fbo.id(), GL_DRAW_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+      std::string atts;
+      for (const auto& s : run->slots)
+        if (s.colorIndex >= 0 || s.depthAttachment)
+          atts += (atts.empty() ? "" : ", ") + s.slot + "=" + std::string(formatName(s.format)) + " " +
+                  std::to_string(s.extent.width) + "x" + std::to_string(s.extent.height) +
+                  (s.samples > 1 ? " x" + std::to_string(s.samples) : "");
+      throw RuntimeError("pass '" + pd.name + "' (type '" + pd.type + "'): framebuffer incomplete: " +
+                         statusName(status) + " (attachments: " + atts + ")");
+    }
+  }
+
+  if (!software) run->query = gl::createQuery(GL_TIME_ELAPSED);
+
+  if (!type->create) throw RuntimeError("pass type '" + pd.type + "' has no factory");
+  run->instance = type->create();
+  if (!run->instance) throw RuntimeError("pass '" + pd.name + "': pass type '" + pd.type + "' created no instance");
+  return run;
+}
+
+void Executor::Impl::build(Extent output) {
+  CompileOptions opts;
+  opts.output = output;
+  plan = compile(pipeline.graph, opts);
+  if (!plan.ok()) {
+    std::string msg = "the render graph";
+    if (!pipeline.file.empty()) msg += " of " + pipeline.file;
+    msg += " has errors:";
+    for (const auto& d : plan.diagnostics)
+      if (d.severity == Severity::error) msg += "\n  " + formatDiagnostic(d);
+    throw RuntimeError(msg);
+  }
+  for (const auto& d : plan.diagnostics)
+    if (d.severity == Severity::warning) spdlog::warn("{}", formatDiagnostic(d));
+
+  if (scene && !gpuScene) gpuScene = std::make_unique<GpuScene>(*scene);
+  createResources(output);
+  if (plan.outputResource < 0 || static_cast<size_t>(plan.outputResource) >= resources.size() ||
+      !resources[plan.outputResource].texture)
+    throw RuntimeError("the render graph has no output texture");
+
+  for (uint32_t idx : plan.order) runs.push_back(createRun(idx, output));
+  for (auto& run : runs) {
+    try {
+      run->instance->setup(*run);
+    } catch (const RuntimeError& e) {
+      throw RuntimeError(std::string(e.what()) + "\n  (in setup of pass '" + run->name + "' of type '" +
+                         run->typeName + "')");
+    }
+  }
+  size = output;
+  built = true;
+}
+
+void Executor::Impl::resetState(const PassRun& run) {
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_SCISSOR_TEST);
+  glEnable(GL_FRAMEBUFFER_SRGB);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthMask(GL_TRUE);
+  glStencilMask(0xFFu);
+  glDepthFunc(GL_LESS);
+  glUseProgram(0);
+  glBindVertexArray(0);
+  if (run.fbo) glViewport(0, 0, static_cast<GLsizei>(run.fbExtent.width), static_cast<GLsizei>(run.fbExtent.height));
+}
+
+void Executor::Impl::applyClears(PassRun& run) {
+  const auto& decls = pipeline.graph.resources;
+  for (const auto& s : run.slots) {
+    if (!s.firstWrite || s.resource < 0 || static_cast<size_t>(s.resource) >= decls.size()) continue;
+    const ResourceDecl& decl = decls[s.resource];
+    if (decl.kind != ResourceKind::texture || !decl.texture.clear || !s.texture) continue;
+    const std::vector<float>& c = *decl.texture.clear;
+    if (gl::isDepth(s.format)) {
+      float d = c.empty() ? 1.0f : c[0];
+      GLint stencil = c.size() > 1 ? static_cast<GLint>(c[1]) : 0;
+      if (s.depthAttachment) {
+        if (gl::hasStencil(s.format))
+          glClearNamedFramebufferfi(run.fbo.id(), GL_DEPTH_STENCIL, 0, d, stencil);
+        else
+          glClearNamedFramebufferfv(run.fbo.id(), GL_DEPTH, 0, &d);
+      } else {
+        for (uint32_t level = 0; level < s.mips; ++level) {
+          if (gl::hasStencil(s.format)) {
+            struct {
+              float depth;
+              uint32_t stencil;
+            } ds{d, static_cast<uint32_t>(stencil) & 0xFFu};
+            glClearTexImage(s.texture, static_cast<GLint>(level), GL_DEPTH_STENCIL, GL_FLOAT_32_UNSIGNED_INT_24_8_REV,
+                            &ds);
+          } else {
+            glClearTexImage(s.texture, static_cast<GLint>(level), GL_DEPTH_COMPONENT, GL_FLOAT, &d);
+          }
+        }
+      }
+    } else {
+      float v[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+      for (size_t i = 0; i < 4 && i < c.size(); ++i) v[i] = c[i];
+      if (s.colorIndex >= 0) {
+        glClearNamedFramebufferfv(run.fbo.id(), GL_COLOR, s.colorIndex, v);
+      } else {
+        if (gl::isSrgb(s.format))
+          for (int i = 0; i < 3; ++i) v[i] = linearToSrgb(v[i]);
+        for (uint32_t level = 0; level < s.mips; ++level)
+          glClearTexImage(s.texture, static_cast<GLint>(level), GL_RGBA, GL_FLOAT, v);
+      }
+    }
+  }
+}
+
+// ------------------------------------------------------------------ Executor
+
+Executor::Executor(const PipelineConfig& pipeline, const PassRegistry& registry, ShaderLibrary& shaders,
+                   const Scene* scene)
+    : impl_(std::make_unique<Impl>(pipeline, registry, shaders, scene)) {
+  impl_->software = isSoftwareRenderer();
+}
+
+Executor::~Executor() {
+  if (impl_) impl_->teardown();
+}
+
+void Executor::resize(Extent output) {
+  if (output.width == 0 || output.height == 0)
+    throw RuntimeError("cannot render at " + std::to_string(output.width) + "x" + std::to_string(output.height));
+  if (impl_->built && impl_->size == output) return;
+  impl_->teardown();
+  try {
+    impl_->build(output);
+  } catch (...) {
+    impl_->teardown();
+    throw;
+  }
+}
+
+void Executor::renderFrame() {
+  Impl& im = *impl_;
+  if (!im.built) throw RuntimeError("Executor::renderFrame: call resize() first");
+  im.timings.assign(im.runs.size(), PassTiming{});
+  using Clock = std::chrono::steady_clock;
+  if (im.gpuScene) im.gpuScene->updateFrame(im.size);
+  if (im.software) glFinish();
+  for (size_t i = 0; i < im.runs.size(); ++i) {
+    PassRun& run = *im.runs[i];
+    im.timings[i].name = run.name;
+    Clock::time_point t0 = Clock::now();
+    if (run.query) glBeginQuery(GL_TIME_ELAPSED, run.query.id());
+    im.resetState(run);
+    im.applyClears(run);
+    if (run.readOnlyDepth) glDepthMask(GL_FALSE);
+    try {
+      run.instance->execute(run);
+    } catch (const RuntimeError& e) {
+      if (run.query) glEndQuery(GL_TIME_ELAPSED);
+      throw RuntimeError(std::string(e.what()) + "\n  (in pass '" + run.name + "' of type '" + run.typeName + "')");
+    }
+    if (run.query) glEndQuery(GL_TIME_ELAPSED);
+    if (im.software) {
+      glFinish();
+      im.timings[i].ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    }
+  }
+  // Leave a neutral state for whoever draws next (e.g. a blit to the window:
+  // sRGB encoding left on would encode the output a second time).
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDisable(GL_FRAMEBUFFER_SRGB);
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(0);
+  glBindVertexArray(0);
+  if (!im.software) {
+    for (size_t i = 0; i < im.runs.size(); ++i) {
+      GLuint64 ns = 0;
+      glGetQueryObjectui64v(im.runs[i]->query.id(), GL_QUERY_RESULT, &ns);
+      im.timings[i].ms = static_cast<double>(ns) / 1.0e6;
+    }
+  }
+}
+
+const Plan& Executor::plan() const { return impl_->plan; }
+GpuScene* Executor::gpuScene() const { return impl_->gpuScene.get(); }
+const std::vector<Executor::PassTiming>& Executor::timings() const { return impl_->timings; }
+bool Executor::cpuTimed() const { return impl_->software; }
+
+uint32_t Executor::outputTexture() const {
+  if (!impl_->built) return 0;
+  return impl_->resources[impl_->plan.outputResource].texture;
+}
+
+Extent Executor::outputExtent() const {
+  if (!impl_->built) return {};
+  return impl_->resources[impl_->plan.outputResource].extent;
+}
+
+Format Executor::outputFormat() const {
+  if (!impl_->built) return Format::rgba8;
+  return impl_->resources[impl_->plan.outputResource].format;
+}
+
+namespace {
+template <typename T>
+void flipRows(std::vector<T>& data, size_t rowElems, size_t rows) {
+  for (size_t y = 0; y < rows / 2; ++y)
+    std::swap_ranges(data.begin() + static_cast<std::ptrdiff_t>(y * rowElems),
+                     data.begin() + static_cast<std::ptrdiff_t>((y + 1) * rowElems),
+                     data.begin() + static_cast<std::ptrdiff_t>((rows - 1 - y) * rowElems));
+}
+}  // namespace
+
+std::vector<uint8_t> Executor::readOutputRGBA8() const {
+  if (!impl_->built) throw RuntimeError("Executor::readOutputRGBA8: nothing rendered (call resize() first)");
+  const ResourceObject& obj = impl_->resources[impl_->plan.outputResource];
+  if (obj.samples > 1) throw RuntimeError("the output image is multisampled and cannot be read back directly");
+  if (gl::isDepth(obj.format)) throw RuntimeError("the output image has a depth format");
+  size_t w = obj.extent.width, h = obj.extent.height;
+  std::vector<uint8_t> data(w * h * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(obj.texture, 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(data.size()), data.data());
+  flipRows(data, w * 4, h);
+  return data;
+}
+
+std::vector<float> Executor::readTextureRGBA32F(const std::string& name) const {
+  int r = impl_->resourceIndex(name);
+  if (!impl_->built || r < 0) throw RuntimeError("readTextureRGBA32F: no live resource or version named '" + name + "'");
+  const ResourceObject& obj = impl_->resources[r];
+  if (!obj.texture) throw RuntimeError("readTextureRGBA32F: resource '" + name + "' has no texture");
+  if (obj.samples > 1) throw RuntimeError("readTextureRGBA32F: resource '" + name + "' is multisampled");
+  size_t w = obj.extent.width, h = obj.extent.height;
+  std::vector<float> data(w * h * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  if (gl::isDepth(obj.format)) {
+    std::vector<float> depth(w * h);
+    glGetTextureImage(obj.texture, 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(depth.size() * sizeof(float)),
+                      depth.data());
+    for (size_t i = 0; i < w * h; ++i) {
+      data[i * 4 + 0] = depth[i];
+      data[i * 4 + 1] = 0.0f;
+      data[i * 4 + 2] = 0.0f;
+      data[i * 4 + 3] = 1.0f;
+    }
+  } else {
+    glGetTextureImage(obj.texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(data.size() * sizeof(float)), data.data());
+  }
+  flipRows(data, w * 4, h);
+  return data;
+}
+
+uint32_t Executor::textureOf(const std::string& name) const {
+  int r = impl_->resourceIndex(name);
+  return impl_->built && r >= 0 ? impl_->resources[r].texture : 0;
+}
+
+uint32_t Executor::bufferOf(const std::string& name) const {
+  int r = impl_->resourceIndex(name);
+  return impl_->built && r >= 0 ? impl_->resources[r].buffer : 0;
+}
+
+size_t Executor::ownedObjects() const {
+  size_t n = 0;
+  for (const auto& t : impl_->physicalTextures) n += t ? 1 : 0;
+  for (const auto& b : impl_->physicalBuffers) n += b ? 1 : 0;
+  for (const auto& r : impl_->resources) n += (r.ownTexture ? 1 : 0) + (r.ownBuffer ? 1 : 0);
+  for (const auto& run : impl_->runs) n += (run->fbo ? 1 : 0) + (run->query ? 1 : 0);
+  return n;
+}
+
+}  // namespace rgraph

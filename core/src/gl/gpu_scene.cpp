@@ -1,0 +1,311 @@
+#include "rgraph/gl/gpu_scene.h"
+
+#include <GL/glcorearb.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "rgraph/error.h"
+#include "rgraph/scene.h"
+
+namespace rgraph {
+namespace {
+
+// std140 mirror of shaders/include/frame.glsl (every member is 16-byte aligned).
+struct FrameBlock {
+  glm::mat4 view, proj, viewProj, invView, invProj;
+  glm::vec4 cameraPos;
+  glm::vec4 viewport;
+  glm::vec4 ambient;
+  glm::vec4 dirLightDir;
+  glm::vec4 dirLightColor;
+  glm::ivec4 counts;
+};
+static_assert(sizeof(FrameBlock) == 5 * 64 + 6 * 16, "FrameBlock must match the std140 layout");
+
+// std430 mirror of PointLight in frame.glsl.
+struct GpuPointLight {
+  glm::vec4 positionRadius;
+  glm::vec4 color;
+  glm::vec4 attenuation;
+};
+static_assert(sizeof(GpuPointLight) == 48, "GpuPointLight must match the std430 layout");
+
+gl::Texture solidTexture(uint8_t r, uint8_t g, uint8_t b, uint8_t a) {
+  gl::Texture t = gl::createTexture(GL_TEXTURE_2D);
+  glTextureStorage2D(t.id(), 1, GL_RGBA8, 1, 1);
+  const uint8_t px[4] = {r, g, b, a};
+  glTextureSubImage2D(t.id(), 0, 0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
+  return t;
+}
+
+int mipLevels(int w, int h) {
+  int levels = 1;
+  while ((w | h) >> levels) ++levels;
+  return levels;
+}
+
+}  // namespace
+
+struct GpuScene::Locations {
+  int model, normalMatrix, baseColorFactor, metallicFactor, roughnessFactor, specular, normalScale,
+      occlusionStrength, alphaCutoff, alphaMode, emissive, hasBaseColorTex, hasMetallicRoughnessTex, hasNormalTex,
+      hasOcclusionTex;
+};
+
+GpuScene::GpuScene(const Scene& scene) : scene_(scene) {
+  scene_.validate();
+  meshes_.reserve(scene.meshes.size());
+  for (const auto& m : scene.meshes) meshes_.push_back(upload(m));
+  const MeshData sphere = makeIcosphere(3);
+  float inradius = 1.0f;  // smallest distance from the centre to a face plane
+  for (size_t t = 0; t + 2 < sphere.indices.size(); t += 3) {
+    const glm::vec3 a = sphere.positions[sphere.indices[t]], b = sphere.positions[sphere.indices[t + 1]],
+                    c = sphere.positions[sphere.indices[t + 2]];
+    inradius = std::min(inradius, std::abs(glm::dot(glm::normalize(glm::cross(b - a, c - a)), a)));
+  }
+  icosphereScale_ = 1.0f / inradius;
+  icosphere_ = upload(sphere);
+  cube_ = upload(makeCube(1.0f));
+
+  images_.reserve(scene.images.size());
+  for (const auto& img : scene.images) {
+    gl::Texture t = gl::createTexture(GL_TEXTURE_2D);
+    const int w = std::max(img.width, 1), h = std::max(img.height, 1);
+    glTextureStorage2D(t.id(), mipLevels(w, h), img.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, w, h);
+    if (img.rgba.size() >= static_cast<size_t>(w) * h * 4) {
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+      glTextureSubImage2D(t.id(), 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
+      glGenerateTextureMipmap(t.id());
+    }
+    images_.push_back(std::move(t));
+  }
+  samplers_.reserve(scene.textures.size());
+  for (const auto& tex : scene.textures) {
+    gl::Sampler s = gl::createSampler();
+    glSamplerParameteri(s.id(), GL_TEXTURE_WRAP_S, tex.sampler.wrapS);
+    glSamplerParameteri(s.id(), GL_TEXTURE_WRAP_T, tex.sampler.wrapT);
+    glSamplerParameteri(s.id(), GL_TEXTURE_MIN_FILTER, tex.sampler.minFilter);
+    glSamplerParameteri(s.id(), GL_TEXTURE_MAG_FILTER, tex.sampler.magFilter);
+    samplers_.push_back(std::move(s));
+  }
+  white_ = solidTexture(255, 255, 255, 255);
+  flatNormal_ = solidTexture(128, 128, 255, 255);
+  defaultSampler_ = gl::createSampler();
+  glSamplerParameteri(defaultSampler_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glSamplerParameteri(defaultSampler_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+
+  frame_ = gl::createBuffer();
+  glNamedBufferStorage(frame_.id(), sizeof(FrameBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
+}
+
+GpuScene::~GpuScene() = default;
+
+GpuScene::GpuMesh GpuScene::upload(const MeshData& mesh) const {
+  GpuMesh g;
+  const std::vector<MeshVertex> vertices = mesh.interleaved();
+  g.vertices = gl::createBuffer();
+  g.indices = gl::createBuffer();
+  glNamedBufferStorage(g.vertices.id(), std::max<size_t>(vertices.size() * sizeof(MeshVertex), 1), vertices.data(), 0);
+  glNamedBufferStorage(g.indices.id(), std::max<size_t>(mesh.indices.size() * sizeof(uint32_t), 1),
+                       mesh.indices.data(), 0);
+  g.indexCount = static_cast<uint32_t>(mesh.indices.size());
+  g.vao = gl::createVertexArray();
+  const GLuint vao = g.vao.id();
+  glVertexArrayVertexBuffer(vao, 0, g.vertices.id(), 0, sizeof(MeshVertex));
+  glVertexArrayElementBuffer(vao, g.indices.id());
+  auto attrib = [&](GLuint loc, GLint size, size_t offset) {
+    glEnableVertexArrayAttrib(vao, loc);
+    glVertexArrayAttribFormat(vao, loc, size, GL_FLOAT, GL_FALSE, static_cast<GLuint>(offset));
+    glVertexArrayAttribBinding(vao, loc, 0);
+  };
+  attrib(0, 3, offsetof(MeshVertex, position));
+  attrib(1, 3, offsetof(MeshVertex, normal));
+  attrib(2, 2, offsetof(MeshVertex, uv));
+  attrib(3, 4, offsetof(MeshVertex, tangent));
+  return g;
+}
+
+void GpuScene::updateFrame(Extent viewport) {
+  const float w = static_cast<float>(std::max(viewport.width, 1u));
+  const float h = static_cast<float>(std::max(viewport.height, 1u));
+  const Camera& cam = scene_.camera;
+  FrameBlock f{};
+  f.view = cam.view();
+  f.proj = cam.projection(w / h);
+  f.viewProj = f.proj * f.view;
+  f.invView = glm::inverse(f.view);
+  f.invProj = glm::inverse(f.proj);
+  f.cameraPos = glm::vec4(cam.position, 1.0f);
+  f.viewport = glm::vec4(w, h, 1.0f / w, 1.0f / h);
+  f.ambient = glm::vec4(scene_.ambient, 0.0f);
+  if (!scene_.directionalLights.empty()) {
+    const DirectionalLight& d = scene_.directionalLights.front();
+    f.dirLightDir = glm::vec4(glm::normalize(d.direction), 1.0f);
+    f.dirLightColor = glm::vec4(d.color * d.intensity, 0.0f);
+  }
+  f.counts = glm::ivec4(static_cast<int>(scene_.pointLights.size()), 0, 0, 0);
+  glNamedBufferSubData(frame_.id(), 0, sizeof(FrameBlock), &f);
+  bindFrame();
+}
+
+void GpuScene::bindFrame() const { glBindBufferBase(GL_UNIFORM_BUFFER, 0, frame_.id()); }
+
+std::vector<float> GpuScene::pointLightRadii(float threshold) const {
+  const Bounds bounds = scene_.bounds();
+  std::vector<float> radii;
+  radii.reserve(scene_.pointLights.size());
+  for (const auto& l : scene_.pointLights) {
+    if (threshold <= 0.0f) {
+      radii.push_back(-1.0f);
+      continue;
+    }
+    float r = lightRadius(l, threshold);
+    // Nothing lies farther than this, so a bigger volume only costs fill rate
+    // (and an infinite one, for a light with no falloff, cannot be drawn).
+    if (!bounds.empty()) r = std::min(r, glm::length(l.position - bounds.center()) + bounds.radius());
+    if (!std::isfinite(r)) r = 0.0f;
+    radii.push_back(std::max(r, 0.0f));
+  }
+  return radii;
+}
+
+uint32_t GpuScene::pointLightBuffer(float threshold) {
+  auto it = lightBuffers_.find(threshold);
+  if (it != lightBuffers_.end()) return it->second.id();
+  const std::vector<float> radii = pointLightRadii(threshold);
+  std::vector<GpuPointLight> lights;
+  lights.reserve(radii.size());
+  for (size_t i = 0; i < radii.size(); ++i) {
+    const PointLight& l = scene_.pointLights[i];
+    lights.push_back({glm::vec4(l.position, radii[i]), glm::vec4(l.color * l.intensity, 1.0f),
+                      glm::vec4(l.constant, l.linear, l.quadratic, 0.0f)});
+  }
+  gl::Buffer b = gl::createBuffer();
+  // An empty SSBO binding is an error in GL: keep at least one (unused) light.
+  const GpuPointLight none{};
+  glNamedBufferStorage(b.id(), std::max<size_t>(lights.size(), 1) * sizeof(GpuPointLight),
+                       lights.empty() ? &none : lights.data(), 0);
+  const uint32_t id = b.id();
+  lightBuffers_.emplace(threshold, std::move(b));
+  return id;
+}
+
+void GpuScene::bindPointLights(float threshold) {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pointLightBuffer(threshold));
+}
+
+uint32_t GpuScene::pointLightCount() const { return static_cast<uint32_t>(scene_.pointLights.size()); }
+
+const GpuScene::Locations& GpuScene::locations(uint32_t program) const {
+  auto it = locations_.find(program);
+  if (it != locations_.end()) return *it->second;
+  auto loc = std::make_unique<Locations>();
+  auto get = [&](const char* name) { return glGetUniformLocation(program, name); };
+  *loc = Locations{get("u_model"),           get("u_normalMatrix"),     get("u_baseColorFactor"),
+                   get("u_metallicFactor"),  get("u_roughnessFactor"),  get("u_specular"),
+                   get("u_normalScale"),     get("u_occlusionStrength"), get("u_alphaCutoff"),
+                   get("u_alphaMode"),       get("u_emissive"),         get("u_hasBaseColorTex"),
+                   get("u_hasMetallicRoughnessTex"), get("u_hasNormalTex"), get("u_hasOcclusionTex")};
+  return *locations_.emplace(program, std::move(loc)).first->second;
+}
+
+void GpuScene::bindMaterial(uint32_t program, int materialIndex) const {
+  const Locations& loc = locations(program);
+  const Material& m = scene_.materials.at(static_cast<size_t>(materialIndex));
+  glProgramUniform4fv(program, loc.baseColorFactor, 1, glm::value_ptr(m.baseColorFactor));
+  glProgramUniform1f(program, loc.metallicFactor, m.metallicFactor);
+  glProgramUniform1f(program, loc.roughnessFactor, m.roughnessFactor);
+  glProgramUniform1f(program, loc.specular, m.specular);
+  glProgramUniform1f(program, loc.normalScale, m.normalScale);
+  glProgramUniform1f(program, loc.occlusionStrength, m.occlusionStrength);
+  glProgramUniform1f(program, loc.alphaCutoff, m.alphaCutoff);
+  glProgramUniform1i(program, loc.alphaMode, static_cast<int>(m.alphaMode));
+  glProgramUniform3fv(program, loc.emissive, 1, glm::value_ptr(m.emissiveFactor));
+
+  auto bind = [&](GLuint unit, const TextureRef& ref, int hasLocation, const gl::Texture& fallback) {
+    const bool has = ref.valid() && static_cast<size_t>(ref.texture) < scene_.textures.size() &&
+                     scene_.textures[ref.texture].image >= 0 &&
+                     static_cast<size_t>(scene_.textures[ref.texture].image) < images_.size();
+    if (has) {
+      glBindTextureUnit(unit, images_[scene_.textures[ref.texture].image].id());
+      glBindSampler(unit, samplers_[ref.texture].id());
+    } else {
+      glBindTextureUnit(unit, fallback.id());
+      glBindSampler(unit, defaultSampler_.id());
+    }
+    if (hasLocation >= 0) glProgramUniform1i(program, hasLocation, has ? 1 : 0);
+  };
+  bind(0, m.baseColorTexture, loc.hasBaseColorTex, white_);
+  bind(1, m.metallicRoughnessTexture, loc.hasMetallicRoughnessTex, white_);
+  bind(2, m.normalTexture, loc.hasNormalTex, flatNormal_);
+  bind(3, m.occlusionTexture, loc.hasOcclusionTex, white_);
+  bind(4, m.emissiveTexture, -1, white_);
+}
+
+size_t GpuScene::primitiveCount(Filter filter) const {
+  size_t n = 0;
+  for (const auto& p : scene_.primitives) {
+    const bool blend = scene_.materials[p.material].alphaMode == AlphaMode::blend;
+    n += filter == Filter::all || (filter == Filter::blend) == blend;
+  }
+  return n;
+}
+
+void GpuScene::drawPrimitives(uint32_t program, const DrawOptions& options) const {
+  std::vector<size_t> order;
+  for (size_t i = 0; i < scene_.primitives.size(); ++i) {
+    const auto& p = scene_.primitives[i];
+    const bool blend = scene_.materials[p.material].alphaMode == AlphaMode::blend;
+    if (options.filter == Filter::all || (options.filter == Filter::blend) == blend) order.push_back(i);
+  }
+  if (options.backToFront) {
+    const glm::vec3 eye = scene_.camera.position;
+    auto dist = [&](size_t i) { return glm::length(scene_.primitives[i].bounds.center() - eye); };
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return dist(a) > dist(b); });
+  }
+  const Locations& loc = locations(program);
+  glUseProgram(program);
+  for (size_t i : order) {
+    const Primitive& p = scene_.primitives[i];
+    const Material& m = scene_.materials[p.material];
+    const GpuMesh& mesh = meshes_[p.mesh];
+    if (mesh.indexCount == 0) continue;
+    glProgramUniformMatrix4fv(program, loc.model, 1, GL_FALSE, glm::value_ptr(p.transform));
+    const glm::mat3 nm = p.normalMatrix();
+    glProgramUniformMatrix3fv(program, loc.normalMatrix, 1, GL_FALSE, glm::value_ptr(nm));
+    bindMaterial(program, p.material);
+    if (options.cullBackFaces && !m.doubleSided) {
+      glEnable(GL_CULL_FACE);
+      glCullFace(GL_BACK);
+    } else {
+      glDisable(GL_CULL_FACE);
+    }
+    glFrontFace(p.mirrored() ? GL_CW : GL_CCW);
+    glBindVertexArray(mesh.vao.id());
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.indexCount), GL_UNSIGNED_INT, nullptr);
+  }
+  glFrontFace(GL_CCW);
+  glDisable(GL_CULL_FACE);
+  for (GLuint unit = 0; unit < 5; ++unit) glBindSampler(unit, 0);
+  glBindVertexArray(0);
+}
+
+void GpuScene::drawIcosphere(uint32_t instances) const {
+  if (instances == 0) return;
+  glBindVertexArray(icosphere_.vao.id());
+  glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(icosphere_.indexCount), GL_UNSIGNED_INT, nullptr,
+                          static_cast<GLsizei>(instances));
+  glBindVertexArray(0);
+}
+
+void GpuScene::drawCube(uint32_t instances) const {
+  if (instances == 0) return;
+  glBindVertexArray(cube_.vao.id());
+  glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(cube_.indexCount), GL_UNSIGNED_INT, nullptr,
+                          static_cast<GLsizei>(instances));
+  glBindVertexArray(0);
+}
+
+}  // namespace rgraph

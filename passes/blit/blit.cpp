@@ -1,0 +1,115 @@
+// blit: copies (and scales, or resolves multisampling) one image into another
+// with glBlitNamedFramebuffer. Depth/stencil images blit their depth (and
+// stencil) with nearest filtering.
+#include <GL/glcorearb.h>
+
+#include "rgraph/error.h"
+#include "rgraph/gl/format.h"
+#include "rgraph/gl/objects.h"
+#include "rgraph/pass_decl.h"
+#include "rgraph/registry.h"
+
+namespace {
+using namespace rgraph;
+
+class BlitPass final : public PassInstance {
+ public:
+  void setup(PassContext& ctx) override {
+    Format sf = ctx.format("src"), df = ctx.format("dst");
+    srcExtent_ = ctx.extent("src");
+    dstExtent_ = ctx.extent("dst");
+    bool sd = gl::isDepth(sf), dd = gl::isDepth(df);
+    if (sd != dd)
+      throw RuntimeError("blit pass '" + ctx.passName() + "': cannot blit " + std::string(formatName(sf)) + " into " +
+                         std::string(formatName(df)) + " (depth and colour do not mix)");
+    if (ctx.samples("dst") > 1)
+      throw RuntimeError("blit pass '" + ctx.passName() + "': the destination may not be multisampled");
+    if (ctx.samples("src") > 1 && srcExtent_ != dstExtent_)
+      throw RuntimeError("blit pass '" + ctx.passName() + "': resolving a multisampled image needs equal sizes (" +
+                         std::to_string(srcExtent_.width) + "x" + std::to_string(srcExtent_.height) + " vs " +
+                         std::to_string(dstExtent_.width) + "x" + std::to_string(dstExtent_.height) + ")");
+    read_ = gl::createFramebuffer();
+    draw_ = gl::createFramebuffer();
+    if (sd) {
+      mask_ = GL_DEPTH_BUFFER_BIT;
+      if (gl::hasStencil(sf) && gl::hasStencil(df)) mask_ |= GL_STENCIL_BUFFER_BIT;
+      filter_ = GL_NEAREST;
+      glNamedFramebufferTexture(read_.id(), gl::attachmentPoint(sf), ctx.texture("src"), 0);
+      glNamedFramebufferTexture(draw_.id(), gl::attachmentPoint(df), ctx.texture("dst"), 0);
+      glNamedFramebufferReadBuffer(read_.id(), GL_NONE);
+      glNamedFramebufferDrawBuffer(draw_.id(), GL_NONE);
+    } else {
+      mask_ = GL_COLOR_BUFFER_BIT;
+      filter_ = ctx.params().getString("filter", "linear") == "nearest" ? GL_NEAREST : GL_LINEAR;
+      glNamedFramebufferTexture(read_.id(), GL_COLOR_ATTACHMENT0, ctx.texture("src"), 0);
+      glNamedFramebufferTexture(draw_.id(), GL_COLOR_ATTACHMENT0, ctx.texture("dst"), 0);
+      glNamedFramebufferReadBuffer(read_.id(), GL_COLOR_ATTACHMENT0);
+      glNamedFramebufferDrawBuffer(draw_.id(), GL_COLOR_ATTACHMENT0);
+    }
+    // Same format: a raw copy. Otherwise sRGB images are decoded/encoded.
+    rawCopy_ = sf == df;
+    GLenum rs = glCheckNamedFramebufferStatus(read_.id(), GL_READ_FRAMEBUFFER);
+    GLenum ds = glCheckNamedFramebufferStatus(draw_.id(), GL_DRAW_FRAMEBUFFER);
+    if (rs != GL_FRAMEBUFFER_COMPLETE || ds != GL_FRAMEBUFFER_COMPLETE)
+      throw RuntimeError("blit pass '" + ctx.passName() + "': framebuffer incomplete (read status 0x" + hex(rs) +
+                         ", draw status 0x" + hex(ds) + ")");
+  }
+
+  void execute(PassContext& ctx) override {
+    if (rawCopy_) glDisable(GL_FRAMEBUFFER_SRGB);
+    glBlitNamedFramebuffer(read_.id(), draw_.id(), 0, 0, static_cast<GLint>(srcExtent_.width),
+                           static_cast<GLint>(srcExtent_.height), 0, 0, static_cast<GLint>(dstExtent_.width),
+                           static_cast<GLint>(dstExtent_.height), mask_, filter_);
+    if (rawCopy_) glEnable(GL_FRAMEBUFFER_SRGB);
+  }
+
+ private:
+  static std::string hex(GLenum v) {
+    char b[16];
+    std::snprintf(b, sizeof b, "%04x", v);
+    return b;
+  }
+  gl::Framebuffer read_, draw_;
+  Extent srcExtent_, dstExtent_;
+  GLbitfield mask_ = GL_COLOR_BUFFER_BIT;
+  GLenum filter_ = GL_LINEAR;
+  bool rawCopy_ = true;
+};
+
+PassTypeDesc makeBlitPass() {
+  PassTypeDesc d;
+  d.name = "blit";
+  d.description = "Copies, scales or resolves an image into another (glBlitFramebuffer)";
+  d.slots = {
+      decl::slot("src", Access::blit_src, true, SlotDecl::Load::never,
+               "source image (colour or depth; may be multisampled: resolved)", {}, true),
+      decl::slot("dst", Access::blit_dst, true, SlotDecl::Load::optional,
+               "destination image (same kind as src; depth needs the same format)"),
+  };
+  d.params = {decl::param("filter", ParamType::enumeration, std::string("linear"),
+                        "filter when sizes differ (depth always uses nearest)", {"nearest", "linear"})};
+  d.create = [] { return std::make_unique<BlitPass>(); };
+  return d;
+}
+
+// depth_blit: the blit restricted to depth, named for what deferred pipelines
+// use it for: copying the G-buffer depth into the depth buffer the forward pass
+// draws with (LearnOpenGL's glBlitFramebuffer of GL_DEPTH_BUFFER_BIT). The
+// graph refuses a depth blit between different formats before GL would.
+PassTypeDesc makeDepthBlitPass() {
+  const std::vector<Format> depth = {Format::depth24, Format::depth32f, Format::depth24_stencil8,
+                                     Format::depth32f_stencil8};
+  PassTypeDesc d = makeBlitPass();
+  d.name = "depth_blit";
+  d.description = "Copies a depth (and stencil) image into another of the same format";
+  d.slots[0].formats = depth;
+  d.slots[0].description = "source depth image (may be multisampled: resolved)";
+  d.slots[1].formats = depth;
+  d.slots[1].description = "destination depth image (same format as src)";
+  d.params.clear();
+  return d;
+}
+
+RGRAPH_REGISTER_PASS(makeBlitPass);
+RGRAPH_REGISTER_PASS(makeDepthBlitPass);
+}  // namespace

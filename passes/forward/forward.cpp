@@ -1,0 +1,76 @@
+// forward: what a G-buffer cannot hold, drawn over the deferred image with the
+// G-buffer's depth (blitted into `depth` beforehand): small cubes marking each
+// point light (LearnOpenGL's light boxes) and BLEND materials, back to front.
+#include <GL/glcorearb.h>
+
+#include "rgraph/error.h"
+#include "rgraph/gl/forward_shading.h"
+#include "rgraph/gl/fullscreen.h"
+#include "rgraph/gl/gpu_scene.h"
+#include "rgraph/gl/lighting_options.h"
+#include "rgraph/gl/shader_library.h"
+#include "rgraph/pass_decl.h"
+#include "rgraph/registry.h"
+
+namespace {
+using namespace rgraph;
+
+class ForwardPass final : public PassInstance {
+ public:
+  void setup(PassContext& ctx) override {
+    if (!ctx.gpuScene()) throw RuntimeError("forward pass '" + ctx.passName() + "' needs a scene");
+    markers_ = ctx.params().getBool("markers", true);
+    blend_ = ctx.params().getBool("blend", true);
+    if (markers_) markerProgram_ = ctx.shaders().program("light_marker.vert", "light_marker.frag");
+    if (blend_) blendProgram_ = forward::program(ctx);
+  }
+
+  void execute(PassContext& ctx) override {
+    GpuScene& scene = *ctx.gpuScene();
+    gl::bindPassFramebuffer(ctx);
+    if (markers_ && scene.pointLightCount() > 0) {
+      scene.bindFrame();
+      scene.bindPointLights(lighting::threshold(ctx.params()));
+      glUseProgram(markerProgram_);
+      glProgramUniform1f(markerProgram_, glGetUniformLocation(markerProgram_, "u_markerSize"),
+                         static_cast<float>(ctx.params().getNumber("marker_size", 0.125)));
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_LESS);
+      glDepthMask(GL_TRUE);
+      glEnable(GL_CULL_FACE);
+      glCullFace(GL_BACK);
+      scene.drawCube(scene.pointLightCount());
+      glDisable(GL_CULL_FACE);
+      glDisable(GL_DEPTH_TEST);
+    }
+    if (blend_) forward::drawSurfaces(ctx, blendProgram_, /*blended=*/true);
+  }
+
+ private:
+  bool markers_ = true, blend_ = true;
+  uint32_t markerProgram_ = 0, blendProgram_ = 0;
+};
+
+PassTypeDesc makeForwardPass() {
+  using namespace rgraph::decl;
+  PassTypeDesc d;
+  d.name = "forward";
+  d.description = "Forward-rendered light markers and BLEND materials over the deferred image, depth-tested";
+  d.slots = {
+      slot("color", Access::color_attachment, true, SlotDecl::Load::required, "HDR lighting target to draw over",
+           {Format::rgba16f, Format::rgba32f, Format::r11g11b10f}),
+      slot("depth", Access::depth_attachment, true, SlotDecl::Load::required,
+           "the scene depth (a blit of the G-buffer depth); markers write it, blended surfaces only test it",
+           {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}),
+  };
+  d.params = lighting::params();
+  d.params.push_back(param("markers", ParamType::boolean, true, "draw a small cube in each point light's colour"));
+  d.params.push_back(decl::ranged("marker_size", ParamType::number, 0.125, 0.0, 100.0, "half extent of a light marker"));
+  d.params.push_back(param("blend", ParamType::boolean, true, "draw BLEND materials, lit forward, back to front"));
+  d.shaders = {"scene.vert", "forward_lit.frag", "light_marker.vert", "light_marker.frag"};
+  d.create = [] { return std::make_unique<ForwardPass>(); };
+  return d;
+}
+
+RGRAPH_REGISTER_PASS(makeForwardPass);
+}  // namespace

@@ -1,0 +1,55 @@
+// forward_lit: the classic forward renderer. Every surface shades every light
+// per fragment; blended materials follow, back to front. It is the reference
+// the deferred pipelines are checked against, and the baseline they must beat.
+#include <GL/glcorearb.h>
+
+#include "rgraph/error.h"
+#include "rgraph/gl/forward_shading.h"
+#include "rgraph/gl/fullscreen.h"
+#include "rgraph/gl/lighting_options.h"
+#include "rgraph/pass_decl.h"
+#include "rgraph/registry.h"
+
+namespace {
+using namespace rgraph;
+
+class ForwardLitPass final : public PassInstance {
+ public:
+  void setup(PassContext& ctx) override {
+    if (!ctx.gpuScene()) throw RuntimeError("forward_lit pass '" + ctx.passName() + "' needs a scene");
+    program_ = forward::program(ctx);
+  }
+
+  void execute(PassContext& ctx) override {
+    gl::bindPassFramebuffer(ctx);
+    const float one = 1.0f;
+    glDepthMask(GL_TRUE);
+    glClearNamedFramebufferfv(ctx.framebuffer(), GL_DEPTH, 0, &one);
+    forward::drawSurfaces(ctx, program_, /*blended=*/false);
+    if (ctx.params().getBool("blend", true)) forward::drawSurfaces(ctx, program_, /*blended=*/true);
+  }
+
+ private:
+  uint32_t program_ = 0;
+};
+
+PassTypeDesc makeForwardLitPass() {
+  using namespace rgraph::decl;
+  PassTypeDesc d;
+  d.name = "forward_lit";
+  d.description = "Classic forward renderer: every light per fragment (the reference and the baseline)";
+  d.slots = {
+      slot("color", Access::color_attachment, true, SlotDecl::Load::optional,
+           "HDR target; background keeps its clear value", {Format::rgba16f, Format::rgba32f, Format::r11g11b10f}),
+      slot("depth", Access::depth_attachment, true, SlotDecl::Load::never, "depth buffer (cleared here)",
+           {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}),
+  };
+  d.params = lighting::params();
+  d.params.push_back(param("blend", ParamType::boolean, true, "also draw BLEND materials, back to front"));
+  d.shaders = {"scene.vert", "forward_lit.frag"};
+  d.create = [] { return std::make_unique<ForwardLitPass>(); };
+  return d;
+}
+
+RGRAPH_REGISTER_PASS(makeForwardLitPass);
+}  // namespace

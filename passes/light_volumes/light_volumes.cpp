@@ -1,0 +1,92 @@
+// light_volumes: each point light drawn as an instanced sphere scaled to its
+// radius, shading only the pixels the light can reach, added into the
+// lighting target. Front faces are culled (the far side of each sphere is
+// drawn) so a camera inside a volume still sees its light; the depth test
+// keeps only pixels whose surface lies in front of that far side.
+#include <GL/glcorearb.h>
+
+#include "rgraph/error.h"
+#include "rgraph/gl/fullscreen.h"
+#include "rgraph/gl/gpu_scene.h"
+#include "rgraph/gl/lighting_options.h"
+#include "rgraph/gl/shader_library.h"
+#include "rgraph/pass_decl.h"
+#include "rgraph/registry.h"
+
+namespace {
+using namespace rgraph;
+
+class LightVolumesPass final : public PassInstance {
+ public:
+  void setup(PassContext& ctx) override {
+    if (!ctx.gpuScene()) throw RuntimeError("light_volumes pass '" + ctx.passName() + "' needs a scene");
+    lighting::requireGBuffer(ctx, "light_volumes");
+    std::vector<std::string> defines = lighting::defines(ctx.params());
+    defines.push_back(lighting::layoutDefine(ctx.params()));
+    program_ = ctx.shaders().program("light_volume.vert", "light_volume.frag", defines);
+  }
+
+  void execute(PassContext& ctx) override {
+    GpuScene& scene = *ctx.gpuScene();
+    gl::bindPassFramebuffer(ctx);
+    glUseProgram(program_);
+    glProgramUniform1f(program_, glGetUniformLocation(program_, "u_volumeScale"), scene.icosphereScale());
+    scene.bindFrame();
+    scene.bindPointLights(lighting::threshold(ctx.params()));
+    lighting::bindGBuffer(ctx);
+
+    const std::string cull = ctx.params().getString("cull", "front");
+    glEnable(GL_CULL_FACE);
+    glCullFace(cull == "back" ? GL_BACK : GL_FRONT);
+    if (ctx.bound("depth_test")) {
+      glEnable(GL_DEPTH_TEST);
+      // Front culled: the far side of the sphere must lie behind (or at) the
+      // surface. Back culled: the near side must lie in front of it.
+      glDepthFunc(cull == "back" ? GL_LEQUAL : GL_GEQUAL);
+    } else {
+      glDisable(GL_DEPTH_TEST);
+    }
+    glDepthMask(GL_FALSE);
+    // A volume reaching past the far plane would be clipped away and lose
+    // its light: clamp depth instead.
+    glEnable(GL_DEPTH_CLAMP);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    scene.drawIcosphere(scene.pointLightCount());
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_CLAMP);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+  }
+
+ private:
+  uint32_t program_ = 0;
+};
+
+PassTypeDesc makeLightVolumesPass() {
+  using namespace rgraph::decl;
+  PassTypeDesc d;
+  d.name = "light_volumes";
+  d.description = "Point lights as instanced spheres scaled to their radius, added into the lighting target";
+  d.slots = lighting::gbufferSlots();
+  d.slots.push_back(slot("depth_test", Access::depth_attachment_read, false, SlotDecl::Load::never,
+                         "scene depth to test volumes against (read-only; a copy when the layout samples depth)",
+                         {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}));
+  d.slots.push_back(slot("color", Access::color_attachment, true, SlotDecl::Load::required,
+                         "HDR lighting target the lights are added to", {Format::rgba16f, Format::rgba32f,
+                                                                        Format::r11g11b10f}));
+  d.params = lighting::params(5.0 / 256.0, /*allowNoCutoff=*/false);
+  d.params.push_back(lighting::layoutParam());
+  d.params.push_back(param("cull", ParamType::enumeration, std::string("front"),
+                           "faces culled: front (correct with the camera inside a volume) or back (loses lights "
+                           "whose volume contains the camera; kept to show why)",
+                           {"front", "back"}));
+  d.shaders = {"light_volume.vert", "light_volume.frag"};
+  d.create = [] { return std::make_unique<LightVolumesPass>(); };
+  return d;
+}
+
+RGRAPH_REGISTER_PASS(makeLightVolumesPass);
+}  // namespace

@@ -1,0 +1,24 @@
+#version 450 core
+// Deferred lighting, once per pixel: ambient + the directional light + every
+// point light (unless light volumes draw those). Defines: one GBUFFER_*, one
+// LIGHTING_*, one ATTENUATION_*, optionally LIGHT_RADIUS_BRANCH.
+#include "include/frame.glsl"
+#include "include/gbuffer.glsl"
+#include "include/gbuffer_read.glsl"
+#include "include/lighting.glsl"
+
+layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
+uniform int u_pointLightCount;  // 0 when another pass lights the point lights
+uniform int u_ambientAndSun;    // 1: add ambient and the directional light
+
+layout(location = 0) out vec4 outColor;
+
+void main() {
+  Surface s = readSurface(ivec2(gl_FragCoord.xy));
+  if (!s.covered) discard;  // the target's clear value (background) stays
+  vec3 V = safeNormal(u_cameraPos.xyz - s.position, s.normal);
+  vec3 color = vec3(0.0);
+  if (u_ambientAndSun != 0) color += ambientTerm(s) + shadeDirectionalLight(s, V);
+  for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(lights[i], s, V);
+  outColor = vec4(color, 1.0);
+}

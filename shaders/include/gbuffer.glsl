@@ -1,0 +1,48 @@
+// G-buffer layouts. Exactly one of these is defined by the pass that includes
+// this file: GBUFFER_LEARNOPENGL, GBUFFER_PBR, GBUFFER_COMPACT, GBUFFER_FP32.
+//   learnopengl: position rgba16f | normal rgba16f | albedo.rgb + specular rgba8
+//   pbr:         position rgba16f | normal rgba16f | albedo rgba16f | metallic, roughness, ao rgba16f
+//   compact:     no position (rebuilt from depth) | octahedral normal rg16f | albedo + specular rgba8
+//                | metallic, roughness rg8
+//   fp32:        the pbr layout in rgba32f (the reference)
+
+struct Surface {
+  vec3 position;   // world space
+  vec3 normal;     // world space, unit length
+  vec3 albedo;
+  float specular;  // Blinn-Phong specular intensity
+  float metallic;
+  float roughness;
+  float ao;
+  bool covered;    // false where no geometry was drawn
+};
+
+// Octahedral normal encoding (unit vector <-> [-1,1]^2): two half floats keep
+// normals to about 1e-3, where rgb16 x 3 costs half as much again.
+vec2 octWrap(vec2 v) { return (1.0 - abs(v.yx)) * vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0); }
+vec2 encodeOctahedral(vec3 n) {
+  n /= (abs(n.x) + abs(n.y) + abs(n.z));
+  return n.z >= 0.0 ? n.xy : octWrap(n.xy);
+}
+vec3 decodeOctahedral(vec2 e) {
+  vec3 n = vec3(e.xy, 1.0 - abs(e.x) - abs(e.y));
+  float t = clamp(-n.z, 0.0, 1.0);
+  n.xy += vec2(n.x >= 0.0 ? -t : t, n.y >= 0.0 ? -t : t);
+  return normalize(n);
+}
+
+// World position from a depth-buffer value at a pixel (compact layout).
+vec3 positionFromDepth(vec2 uv, float depth, mat4 invProj, mat4 invView) {
+  vec4 clip = vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+  vec4 view = invProj * clip;
+  view /= view.w;
+  return (invView * view).xyz;
+}
+
+// A normal that is zero or not finite would poison every light with NaN:
+// fall back to "facing the viewer" so the pixel stays finite.
+vec3 safeNormal(vec3 n, vec3 fallback) {
+  float len2 = dot(n, n);
+  if (!(len2 > 1e-12) || isinf(len2) || isnan(len2)) return fallback;
+  return n * inversesqrt(len2);
+}

@@ -1,0 +1,42 @@
+// Reading a G-buffer back into a Surface, for every pass that lights from it.
+// Needs frame.glsl and gbuffer.glsl first, and one GBUFFER_* define.
+// Texture units: 0 position, 1 normal, 2 albedo, 3 material, 4 depth.
+layout(binding = 0) uniform sampler2D g_position;
+layout(binding = 1) uniform sampler2D g_normal;
+layout(binding = 2) uniform sampler2D g_albedo;
+layout(binding = 3) uniform sampler2D g_material;
+layout(binding = 4) uniform sampler2D g_depth;
+
+// Exact texel reads (texelFetch: no filtering, the G-buffer is per pixel).
+Surface readSurface(ivec2 px) {
+  Surface s;
+  vec4 albedo = texelFetch(g_albedo, px, 0);
+  s.albedo = albedo.rgb;
+  s.specular = albedo.a;
+  s.ao = 1.0;
+#if defined(GBUFFER_COMPACT)
+  float depth = texelFetch(g_depth, px, 0).r;
+  s.covered = depth < 1.0;
+  vec2 uv = (vec2(px) + 0.5) * u_viewport.zw;
+  s.position = positionFromDepth(uv, depth, u_invProj, u_invView);
+  s.normal = decodeOctahedral(texelFetch(g_normal, px, 0).rg);
+  vec2 mr = texelFetch(g_material, px, 0).rg;
+  s.metallic = mr.x;
+  s.roughness = max(mr.y, 0.04);
+#else
+  vec4 n = texelFetch(g_normal, px, 0);
+  s.covered = n.w > 0.5;
+  s.position = texelFetch(g_position, px, 0).xyz;
+  s.normal = safeNormal(n.xyz, vec3(0.0, 0.0, 1.0));
+#if defined(GBUFFER_LEARNOPENGL)
+  s.metallic = 0.0;
+  s.roughness = 1.0;
+#else
+  vec4 m = texelFetch(g_material, px, 0);
+  s.metallic = m.r;
+  s.roughness = max(m.g, 0.04);
+  s.ao = m.b;
+#endif
+#endif
+  return s;
+}

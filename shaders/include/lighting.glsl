@@ -1,0 +1,98 @@
+// Lighting models and attenuation shared by the deferred, light-volume,
+// tiled and forward passes, so that they agree to the last bit of the maths.
+// The including pass defines LIGHTING_BLINN_PHONG or LIGHTING_COOK_TORRANCE,
+// and ATTENUATION_CLASSIC or ATTENUATION_SMOOTH.
+
+const float PI = 3.14159265359;
+
+// The half vector; L = -V (light exactly behind the surface point as seen
+// from the eye) has none, and normalize(0) would be NaN.
+vec3 halfVector(vec3 L, vec3 V, vec3 N) {
+  vec3 h = L + V;
+  return dot(h, h) > 1e-12 ? normalize(h) : N;
+}
+
+// Classic: 1 / (kc + kl d + kq d^2), cut off at the light's radius (a negative
+// radius means no cut-off; a zero radius lights nothing). Smooth:
+// max(1 - (d/r)^2, 0), reaching zero at r.
+float attenuate(PointLight light, float d) {
+  float radius = light.positionRadius.w;
+#if defined(ATTENUATION_SMOOTH)
+  float x = d / max(radius, 1e-6);
+  return radius > 0.0 ? max(1.0 - x * x, 0.0) : 0.0;
+#else
+  vec3 k = light.attenuation.xyz;
+  float a = 1.0 / max(k.x + k.y * d + k.z * d * d, 1e-6);
+  return (radius < 0.0 || d <= radius) ? a : 0.0;  // a select, not a branch
+#endif
+}
+
+// LearnOpenGL's Blinn-Phong: diffuse + specular with exponent 16 scaled by the
+// stored specular intensity. radiance = light colour * attenuation.
+vec3 blinnPhong(vec3 N, vec3 V, vec3 L, vec3 radiance, vec3 albedo, float specular) {
+  vec3 diffuse = max(dot(N, L), 0.0) * albedo * radiance;
+  vec3 H = halfVector(L, V, N);
+  vec3 spec = pow(max(dot(N, H), 0.0), 16.0) * specular * radiance;
+  return diffuse + spec;
+}
+
+float distributionGGX(float NdotH, float roughness) {
+  float a = roughness * roughness;
+  float a2 = a * a;
+  float d = NdotH * NdotH * (a2 - 1.0) + 1.0;
+  return a2 / max(PI * d * d, 1e-7);
+}
+
+float geometrySchlickGGX(float NdotX, float roughness) {
+  float r = roughness + 1.0;
+  float k = r * r / 8.0;
+  return NdotX / (NdotX * (1.0 - k) + k);
+}
+
+vec3 fresnelSchlick(float cosTheta, vec3 F0) {
+  return F0 + (1.0 - F0) * pow(clamp(1.0 - cosTheta, 0.0, 1.0), 5.0);
+}
+
+// Cook-Torrance: GGX distribution, Smith geometry, Schlick Fresnel;
+// F0 = mix(0.04, albedo, metallic), kD = (1 - F)(1 - metallic).
+vec3 cookTorrance(vec3 N, vec3 V, vec3 L, vec3 radiance, vec3 albedo, float metallic, float roughness) {
+  vec3 H = halfVector(L, V, N);
+  float NdotL = max(dot(N, L), 0.0);
+  float NdotV = max(dot(N, V), 0.0);
+  vec3 F0 = mix(vec3(0.04), albedo, metallic);
+  float D = distributionGGX(max(dot(N, H), 0.0), roughness);
+  float G = geometrySchlickGGX(NdotV, roughness) * geometrySchlickGGX(NdotL, roughness);
+  vec3 F = fresnelSchlick(max(dot(H, V), 0.0), F0);
+  vec3 specular = D * G * F / max(4.0 * NdotV * NdotL, 0.001);
+  vec3 kD = (vec3(1.0) - F) * (1.0 - metallic);
+  return (kD * albedo / PI + specular) * radiance * NdotL;
+}
+
+vec3 shade(vec3 N, vec3 V, vec3 L, vec3 radiance, Surface s) {
+#if defined(LIGHTING_COOK_TORRANCE)
+  return cookTorrance(N, V, L, radiance, s.albedo, s.metallic, s.roughness);
+#else
+  return blinnPhong(N, V, L, radiance, s.albedo, s.specular);
+#endif
+}
+
+vec3 shadePointLight(PointLight light, Surface s, vec3 V) {
+  vec3 toLight = light.positionRadius.xyz - s.position;
+  float d = length(toLight);
+#if defined(LIGHT_RADIUS_BRANCH)
+  // LearnOpenGL's per-light radius test: skip the shading maths outside the
+  // light's volume (only pays off when whole warps agree).
+  if (light.positionRadius.w >= 0.0 && d > light.positionRadius.w) return vec3(0.0);
+#endif
+  float att = attenuate(light, d);
+  vec3 L = d > 1e-6 ? toLight / d : s.normal;
+  return shade(s.normal, V, L, light.color.rgb * att, s);
+}
+
+vec3 shadeDirectionalLight(Surface s, vec3 V) {
+  if (u_dirLightDir.w <= 0.0) return vec3(0.0);
+  vec3 L = normalize(-u_dirLightDir.xyz);
+  return shade(s.normal, V, L, u_dirLightColor.rgb, s);
+}
+
+vec3 ambientTerm(Surface s) { return u_ambient.rgb * s.albedo * s.ao; }

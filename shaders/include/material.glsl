@@ -1,0 +1,69 @@
+// Material inputs of a scene draw (set per draw by GpuScene::drawPrimitives)
+// and the surface they describe at one fragment. Defines: HAS_NORMAL_MAPS
+// (only when the scene has normal maps: otherwise no tangent is read and no
+// normal map sampled).
+layout(binding = 0) uniform sampler2D u_baseColorTex;
+layout(binding = 1) uniform sampler2D u_metallicRoughnessTex;
+layout(binding = 2) uniform sampler2D u_normalTex;
+layout(binding = 3) uniform sampler2D u_occlusionTex;
+
+uniform vec4 u_baseColorFactor;
+uniform float u_metallicFactor;
+uniform float u_roughnessFactor;
+uniform float u_specular;
+uniform float u_normalScale;
+uniform float u_occlusionStrength;
+uniform float u_alphaCutoff;
+uniform int u_alphaMode;  // 0 opaque, 1 mask, 2 blend
+uniform int u_hasBaseColorTex;
+uniform int u_hasMetallicRoughnessTex;
+uniform int u_hasNormalTex;
+uniform int u_hasOcclusionTex;
+
+in VS_OUT {
+  vec3 worldPos;
+  vec3 normal;
+  vec2 uv;
+  vec4 tangent;
+} fs;
+
+vec4 materialBaseColor() {
+  vec4 c = u_baseColorFactor;
+  if (u_hasBaseColorTex != 0) c *= texture(u_baseColorTex, fs.uv);
+  return c;
+}
+
+// Builds the surface; `discarded` is set for alpha-masked fragments below the cut-off.
+Surface materialSurface(vec3 viewDir, out float alpha, out bool discarded) {
+  Surface s;
+  vec4 base = materialBaseColor();
+  alpha = base.a;
+  discarded = (u_alphaMode == 1 && base.a < u_alphaCutoff);
+  s.position = fs.worldPos;
+  s.albedo = base.rgb;
+  s.specular = u_specular;
+  vec2 mr = vec2(u_metallicFactor, u_roughnessFactor);
+  if (u_hasMetallicRoughnessTex != 0) {
+    vec4 t = texture(u_metallicRoughnessTex, fs.uv);
+    mr *= vec2(t.b, t.g);
+  }
+  s.metallic = clamp(mr.x, 0.0, 1.0);
+  s.roughness = clamp(mr.y, 0.04, 1.0);
+  s.ao = 1.0;
+  if (u_hasOcclusionTex != 0) s.ao = 1.0 + u_occlusionStrength * (texture(u_occlusionTex, fs.uv).r - 1.0);
+
+  vec3 N = safeNormal(fs.normal, viewDir);
+  if (!gl_FrontFacing) N = -N;  // double-sided materials seen from behind
+#if defined(HAS_NORMAL_MAPS)
+  if (u_hasNormalTex != 0 && dot(fs.tangent.xyz, fs.tangent.xyz) > 1e-12) {
+    vec3 T = normalize(fs.tangent.xyz - N * dot(N, fs.tangent.xyz));
+    vec3 B = (gl_FrontFacing ? 1.0 : -1.0) * fs.tangent.w * cross(N, T);
+    vec3 tn = texture(u_normalTex, fs.uv).xyz * 2.0 - 1.0;
+    tn.xy *= u_normalScale;
+    N = safeNormal(mat3(T, B, N) * tn, N);
+  }
+#endif
+  s.normal = N;
+  s.covered = true;
+  return s;
+}

@@ -1,0 +1,28 @@
+#version 450 core
+// Scene geometry: world-space position, normal and tangent for the geometry
+// and forward passes. Attributes follow rgraph::MeshVertex (gpu_scene.h).
+#include "include/frame.glsl"
+
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec2 a_uv;
+layout(location = 3) in vec4 a_tangent;
+
+uniform mat4 u_model;
+uniform mat3 u_normalMatrix;
+
+out VS_OUT {
+  vec3 worldPos;
+  vec3 normal;
+  vec2 uv;
+  vec4 tangent;
+} vs;
+
+void main() {
+  vec4 world = u_model * vec4(a_position, 1.0);
+  vs.worldPos = world.xyz;
+  vs.normal = u_normalMatrix * a_normal;
+  vs.uv = a_uv;
+  vs.tangent = vec4(mat3(u_model) * a_tangent.xyz, a_tangent.w);
+  gl_Position = u_viewProj * world;
+}

@@ -1,0 +1,188 @@
+// Properties over a few hundred random DAGs (fixed seeds): valid topological
+// order, culling closed under data dependencies, exact lifetimes, and sound
+// aliasing. The expected edges come from the generator, not from compile().
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "graph_builder.h"
+#include "random_graph.h"
+#include "rgraph/graph.h"
+
+using namespace rgraph;
+using namespace rgraph::testgen;
+
+namespace {
+
+struct Descriptor {
+  ResourceKind kind;
+  Format format;
+  Extent extent;
+  uint32_t mips, samples;
+  uint64_t bufferBytes;
+  bool operator==(const Descriptor& o) const {
+    return kind == o.kind && format == o.format && extent == o.extent && mips == o.mips && samples == o.samples &&
+           bufferBytes == o.bufferBytes;
+  }
+};
+
+Descriptor descriptorOf(const ResourceDecl& r, Extent output) {
+  if (r.kind == ResourceKind::buffer) return {r.kind, Format::rgba8, {}, 0, 0, r.bufferBytes};
+  return {r.kind, r.texture.format, resolveSize(r.texture.size, output), r.texture.mips, r.texture.samples, 0};
+}
+
+void checkPlan(const RandomGraph& g, const Plan& plan, const CompileOptions& options, const std::string& what) {
+  SCOPED_TRACE(what);
+  const GraphDesc& d = g.desc;
+  ASSERT_TRUE(plan.ok()) << dumpDiagnostics(plan);
+  ASSERT_EQ(plan.passes.size(), d.passes.size());
+  ASSERT_EQ(plan.resources.size(), d.resources.size());
+
+  // The order lists every live pass once, consistently with PlannedPass::order.
+  std::vector<int> pos(d.passes.size(), -1);
+  for (size_t i = 0; i < plan.order.size(); ++i) {
+    uint32_t p = plan.order[i];
+    ASSERT_LT(p, d.passes.size());
+    ASSERT_EQ(pos[p], -1) << "pass listed twice";
+    pos[p] = static_cast<int>(i);
+  }
+  for (size_t p = 0; p < d.passes.size(); ++p) {
+    EXPECT_EQ(plan.passes[p].decl, p);
+    EXPECT_EQ(plan.passes[p].order, pos[p]);
+    EXPECT_EQ(plan.passes[p].culled, pos[p] < 0);
+    if (d.passes[p].sideEffect) {
+      EXPECT_FALSE(plan.passes[p].culled) << d.passes[p].name;
+    }
+  }
+  // The output's writer is live.
+  ASSERT_GE(plan.outputResource, 0);
+  // Every dependency edge between live passes is respected; a live pass's data
+  // producers are live.
+  for (const DepEdge& e : g.edges) {
+    if (e.raw && pos[e.after] >= 0) {
+      EXPECT_GE(pos[e.before], 0) << d.passes[e.before].name << " culled";
+    }
+    if (pos[e.before] >= 0 && pos[e.after] >= 0) {
+      EXPECT_LT(pos[e.before], pos[e.after]) << d.passes[e.before].name << " -> " << d.passes[e.after].name;
+    }
+  }
+  // Lifetimes, recomputed from the bindings and the order.
+  std::vector<int> first(d.resources.size(), -1), last(d.resources.size(), -1);
+  for (size_t i = 0; i < plan.order.size(); ++i)
+    for (const BoundUse& b : plan.bindings[plan.order[i]]) {
+      ASSERT_GE(b.resource, 0);
+      if (first[b.resource] < 0) first[b.resource] = static_cast<int>(i);
+      last[b.resource] = static_cast<int>(i);
+    }
+  uint64_t naive = 0;
+  for (size_t r = 0; r < d.resources.size(); ++r) {
+    const PlannedResource& pr = plan.resources[r];
+    EXPECT_EQ(pr.firstPass, first[r]) << pr.name;
+    EXPECT_EQ(pr.lastPass, last[r]) << pr.name;
+    const bool live = first[r] >= 0;
+    if (d.resources[r].imported || !live) {
+      EXPECT_EQ(pr.physical, -1) << pr.name;
+    } else {
+      EXPECT_GE(pr.physical, 0) << pr.name;
+      naive += pr.bytes;
+    }
+  }
+  EXPECT_EQ(plan.naiveBytes, naive);
+  // Physicals: identical descriptors, disjoint inclusive lifetimes, back references.
+  uint64_t allocated = 0;
+  size_t members = 0;
+  for (size_t ph = 0; ph < plan.physical.size(); ++ph) {
+    const PhysicalTexture& pt = plan.physical[ph];
+    ASSERT_FALSE(pt.resources.empty());
+    allocated += pt.bytes;
+    members += pt.resources.size();
+    const Descriptor ref = descriptorOf(d.resources[pt.resources[0]], options.output);
+    for (size_t i = 0; i < pt.resources.size(); ++i) {
+      uint32_t r = pt.resources[i];
+      EXPECT_EQ(plan.resources[r].physical, static_cast<int>(ph));
+      EXPECT_EQ(plan.resources[r].bytes, pt.bytes);
+      EXPECT_TRUE(descriptorOf(d.resources[r], options.output) == ref)
+          << plan.resources[r].name << " vs " << plan.resources[pt.resources[0]].name;
+      if (i > 0) {
+        EXPECT_LE(plan.resources[pt.resources[i - 1]].firstPass, plan.resources[r].firstPass);
+      }
+      for (size_t j = i + 1; j < pt.resources.size(); ++j) {
+        const PlannedResource& a = plan.resources[r];
+        const PlannedResource& b = plan.resources[pt.resources[j]];
+        EXPECT_TRUE(a.lastPass < b.firstPass || b.lastPass < a.firstPass)
+            << a.name << " [" << a.firstPass << "," << a.lastPass << "] and " << b.name << " [" << b.firstPass << ","
+            << b.lastPass << "] share physical " << ph;
+      }
+    }
+  }
+  EXPECT_EQ(plan.allocatedBytes, allocated);
+  EXPECT_LE(plan.allocatedBytes, plan.naiveBytes);
+  size_t liveTransients = 0;
+  for (const auto& pr : plan.resources) liveTransients += pr.physical >= 0;
+  EXPECT_EQ(members, liveTransients);
+  if (!options.alias) {
+    EXPECT_EQ(plan.physical.size(), liveTransients);
+  }
+}
+
+TEST(Property, RandomDagsCompileSoundly) {
+  size_t culledTotal = 0, sharedTotal = 0;
+  for (uint64_t seed = 1; seed <= 300; ++seed) {
+    RandomGraphOptions o;
+    o.seed = seed;
+    o.passes = 1 + static_cast<uint32_t>((seed * 7919) % 60);
+    o.resources = 2 * o.passes;
+    o.sideEffectProbability = 0.05;
+    RandomGraph g = randomGraph(o);
+    CompileOptions options;
+    options.output = {64 + static_cast<uint32_t>(seed % 5) * 100, 48 + static_cast<uint32_t>(seed % 3) * 50};
+    Plan plan = compile(g.desc, options);
+    checkPlan(g, plan, options, "seed " + std::to_string(seed));
+    if (HasFatalFailure() || HasFailure()) return;
+    for (const auto& p : plan.passes) culledTotal += p.culled;
+    for (const auto& ph : plan.physical) sharedTotal += ph.resources.size() > 1;
+    // Deterministic.
+    EXPECT_EQ(compile(g.desc, options).order, plan.order);
+    if (seed % 10 == 0) {
+      options.alias = false;
+      checkPlan(g, compile(g.desc, options), options, "no alias, seed " + std::to_string(seed));
+    }
+  }
+  // The generator exercises culling and aliasing, not just trivial graphs.
+  EXPECT_GT(culledTotal, 100u);
+  EXPECT_GT(sharedTotal, 100u);
+}
+
+TEST(Property, ShuffledDeclarationGivesTheSameLiveSet) {
+  for (uint64_t seed = 500; seed < 540; ++seed) {
+    RandomGraphOptions o;
+    o.seed = seed;
+    o.passes = 40;
+    o.resources = 80;
+    o.shuffle = false;
+    RandomGraph inOrder = randomGraph(o);
+    o.shuffle = true;
+    RandomGraph shuffled = randomGraph(o);
+    Plan a = compile(inOrder.desc), b = compile(shuffled.desc);
+    ASSERT_TRUE(a.ok() && b.ok());
+    std::set<std::string> liveA, liveB;
+    for (uint32_t p : a.order) liveA.insert(a.passes[p].name);
+    for (uint32_t p : b.order) liveB.insert(b.passes[p].name);
+    EXPECT_EQ(liveA, liveB) << seed;
+    // Declared in generation order, with no ties broken differently, the
+    // order is the declaration order restricted to live passes.
+    for (size_t i = 1; i < a.order.size(); ++i) EXPECT_LT(a.order[i - 1], a.order[i]);
+  }
+}
+
+TEST(Property, LargeGraphCompiles) {
+  RandomGraphOptions o;
+  o.passes = 2000;
+  o.resources = 4000;
+  o.seed = 7;
+  RandomGraph g = randomGraph(o);
+  CompileOptions options;
+  checkPlan(g, compile(g.desc, options), options, "large");
+}
+
+}  // namespace
