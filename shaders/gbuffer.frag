@@ -9,7 +9,9 @@
 #if defined(GBUFFER_COMPACT)
 layout(location = 0) out vec2 outNormal;    // octahedral
 layout(location = 1) out vec4 outAlbedo;    // rgb albedo, a specular
+#if !defined(CONSTANT_MATERIAL)
 layout(location = 2) out vec2 outMaterial;  // metallic, roughness
+#endif
 #elif defined(GBUFFER_LEARNOPENGL)
 layout(location = 0) out vec4 outPosition;  // xyz world, w 1 where covered
 layout(location = 1) out vec4 outNormal;    // xyz world, w 1 where covered
@@ -18,7 +20,9 @@ layout(location = 2) out vec4 outAlbedo;    // rgb albedo, a specular
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;
 layout(location = 2) out vec4 outAlbedo;    // rgb albedo, a specular
+#if !defined(CONSTANT_MATERIAL)
 layout(location = 3) out vec4 outMaterial;  // metallic, roughness, ao
+#endif
 #endif
 
 void main() {
@@ -29,12 +33,14 @@ void main() {
 #if defined(GBUFFER_COMPACT)
   outNormal = encodeOctahedral(s.normal);
   outAlbedo = vec4(s.albedo, s.specular);
+#if !defined(CONSTANT_MATERIAL)
   outMaterial = vec2(s.metallic, s.roughness);
+#endif
 #else
   outPosition = vec4(s.position, 1.0);
   outNormal = vec4(s.normal, 1.0);
   outAlbedo = vec4(s.albedo, s.specular);
-#if !defined(GBUFFER_LEARNOPENGL)
+#if !defined(GBUFFER_LEARNOPENGL) && !defined(CONSTANT_MATERIAL)
   outMaterial = vec4(s.metallic, s.roughness, s.ao, 1.0);
 #endif
 #endif

@@ -6,13 +6,55 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "rgraph/plugin.h"
 #include "rgraph/registry.h"
 
 namespace rgraph::cli {
 
+namespace {
+// One loader for the process: plugin libraries stay loaded until exit.
+PluginLoader& pluginLoader() {
+  static PluginLoader loader(PassRegistry::builtins());
+  return loader;
+}
+}  // namespace
+
+void addPluginSearchDirectory(const std::string& dir) { pluginLoader().addSearchDirectory(dir); }
+
+bool loadPlugins(const std::vector<std::string>& namesOrPaths) {
+  bool ok = true;
+  std::error_code ec;
+  const std::string cwd = std::filesystem::current_path(ec).string();
+  for (const auto& name : namesOrPaths) {
+    std::string error;
+    if (!pluginLoader().load(name, cwd, error)) {
+      std::cerr << "error: " << error << "\n";
+      ok = false;
+    }
+  }
+  return ok;
+}
+
 std::optional<PipelineConfig> loadPipeline(const std::string& path, Diagnostics& diags) {
   ConfigDocument doc = ConfigDocument::parseFile(path, diags);
   if (!doc.ok() || hasErrors(diags)) return std::nullopt;
+  // Plugins before the pass types are checked; a path in "plugins" is
+  // relative to the config file's folder.
+  const std::vector<std::string> plugins = doc.plugins();
+  if (!plugins.empty()) {
+    std::error_code ec;
+    const std::string base = std::filesystem::absolute(path, ec).parent_path().string();
+    for (size_t i = 0; i < plugins.size(); ++i) {
+      std::string error;
+      if (pluginLoader().load(plugins[i], base, error)) continue;
+      Diagnostic d;
+      d.code = DiagCode::plugin_error;
+      d.message = error;
+      d.where = doc.pluginLocation(i);
+      diags.push_back(std::move(d));
+    }
+    if (hasErrors(diags)) return std::nullopt;
+  }
   PipelineConfig pipeline = doc.build(PassRegistry::builtins(), diags);
   if (hasErrors(diags)) return std::nullopt;
   return pipeline;

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "rgraph/config.h"
 #include "rgraph/diagnostics.h"
@@ -15,9 +16,19 @@ namespace rgraph::cli {
 constexpr int kExitOk = 0;
 constexpr int kExitFailure = 1;
 
-// Parses and checks a pipeline file against the built-in pass types.
+// Parses a pipeline file, loads the plugins its "plugins" array names into
+// PassRegistry::builtins() (a failure is a plugin_error diagnostic at the
+// plugin's name in the file), then checks it against the registered types.
 // Appends every problem to diags; returns nullopt when any is an error.
 std::optional<PipelineConfig> loadPipeline(const std::string& path, Diagnostics& diags);
+
+// Plugins. --plugin-path folders are searched before $RGRAPH_PLUGIN_PATH, the
+// install's plugin folder and the build tree's (see rgraph/plugin.h).
+void addPluginSearchDirectory(const std::string& dir);
+// Loads plugins named on the command line (names, or paths relative to the
+// working directory). Prints `error: plugin 'NAME': reason` per failure;
+// false when any failed.
+bool loadPlugins(const std::vector<std::string>& namesOrPaths);
 
 // Prints diagnostics to stderr, one `FILE:LINE:COL: error: PATH: message` line each.
 void printDiagnostics(const Diagnostics& diags);

@@ -6,7 +6,11 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "rgraph/adapt.h"
+#include "rgraph/error.h"
 #include "rgraph/registry.h"
+#include "rgraph/scene.h"
+#include "rgraph/shader_check.h"
 
 namespace rgraph::cli {
 namespace {
@@ -104,9 +108,18 @@ void printPlanText(const Plan& plan) {
 
 }  // namespace
 
-int runValidate(const std::string& path, const SizeOptions& size, bool json) {
+int runValidate(const std::string& path, const SizeOptions& size, bool json, bool checkShaders) {
   Diagnostics diags;
-  loadAndCompile(path, size, diags);
+  auto result = loadAndCompile(path, size, diags);
+  // Shader checks need no GL context: glslang compiles and reflects what each
+  // enabled pass would build. They run once the config is built (the graph's
+  // own errors, if any, are already listed; bindings it could not resolve
+  // only skip the format checks).
+  if (result && checkShaders) {
+    ShaderChecker checker(defaultShaderSearchDirectories());
+    Diagnostics shaderDiags = checker.checkPipeline(result->first, result->second, PassRegistry::builtins());
+    diags.insert(diags.end(), shaderDiags.begin(), shaderDiags.end());
+  }
   if (json)
     std::cout << diagnosticsJson(diags) << "\n";
   else
@@ -116,15 +129,48 @@ int runValidate(const std::string& path, const SizeOptions& size, bool json) {
   return kExitOk;
 }
 
-int runPlan(const std::string& path, const SizeOptions& size, bool json) {
+int runPlan(const std::string& path, const SizeOptions& size, bool json, const std::string& sceneSpec) {
   Diagnostics diags;
   auto result = loadAndCompile(path, size, diags);
   printDiagnostics(diags);
   if (!result || hasErrors(diags)) return kExitFailure;
-  if (json)
-    std::cout << planJson(result->second).dump(2) << "\n";
-  else
-    printPlanText(result->second);
+  if (sceneSpec.empty()) {
+    if (json)
+      std::cout << planJson(result->second).dump(2) << "\n";
+    else
+      printPlanText(result->second);
+    return kExitOk;
+  }
+  // Model no more than the scene needs: adapt, then compile again.
+  Scene scene;
+  try {
+    scene = loadSceneAny(sceneSpec);
+  } catch (const RuntimeError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return kExitFailure;
+  }
+  PipelineConfig adapted = result->first;
+  const AdaptReport report = adaptToScene(adapted, PassRegistry::builtins(), sceneFeatures(scene));
+  Plan plan = compile(adapted.graph, CompileOptions{Extent{size.width, size.height}});
+  printDiagnostics(plan.diagnostics);
+  if (!plan.ok()) return kExitFailure;
+  const uint32_t before = gbufferBytesPerPixel(result->first, result->second);
+  const uint32_t after = gbufferBytesPerPixel(adapted, plan);
+  if (json) {
+    nlohmann::json out = planJson(plan);
+    out["scene"] = {{"source", scene.source},
+                    {"adaptations", report.notes},
+                    {"gbuffer_bytes_per_pixel", {{"before", before}, {"after", after}}},
+                    {"memory_before", {{"naive_bytes", result->second.naiveBytes},
+                                       {"allocated_bytes", result->second.allocatedBytes}}}};
+    std::cout << out.dump(2) << "\n";
+  } else {
+    std::cout << "adapted to scene " << scene.source << ":\n";
+    if (report.notes.empty()) std::cout << "  (nothing to drop)\n";
+    for (const auto& n : report.notes) std::cout << "  " << n << "\n";
+    std::cout << "G-buffer bytes per pixel: " << before << " before, " << after << " after\n";
+    printPlanText(plan);
+  }
   return kExitOk;
 }
 

@@ -9,6 +9,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "rgraph/adapt.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/context.h"
 #include "rgraph/gl/executor.h"
@@ -57,6 +58,9 @@ int runRender(const RenderOptions& options) {
     std::unique_ptr<Scene> scene;
     const std::string sceneSpec = options.scene.empty() ? std::string("learnopengl") : options.scene;
     scene = std::make_unique<Scene>(loadSceneAny(sceneSpec));
+    // Model no more than the scene needs (no point lights: no light volumes...).
+    for (const auto& note : adaptToScene(*pipeline, PassRegistry::builtins(), sceneFeatures(*scene)).notes)
+      spdlog::info("{}", note);
 
     ContextOptions ctxOptions;
     ctxOptions.window = options.window;

@@ -11,8 +11,12 @@ struct SizeOptions {
   uint32_t height = 720;
 };
 
-int runValidate(const std::string& pipeline, const SizeOptions& size, bool json);
-int runPlan(const std::string& pipeline, const SizeOptions& size, bool json);
+// checkShaders: after the graph compiles, compile and reflect every enabled
+// pass's shaders with glslang (rgraph/shader_check.h); `--no-shaders` skips it.
+int runValidate(const std::string& pipeline, const SizeOptions& size, bool json, bool checkShaders = true);
+// scene: when set, the pipeline is first adapted to what the scene needs
+// (PassTypeDesc::adapt) and the plan reports G-buffer bytes per pixel before and after.
+int runPlan(const std::string& pipeline, const SizeOptions& size, bool json, const std::string& scene = {});
 int runDot(const std::string& pipeline, const SizeOptions& size);
 int runPasses(bool json);
 

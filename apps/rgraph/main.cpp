@@ -18,6 +18,13 @@ int main(int argc, char** argv) {
   std::string pipeline;
   SizeOptions size;
   bool json = false;
+  std::vector<std::string> pluginPaths;
+  auto addPluginPath = [&](CLI::App* cmd) {
+    cmd->add_option("--plugin-path", pluginPaths,
+                    "folder searched for plugins named by the config (repeatable; before $RGRAPH_PLUGIN_PATH)")
+        ->type_name("DIR")
+        ->allow_extra_args(false);
+  };
   auto addSize = [&](CLI::App* cmd) {
     cmd->add_option("--width", size.width, "output width in pixels")->check(CLI::Range(1u, 16384u));
     cmd->add_option("--height", size.height, "output height in pixels")->check(CLI::Range(1u, 16384u));
@@ -27,18 +34,29 @@ int main(int argc, char** argv) {
   validate->add_option("pipeline", pipeline, "pipeline config (JSON)")->required();
   validate->add_flag("--json", json, "print diagnostics as a JSON array");
   addSize(validate);
+  addPluginPath(validate);
 
   auto* plan = app.add_subcommand("plan", "print the compiled plan: order, culled passes, lifetimes, memory");
   plan->add_option("pipeline", pipeline, "pipeline config (JSON)")->required();
   plan->add_flag("--json", json, "print the plan as JSON");
+  std::string planScene;
+  plan->add_option("--scene", planScene,
+                   "adapt the pipeline to this scene first (drops what it does not need): file, glTF or procedural name");
   addSize(plan);
+  addPluginPath(plan);
 
   auto* dot = app.add_subcommand("dot", "print the compiled graph as graphviz DOT");
   dot->add_option("pipeline", pipeline, "pipeline config (JSON)")->required();
   addSize(dot);
+  addPluginPath(dot);
 
   auto* passes = app.add_subcommand("passes", "list every registered pass type with its slots and parameters");
   passes->add_flag("--json", json, "print as JSON");
+  std::vector<std::string> passPlugins;
+  passes->add_option("--plugin", passPlugins, "also load this plugin (name or path; repeatable) and list its types")
+      ->type_name("NAME")
+      ->allow_extra_args(false);
+  addPluginPath(passes);
 
   RenderOptions render;
   auto* renderCmd = app.add_subcommand("render", "run a pipeline headless and write the output image");
@@ -48,6 +66,7 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--frames", render.frames, "frames to render (timings are medians)")->check(CLI::Range(1u, 100000u));
   renderCmd->add_option("--stats", render.stats, "write frame and pass timings and memory as JSON");
   renderCmd->add_flag("--window", render.window, "render in a GLFW window instead of headless EGL");
+  addPluginPath(renderCmd);
   renderCmd->add_option("--width", render.size.width, "output width in pixels")->check(CLI::Range(1u, 16384u));
   renderCmd->add_option("--height", render.size.height, "output height in pixels")->check(CLI::Range(1u, 16384u));
 
@@ -55,9 +74,12 @@ int main(int argc, char** argv) {
   spdlog::set_level(spdlog::level::from_str(logLevel));
   spdlog::set_default_logger(spdlog::default_logger());
 
+  for (const auto& dir : pluginPaths) addPluginSearchDirectory(dir);
+
   try {
+    if (*passes && !loadPlugins(passPlugins)) return kExitFailure;
     if (*validate) return runValidate(pipeline, size, json);
-    if (*plan) return runPlan(pipeline, size, json);
+    if (*plan) return runPlan(pipeline, size, json, planScene);
     if (*dot) return runDot(pipeline, size);
     if (*passes) return runPasses(json);
     if (*renderCmd) return runRender(render);

@@ -20,7 +20,7 @@ class DeferredLightingPass final : public PassInstance {
     if (!ctx.gpuScene()) throw RuntimeError("deferred_lighting pass '" + ctx.passName() + "' needs a scene");
     lighting::requireGBuffer(ctx, "deferred_lighting");
     std::vector<std::string> defines = lighting::defines(ctx.params());
-    defines.push_back(lighting::layoutDefine(ctx.params()));
+    for (auto& def : lighting::gbufferDefines(ctx.params())) defines.push_back(std::move(def));
     if (ctx.params().getBool("radius_test", false)) defines.push_back("LIGHT_RADIUS_BRANCH");
     program_ = ctx.shaders().program("fullscreen.vert", "deferred_lighting.frag", defines);
     triangle_ = std::make_unique<gl::FullscreenTriangle>();
@@ -39,6 +39,10 @@ class DeferredLightingPass final : public PassInstance {
     scene.bindFrame();
     scene.bindPointLights(lighting::threshold(ctx.params()));
     lighting::bindGBuffer(ctx);
+    // Optional ambient occlusion (e.g. the ssao plugin's output) scales the ambient term.
+    const bool ao = ctx.bound("ao");
+    glProgramUniform1i(program_, glGetUniformLocation(program_, "u_hasAo"), ao ? 1 : 0);
+    glBindTextureUnit(5, ao ? ctx.texture("ao") : 0);
     triangle_->draw();
   }
 
@@ -56,12 +60,34 @@ PassTypeDesc makeDeferredLightingPass() {
   d.slots.push_back(slot("color", Access::color_attachment, true, SlotDecl::Load::optional,
                          "HDR lighting target; background pixels keep its clear value",
                          {Format::rgba16f, Format::rgba32f, Format::r11g11b10f}));
+  d.slots.push_back(slot("ao", Access::sampled, false, SlotDecl::Load::never,
+                         "ambient occlusion (r channel, any size) that scales the ambient term, e.g. from ssao",
+                         {Format::r8, Format::r16f, Format::r32f, Format::rg8, Format::rg16f}));
   d.params = lighting::params();
   d.params.push_back(lighting::layoutParam());
   d.params.push_back(param("point_lights", ParamType::boolean, true,
                            "shade the point lights here (false when a light_volumes pass draws them)"));
   d.params.push_back(param("radius_test", ParamType::boolean, false,
                            "skip a light's maths beyond its radius with a branch (LearnOpenGL's loop)"));
+  for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
+  d.adapt = [](const SceneFeatures& f, PassAdaptation& a) {
+    lighting::adaptGBuffer(f, a);
+    if (!f.pointLights && a.params.getBool("point_lights", true)) {
+      a.params.set("point_lights", false);
+      a.notes.push_back("no point lights: ambient and directional light only");
+    }
+  };
+  d.programs = [](const ParamSet& p) {
+    ShaderProgramSpec s;
+    s.vert = "fullscreen.vert";
+    s.frag = "deferred_lighting.frag";
+    s.defines = lighting::defines(p);
+    for (auto& def : lighting::gbufferDefines(p)) s.defines.push_back(std::move(def));
+    if (p.getBool("radius_test", false)) s.defines.push_back("LIGHT_RADIUS_BRANCH");
+    s.samplers = lighting::gbufferSamplers();
+    s.samplers.push_back({"ao", "u_ao", 5, /*optional=*/true});  // u_hasAo says whether it is bound
+    return std::vector<ShaderProgramSpec>{std::move(s)};
+  };
   d.shaders = {"fullscreen.vert", "deferred_lighting.frag"};
   d.create = [] { return std::make_unique<DeferredLightingPass>(); };
   return d;

@@ -67,6 +67,41 @@ PassTypeDesc makeForwardPass() {
   d.params.push_back(param("markers", ParamType::boolean, true, "draw a small cube in each point light's colour"));
   d.params.push_back(decl::ranged("marker_size", ParamType::number, 0.125, 0.0, 100.0, "half extent of a light marker"));
   d.params.push_back(param("blend", ParamType::boolean, true, "draw BLEND materials, lit forward, back to front"));
+  d.adapt = [](const SceneFeatures& f, PassAdaptation& a) {
+    if (!f.pointLights && a.params.getBool("markers", true)) {
+      a.params.set("markers", false);
+      a.notes.push_back("no point lights: no light markers");
+    }
+    if (!f.blendMaterials && a.params.getBool("blend", true)) {
+      a.params.set("blend", false);
+      a.notes.push_back("no BLEND materials: no forward blend");
+    }
+    if (!a.params.getBool("markers", true) && !a.params.getBool("blend", true)) {
+      a.disable = true;
+      a.notes.push_back("nothing left to draw forward: pass disabled");
+    }
+  };
+  d.programs = [](const ParamSet& p) {
+    std::vector<ShaderProgramSpec> v;
+    if (p.getBool("markers", true)) {
+      ShaderProgramSpec s;
+      s.vert = "light_marker.vert";
+      s.frag = "light_marker.frag";
+      v.push_back(std::move(s));
+    }
+    if (p.getBool("blend", true))
+      for (bool normalMaps : {false, true}) {  // forward::program: HAS_NORMAL_MAPS follows the scene
+        ShaderProgramSpec s;
+        s.vert = "scene.vert";
+        s.frag = "forward_lit.frag";
+        s.defines = lighting::defines(p);
+        if (normalMaps) s.defines.push_back("HAS_NORMAL_MAPS");
+        s.ownSamplers = lighting::materialSamplers();
+        s.blendsSourceAlpha = true;
+        v.push_back(std::move(s));
+      }
+    return v;
+  };
   d.shaders = {"scene.vert", "forward_lit.frag", "light_marker.vert", "light_marker.frag"};
   d.create = [] { return std::make_unique<ForwardPass>(); };
   return d;

@@ -46,6 +46,26 @@ PassTypeDesc makeForwardLitPass() {
   };
   d.params = lighting::params();
   d.params.push_back(param("blend", ParamType::boolean, true, "also draw BLEND materials, back to front"));
+  d.adapt = [](const SceneFeatures& f, PassAdaptation& a) {
+    if (!f.blendMaterials && a.params.getBool("blend", true)) {
+      a.params.set("blend", false);
+      a.notes.push_back("no BLEND materials: opaque surfaces only");
+    }
+  };
+  d.programs = [](const ParamSet& p) {
+    std::vector<ShaderProgramSpec> v;
+    for (bool normalMaps : {false, true}) {  // forward::program: HAS_NORMAL_MAPS follows the scene
+      ShaderProgramSpec s;
+      s.vert = "scene.vert";
+      s.frag = "forward_lit.frag";
+      s.defines = lighting::defines(p);
+      if (normalMaps) s.defines.push_back("HAS_NORMAL_MAPS");
+      s.ownSamplers = lighting::materialSamplers();
+      s.blendsSourceAlpha = p.getBool("blend", true);
+      v.push_back(std::move(s));
+    }
+    return v;
+  };
   d.shaders = {"scene.vert", "forward_lit.frag"};
   d.create = [] { return std::make_unique<ForwardLitPass>(); };
   return d;

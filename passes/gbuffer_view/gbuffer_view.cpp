@@ -22,7 +22,7 @@ class GBufferViewPass final : public PassInstance {
   void setup(PassContext& ctx) override {
     if (!ctx.gpuScene()) throw RuntimeError("gbuffer_view pass '" + ctx.passName() + "' needs a scene");
     lighting::requireGBuffer(ctx, "gbuffer_view");
-    program_ = ctx.shaders().program("fullscreen.vert", "gbuffer_view.frag", {lighting::layoutDefine(ctx.params())});
+    program_ = ctx.shaders().program("fullscreen.vert", "gbuffer_view.frag", lighting::gbufferDefines(ctx.params()));
     triangle_ = std::make_unique<gl::FullscreenTriangle>();
     const std::string view = ctx.params().getString("view", "albedo");
     int mode = 3;
@@ -55,6 +55,16 @@ PassTypeDesc makeGBufferViewPass() {
   d.slots.push_back(slot("color", Access::color_attachment, true, SlotDecl::Load::never, "the view"));
   d.params = {param("view", ParamType::enumeration, std::string("albedo"), "which target to show", kViews),
               lighting::layoutParam()};
+  for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
+  d.adapt = lighting::adaptGBuffer;
+  d.programs = [](const ParamSet& p) {
+    ShaderProgramSpec s;
+    s.vert = "fullscreen.vert";
+    s.frag = "gbuffer_view.frag";
+    s.defines = lighting::gbufferDefines(p);
+    s.samplers = lighting::gbufferSamplers();
+    return std::vector<ShaderProgramSpec>{std::move(s)};
+  };
   d.shaders = {"fullscreen.vert", "gbuffer_view.frag"};
   d.create = [] { return std::make_unique<GBufferViewPass>(); };
   return d;

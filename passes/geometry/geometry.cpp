@@ -6,6 +6,7 @@
 #include "rgraph/error.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
+#include "rgraph/gl/lighting_options.h"
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/registry.h"
@@ -46,13 +47,14 @@ class GeometryPass final : public PassInstance {
                            (wanted ? "bind it in outputs" : "remove it from outputs"));
     };
     require("position", layout.position);
-    require("material", layout.material);
+    const bool constantMaterial = ctx.params().getBool("constant_material", false);
+    require("material", layout.material && !constantMaterial);
     if (formatInfo(ctx.format("normal")).components < layout.normalComponents)
       throw RuntimeError("geometry pass '" + ctx.passName() + "': layout '" + layout.name + "' needs " +
                          std::to_string(layout.normalComponents) + " components in 'normal', got " +
                          std::string(formatName(ctx.format("normal"))));
 
-    std::vector<std::string> defines = {layout.define};
+    std::vector<std::string> defines = lighting::gbufferDefines(ctx.params());
     // Model no more than the scene needs: without normal maps no tangent is
     // read and no normal map sampled.
     if (ctx.scene()->hasNormalMaps()) defines.push_back("HAS_NORMAL_MAPS");
@@ -104,6 +106,21 @@ PassTypeDesc makeGeometryPass() {
   d.params = {param("layout", ParamType::enumeration, std::string("pbr"),
                     "G-buffer layout: learnopengl, pbr (4x rgba16f), compact (no position, octahedral normal), fp32",
                     {"learnopengl", "pbr", "compact", "fp32"})};
+  for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
+  d.adapt = lighting::adaptGBuffer;
+  d.programs = [](const ParamSet& p) {
+    std::vector<ShaderProgramSpec> v;
+    for (bool normalMaps : {false, true}) {  // HAS_NORMAL_MAPS follows the scene: check both
+      ShaderProgramSpec s;
+      s.vert = "scene.vert";
+      s.frag = "gbuffer.frag";
+      s.defines = lighting::gbufferDefines(p);
+      if (normalMaps) s.defines.push_back("HAS_NORMAL_MAPS");
+      s.ownSamplers = lighting::materialSamplers();
+      v.push_back(std::move(s));
+    }
+    return v;
+  };
   d.shaders = {"scene.vert", "gbuffer.frag"};
   d.create = [] { return std::make_unique<GeometryPass>(); };
   return d;

@@ -22,7 +22,7 @@ class LightVolumesPass final : public PassInstance {
     if (!ctx.gpuScene()) throw RuntimeError("light_volumes pass '" + ctx.passName() + "' needs a scene");
     lighting::requireGBuffer(ctx, "light_volumes");
     std::vector<std::string> defines = lighting::defines(ctx.params());
-    defines.push_back(lighting::layoutDefine(ctx.params()));
+    for (auto& def : lighting::gbufferDefines(ctx.params())) defines.push_back(std::move(def));
     program_ = ctx.shaders().program("light_volume.vert", "light_volume.frag", defines);
   }
 
@@ -83,6 +83,24 @@ PassTypeDesc makeLightVolumesPass() {
                            "faces culled: front (correct with the camera inside a volume) or back (loses lights "
                            "whose volume contains the camera; kept to show why)",
                            {"front", "back"}));
+  for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
+  d.adapt = [](const SceneFeatures& f, PassAdaptation& a) {
+    if (!f.pointLights) {
+      a.disable = true;
+      a.notes.push_back("no point lights: no light volumes (pass disabled, its target passes through)");
+      return;
+    }
+    lighting::adaptGBuffer(f, a);
+  };
+  d.programs = [](const ParamSet& p) {
+    ShaderProgramSpec s;
+    s.vert = "light_volume.vert";
+    s.frag = "light_volume.frag";
+    s.defines = lighting::defines(p);
+    for (auto& def : lighting::gbufferDefines(p)) s.defines.push_back(std::move(def));
+    s.samplers = lighting::gbufferSamplers();
+    return std::vector<ShaderProgramSpec>{std::move(s)};
+  };
   d.shaders = {"light_volume.vert", "light_volume.frag"};
   d.create = [] { return std::make_unique<LightVolumesPass>(); };
   return d;

@@ -20,9 +20,14 @@ Surface readSurface(ivec2 px) {
   vec2 uv = (vec2(px) + 0.5) * u_viewport.zw;
   s.position = positionFromDepth(uv, depth, u_invProj, u_invView);
   s.normal = decodeOctahedral(texelFetch(g_normal, px, 0).rg);
+#if defined(CONSTANT_MATERIAL)
+  s.metallic = CONSTANT_METALLIC;
+  s.roughness = max(CONSTANT_ROUGHNESS, 0.04);
+#else
   vec2 mr = texelFetch(g_material, px, 0).rg;
   s.metallic = mr.x;
   s.roughness = max(mr.y, 0.04);
+#endif
 #else
   vec4 n = texelFetch(g_normal, px, 0);
   s.covered = n.w > 0.5;
@@ -31,6 +36,10 @@ Surface readSurface(ivec2 px) {
 #if defined(GBUFFER_LEARNOPENGL)
   s.metallic = 0.0;
   s.roughness = 1.0;
+#elif defined(CONSTANT_MATERIAL)
+  // One metallic/roughness for the whole scene: no target carries it.
+  s.metallic = CONSTANT_METALLIC;
+  s.roughness = max(CONSTANT_ROUGHNESS, 0.04);
 #else
   vec4 m = texelFetch(g_material, px, 0);
   s.metallic = m.r;

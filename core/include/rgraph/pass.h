@@ -35,6 +35,60 @@ struct SlotDecl {
 
 class PassContext;
 
+// What a scene needs, so that a pipeline models no more than that: derived
+// from the scene (rgraph::sceneFeatures) and handed to each pass type's
+// `adapt` hook before the graph is compiled.
+struct SceneFeatures {
+  bool pointLights = true;
+  bool blendMaterials = true;
+  bool normalMaps = true;
+  // false: every drawn material has the same metallic and roughness (no
+  // texture), so no G-buffer target needs to carry them.
+  bool metallicRoughnessVariation = true;
+  float metallic = 1.0f, roughness = 1.0f;  // the shared values when there is no variation
+};
+
+// What a pass type's adapt hook may change in one pass for a scene.
+struct PassAdaptation {
+  bool disable = false;                   // in-place writes become pass-throughs
+  std::vector<std::string> unbindSlots;   // optional slots to drop (their resources may become unused)
+  ParamSet params;                        // the pass's parameters, to modify
+  std::vector<std::string> notes;         // why, one line each ("no point lights: ...")
+};
+
+// A sampled slot and the sampler uniform a program reads it through.
+struct SamplerSlot {
+  std::string slot;     // the pass type's sampled slot
+  std::string uniform;  // the sampler uniform in the shader
+  // Texture unit the pass binds the slot to and relies on the shader's
+  // layout(binding = unit) for; -1 when the pass sets the sampler uniform
+  // itself (glProgramUniform1i), so any binding is fine.
+  int unit = -1;
+  // true: the pass tells the shader whether the slot is bound (e.g. a
+  // u_hasAo flag), so a sampler read with the slot unbound is fine. false:
+  // reading it unbound (texture 0) is an error.
+  bool optional = false;
+};
+
+// One program a pass instance builds: what `rgraph validate` compiles and
+// reflects without a GL context (see rgraph/shader_check.h).
+struct ShaderProgramSpec {
+  std::string vert, frag;  // a vertex + fragment program (names as ShaderLibrary::program takes them)
+  std::string comp;        // or a compute program
+  std::vector<std::string> defines;
+  // How the program's samplers map to the pass's sampled slots.
+  std::vector<SamplerSlot> samplers;
+  // Samplers the pass binds itself (scene material textures), not from slots.
+  std::vector<std::string> ownSamplers;
+  // false: skip the sampler checks (the pass binds samplers some other way).
+  bool checkSamplers = true;
+  // The fragment outputs go to the pass's colour attachments (in slot
+  // declaration order, locations 0..N-1). false: skip the output checks.
+  bool drawsToAttachments = true;
+  // Drawn with source-alpha blending: the outputs' alpha must be written.
+  bool blendsSourceAlpha = false;
+};
+
 // One pass in a running pipeline. Created per pass per realized plan.
 class PassInstance {
  public:
@@ -56,7 +110,14 @@ struct PassTypeDesc {
   // Shader files this pass type uses (relative to the shader directory), so
   // `rgraph validate` can check them without a GL context.
   std::vector<std::string> shaders;
+  // The programs an instance with these params builds (every variant it may
+  // build, e.g. with and without a scene-dependent define), so validate checks
+  // exactly what would run. May throw RuntimeError when the params name no
+  // usable shader. Unset: each file in `shaders` is compiled on its own.
+  std::function<std::vector<ShaderProgramSpec>(const ParamSet&)> programs;
   std::function<std::unique_ptr<PassInstance>()> create;
+  // Optional: drops what the scene does not need (see SceneFeatures).
+  std::function<void(const SceneFeatures&, PassAdaptation&)> adapt;
   std::string origin = "built-in";  // or the plugin file it came from
 
   const SlotDecl* findSlot(std::string_view slot) const;

@@ -259,6 +259,11 @@ struct Scene {
   void validate() const;
 };
 
+struct SceneFeatures;  // rgraph/pass.h
+// What this scene needs from a pipeline (point lights, blending, normal maps,
+// metallic/roughness variation), for PassTypeDesc::adapt hooks.
+SceneFeatures sceneFeatures(const Scene& scene);
+
 // Appends `src` to `dst` under `transform` (primitives, point and directional
 // lights; src's camera is taken only when dst has none). Indices are rebased.
 void appendScene(Scene& dst, Scene src, const glm::mat4& transform = glm::mat4(1.0f));

@@ -57,7 +57,8 @@ struct GpuScene::Locations {
 GpuScene::GpuScene(const Scene& scene) : scene_(scene) {
   scene_.validate();
   meshes_.reserve(scene.meshes.size());
-  for (const auto& m : scene.meshes) meshes_.push_back(upload(m));
+  hasTangents_ = scene.hasNormalMaps();
+  for (const auto& m : scene.meshes) meshes_.push_back(upload(m, hasTangents_ && m.hasTangents()));
   const MeshData sphere = makeIcosphere(3);
   float inradius = 1.0f;  // smallest distance from the centre to a face plane
   for (size_t t = 0; t + 2 < sphere.indices.size(); t += 3) {
@@ -66,8 +67,8 @@ GpuScene::GpuScene(const Scene& scene) : scene_(scene) {
     inradius = std::min(inradius, std::abs(glm::dot(glm::normalize(glm::cross(b - a, c - a)), a)));
   }
   icosphereScale_ = 1.0f / inradius;
-  icosphere_ = upload(sphere);
-  cube_ = upload(makeCube(1.0f));
+  icosphere_ = upload(sphere, false);
+  cube_ = upload(makeCube(1.0f), false);
 
   images_.reserve(scene.images.size());
   for (const auto& img : scene.images) {
@@ -102,28 +103,57 @@ GpuScene::GpuScene(const Scene& scene) : scene_(scene) {
 
 GpuScene::~GpuScene() = default;
 
-GpuScene::GpuMesh GpuScene::upload(const MeshData& mesh) const {
+GpuScene::GpuMesh GpuScene::upload(const MeshData& mesh, bool tangents) const {
   GpuMesh g;
-  const std::vector<MeshVertex> vertices = mesh.interleaved();
+  // Model no more than the scene needs: without normal maps no tangent is
+  // uploaded (32 bytes per vertex instead of 48) and attribute 3 stays off,
+  // reading the constant (0, 0, 0, 1).
+  struct VertexNoTangent {
+    glm::vec3 position, normal;
+    glm::vec2 uv;
+  };
+  std::vector<MeshVertex> full;
+  std::vector<VertexNoTangent> compact;
+  const void* data = nullptr;
+  size_t bytes = 0, stride = 0;
+  if (tangents) {
+    full = mesh.interleaved();
+    data = full.data();
+    bytes = full.size() * sizeof(MeshVertex);
+    stride = sizeof(MeshVertex);
+  } else {
+    compact.reserve(mesh.vertexCount());
+    for (size_t i = 0; i < mesh.vertexCount(); ++i)
+      compact.push_back({mesh.positions[i], mesh.normals[i], i < mesh.uv0.size() ? mesh.uv0[i] : glm::vec2(0.0f)});
+    data = compact.data();
+    bytes = compact.size() * sizeof(VertexNoTangent);
+    stride = sizeof(VertexNoTangent);
+  }
   g.vertices = gl::createBuffer();
   g.indices = gl::createBuffer();
-  glNamedBufferStorage(g.vertices.id(), std::max<size_t>(vertices.size() * sizeof(MeshVertex), 1), vertices.data(), 0);
+  glNamedBufferStorage(g.vertices.id(), std::max<size_t>(bytes, 1), bytes ? data : nullptr, 0);
   glNamedBufferStorage(g.indices.id(), std::max<size_t>(mesh.indices.size() * sizeof(uint32_t), 1),
-                       mesh.indices.data(), 0);
+                       mesh.indices.empty() ? nullptr : mesh.indices.data(), 0);
   g.indexCount = static_cast<uint32_t>(mesh.indices.size());
   g.vao = gl::createVertexArray();
   const GLuint vao = g.vao.id();
-  glVertexArrayVertexBuffer(vao, 0, g.vertices.id(), 0, sizeof(MeshVertex));
+  glVertexArrayVertexBuffer(vao, 0, g.vertices.id(), 0, static_cast<GLsizei>(stride));
   glVertexArrayElementBuffer(vao, g.indices.id());
   auto attrib = [&](GLuint loc, GLint size, size_t offset) {
     glEnableVertexArrayAttrib(vao, loc);
     glVertexArrayAttribFormat(vao, loc, size, GL_FLOAT, GL_FALSE, static_cast<GLuint>(offset));
     glVertexArrayAttribBinding(vao, loc, 0);
   };
-  attrib(0, 3, offsetof(MeshVertex, position));
-  attrib(1, 3, offsetof(MeshVertex, normal));
-  attrib(2, 2, offsetof(MeshVertex, uv));
-  attrib(3, 4, offsetof(MeshVertex, tangent));
+  if (tangents) {
+    attrib(0, 3, offsetof(MeshVertex, position));
+    attrib(1, 3, offsetof(MeshVertex, normal));
+    attrib(2, 2, offsetof(MeshVertex, uv));
+    attrib(3, 4, offsetof(MeshVertex, tangent));
+  } else {
+    attrib(0, 3, offsetof(VertexNoTangent, position));
+    attrib(1, 3, offsetof(VertexNoTangent, normal));
+    attrib(2, 2, offsetof(VertexNoTangent, uv));
+  }
   return g;
 }
 

@@ -42,6 +42,35 @@ std::string layoutDefine(const ParamSet& p) {
   return "GBUFFER_PBR";
 }
 
+std::vector<std::string> gbufferDefines(const ParamSet& p) {
+  std::vector<std::string> d = {layoutDefine(p)};
+  if (p.getBool("constant_material", false)) {
+    d.push_back("CONSTANT_MATERIAL");
+    d.push_back("CONSTANT_METALLIC=" + std::to_string(p.getNumber("metallic", 0.0)));
+    d.push_back("CONSTANT_ROUGHNESS=" + std::to_string(p.getNumber("roughness", 1.0)));
+  }
+  return d;
+}
+
+std::vector<ParamDecl> constantMaterialParams() {
+  using namespace rgraph::decl;
+  return {param("constant_material", ParamType::boolean, false,
+                "the scene has one metallic/roughness: no material target, values below (set by scene adaptation)"),
+          ranged("metallic", ParamType::number, 0.0, 0.0, 1.0, "metallic when constant_material"),
+          ranged("roughness", ParamType::number, 1.0, 0.0, 1.0, "roughness when constant_material")};
+}
+
+void adaptGBuffer(const SceneFeatures& f, PassAdaptation& a) {
+  const std::string layout = a.params.getString("layout", "pbr");
+  if (f.metallicRoughnessVariation || layout == "learnopengl" || a.params.getBool("constant_material", false)) return;
+  a.params.set("constant_material", true);
+  a.params.set("metallic", static_cast<double>(f.metallic));
+  a.params.set("roughness", static_cast<double>(f.roughness));
+  a.unbindSlots.push_back("material");
+  a.notes.push_back("one metallic/roughness in the scene: no material target (metallic " +
+                    std::to_string(f.metallic) + ", roughness " + std::to_string(f.roughness) + ")");
+}
+
 float threshold(const ParamSet& p) { return static_cast<float>(p.getNumber("threshold", 5.0 / 256.0)); }
 
 namespace {
@@ -56,17 +85,27 @@ void bindGBuffer(PassContext& ctx) {
 void requireGBuffer(PassContext& ctx, const std::string& passKind) {
   const std::string layout = ctx.params().getString("layout", "pbr");
   std::vector<std::string> needed = {"normal", "albedo"};
+  const bool material = !ctx.params().getBool("constant_material", false);
   if (layout == "compact") {
     needed.push_back("depth");
-    needed.push_back("material");
+    if (material) needed.push_back("material");
   } else {
     needed.push_back("position");
-    if (layout != "learnopengl") needed.push_back("material");
+    if (layout != "learnopengl" && material) needed.push_back("material");
   }
   for (const auto& slot : needed)
     if (!ctx.bound(slot))
       throw RuntimeError(passKind + " pass '" + ctx.passName() + "': input '" + slot + "' is required by layout '" +
                          layout + "' but not bound");
+}
+
+std::vector<std::string> materialSamplers() {
+  return {"u_baseColorTex", "u_metallicRoughnessTex", "u_normalTex", "u_occlusionTex"};
+}
+
+std::vector<SamplerSlot> gbufferSamplers() {
+  return {{"position", "g_position", 0}, {"normal", "g_normal", 1}, {"albedo", "g_albedo", 2},
+          {"material", "g_material", 3}, {"depth", "g_depth", 4}};
 }
 
 std::vector<SlotDecl> gbufferSlots() {

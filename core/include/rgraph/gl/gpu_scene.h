@@ -59,6 +59,8 @@ class GpuScene {
   // sets per-draw and material uniforms, binds textures and samplers.
   void drawPrimitives(uint32_t program, const DrawOptions& options) const;
   size_t primitiveCount(Filter filter) const;
+  // Whether vertex buffers carry tangents (only when the scene has normal maps).
+  bool hasTangents() const { return hasTangents_; }
 
   // Closed unit icosphere (light volumes) and unit cube (light markers), drawn
   // `instances` times; vertex attribute 0 is the position.
@@ -75,7 +77,7 @@ class GpuScene {
     uint32_t indexCount = 0;
   };
   struct Locations;
-  GpuMesh upload(const struct MeshData& mesh) const;
+  GpuMesh upload(const struct MeshData& mesh, bool tangents) const;
   const Locations& locations(uint32_t program) const;
   void bindMaterial(uint32_t program, int material) const;
 
@@ -83,6 +85,7 @@ class GpuScene {
   std::vector<GpuMesh> meshes_;
   GpuMesh icosphere_, cube_;
   float icosphereScale_ = 1.0f;
+  bool hasTangents_ = false;
   std::vector<gl::Texture> images_;
   std::vector<gl::Sampler> samplers_;  // one per SceneTexture
   gl::Texture white_, flatNormal_;

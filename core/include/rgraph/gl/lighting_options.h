@@ -20,6 +20,14 @@ ParamDecl layoutParam();
 std::vector<std::string> defines(const ParamSet& params);
 // GBUFFER_* define of the layout param.
 std::string layoutDefine(const ParamSet& params);
+// Every define a G-buffer writer or reader needs: the layout, and with
+// constant_material, CONSTANT_MATERIAL + CONSTANT_METALLIC/ROUGHNESS values.
+std::vector<std::string> gbufferDefines(const ParamSet& params);
+// constant_material, metallic, roughness: set by adaptGBuffer for scenes with
+// one metallic/roughness, so no G-buffer target carries them.
+std::vector<ParamDecl> constantMaterialParams();
+// The adapt hook of every pass that writes or reads the G-buffer material target.
+void adaptGBuffer(const SceneFeatures& features, PassAdaptation& adaptation);
 float threshold(const ParamSet& params);
 
 // Binds the sampled G-buffer slots (position, normal, albedo, material, depth)
@@ -29,5 +37,10 @@ void bindGBuffer(PassContext& ctx);
 void requireGBuffer(PassContext& ctx, const std::string& passKind);
 // Sampled G-buffer slot declarations (position, normal, albedo, material, depth).
 std::vector<SlotDecl> gbufferSlots();
+// The samplers of include/material.glsl, bound per draw by GpuScene (not slots).
+std::vector<std::string> materialSamplers();
+// The samplers of include/gbuffer_read.glsl for those slots, on the units
+// bindGBuffer binds them to (for PassTypeDesc::programs).
+std::vector<SamplerSlot> gbufferSamplers();
 
 }  // namespace rgraph::lighting

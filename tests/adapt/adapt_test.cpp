@@ -1,0 +1,175 @@
+// "Model no more than a scene needs": each case builds a scene lacking one
+// feature, adapts a shipped pipeline to it and checks the compiled plan.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "rgraph/adapt.h"
+#include "rgraph/config.h"
+#include "rgraph/registry.h"
+#include "rgraph/scene.h"
+
+namespace rgraph {
+namespace {
+
+PipelineConfig loadShipped(const std::string& name) {
+  Diagnostics diags;
+  ConfigDocument doc = ConfigDocument::parseFile(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/" + name, diags);
+  PipelineConfig p = doc.build(PassRegistry::builtins(), diags);
+  EXPECT_FALSE(hasErrors(diags)) << (diags.empty() ? "" : formatDiagnostic(diags.front()));
+  return p;
+}
+
+const PlannedPass& passNamed(const Plan& plan, const std::string& name) {
+  auto it = std::find_if(plan.passes.begin(), plan.passes.end(), [&](const PlannedPass& p) { return p.name == name; });
+  EXPECT_NE(it, plan.passes.end()) << name;
+  return *it;
+}
+
+const PlannedResource& resourceNamed(const Plan& plan, const std::string& name) {
+  auto it = std::find_if(plan.resources.begin(), plan.resources.end(),
+                         [&](const PlannedResource& r) { return r.name == name; });
+  EXPECT_NE(it, plan.resources.end()) << name;
+  return *it;
+}
+
+// A scene with one opaque cube, one material and nothing else.
+Scene cubeScene() {
+  Scene s;
+  s.meshes.push_back(makeCube(0.5f));
+  Material m;
+  m.metallicFactor = 0.25f;
+  m.roughnessFactor = 0.75f;
+  s.materials.push_back(m);
+  Primitive p;
+  p.mesh = 0;
+  p.material = 0;
+  p.bounds = s.meshes[0].bounds;
+  s.primitives.push_back(p);
+  s.directionalLights.push_back(DirectionalLight{});
+  return s;
+}
+
+struct Adapted {
+  PipelineConfig before, after;
+  Plan planBefore, planAfter;
+  AdaptReport report;
+};
+
+Adapted adapt(const std::string& pipeline, const Scene& scene) {
+  Adapted a;
+  a.before = loadShipped(pipeline);
+  a.after = a.before;
+  a.report = adaptToScene(a.after, PassRegistry::builtins(), sceneFeatures(scene));
+  a.planBefore = compile(a.before.graph, CompileOptions{Extent{640, 360}});
+  a.planAfter = compile(a.after.graph, CompileOptions{Extent{640, 360}});
+  EXPECT_TRUE(a.planBefore.ok());
+  EXPECT_TRUE(a.planAfter.ok()) << (a.planAfter.diagnostics.empty() ? "" : a.planAfter.diagnostics[0].message);
+  return a;
+}
+
+TEST(AdaptToScene, NoPointLightsDropsTheLightVolumePass) {
+  Scene scene = cubeScene();
+  ASSERT_FALSE(scene.hasPointLights());
+  Adapted a = adapt("deferred-light-volumes.json", scene);
+  EXPECT_FALSE(passNamed(a.planBefore, "light_volumes").culled);
+  EXPECT_TRUE(passNamed(a.planAfter, "light_volumes").culled);
+  EXPECT_EQ(passNamed(a.planAfter, "light_volumes").reason, "disabled");
+  // Its in-place output passes through: tonemap still reaches the lit target.
+  EXPECT_FALSE(passNamed(a.planAfter, "tonemap").culled);
+  EXPECT_FALSE(passNamed(a.planAfter, "ambient").culled);
+}
+
+TEST(AdaptToScene, PointLightsKeepTheLightVolumePass) {
+  Scene scene = cubeScene();
+  PointLight l;
+  l.position = {0, 1, 0};
+  scene.pointLights.push_back(l);
+  Adapted a = adapt("deferred-light-volumes.json", scene);
+  EXPECT_FALSE(passNamed(a.planAfter, "light_volumes").culled);
+  // Markers are still drawn, so the forward pass and its depth blit stay.
+  EXPECT_FALSE(passNamed(a.planAfter, "light_boxes").culled);
+  EXPECT_FALSE(passNamed(a.planAfter, "depth_blit").culled);
+}
+
+TEST(AdaptToScene, NoBlendMaterialsAndNoLightsDropTheForwardPassAndItsDepthBlit) {
+  Scene scene = cubeScene();
+  ASSERT_FALSE(scene.hasBlendMaterials());
+  Adapted a = adapt("deferred-pbr.json", scene);
+  EXPECT_FALSE(passNamed(a.planBefore, "forward").culled);
+  EXPECT_TRUE(passNamed(a.planAfter, "forward").culled);
+  // Nothing reads the blitted depth any more: the compiler culls the blit and
+  // allocates no forward depth buffer.
+  EXPECT_TRUE(passNamed(a.planAfter, "depth_blit").culled);
+  EXPECT_EQ(resourceNamed(a.planAfter, "forwardDepth").physical, -1);
+  EXPECT_LT(a.planAfter.allocatedBytes, a.planBefore.allocatedBytes);
+}
+
+TEST(AdaptToScene, BlendMaterialsKeepTheForwardBlendPass) {
+  Scene scene = cubeScene();
+  Material glass;
+  glass.alphaMode = AlphaMode::blend;
+  glass.metallicFactor = 0.25f;
+  glass.roughnessFactor = 0.75f;
+  scene.materials.push_back(glass);
+  Primitive p = scene.primitives[0];
+  p.material = 1;
+  scene.primitives.push_back(p);
+  Adapted a = adapt("deferred-pbr.json", scene);
+  EXPECT_FALSE(passNamed(a.planAfter, "forward").culled);
+  const size_t forward = 3;
+  ASSERT_EQ(a.after.graph.passes[forward].name, "forward");
+  EXPECT_TRUE(a.after.params[forward].getBool("blend", false));
+  EXPECT_FALSE(a.after.params[forward].getBool("markers", true));  // still no point lights
+}
+
+TEST(AdaptToScene, OneMetallicRoughnessDropsTheMaterialTarget) {
+  Scene scene = cubeScene();
+  ASSERT_FALSE(scene.hasMetallicRoughnessVariation());
+  Adapted a = adapt("deferred-pbr.json", scene);
+  EXPECT_GE(resourceNamed(a.planBefore, "gMetalRough").physical, 0);
+  EXPECT_EQ(resourceNamed(a.planAfter, "gMetalRough").physical, -1);
+  EXPECT_EQ(resourceNamed(a.planAfter, "gMetalRough").firstPass, -1);
+  // PBR layout: 4 x rgba16f + depth32f = 36 bytes; without the material target 28.
+  EXPECT_EQ(gbufferBytesPerPixel(a.before, a.planBefore), 36u);
+  EXPECT_EQ(gbufferBytesPerPixel(a.after, a.planAfter), 28u);
+  // The lighting pass gets the scene's values instead.
+  const size_t lighting = 1;
+  ASSERT_EQ(a.after.graph.passes[lighting].name, "lighting");
+  EXPECT_TRUE(a.after.params[lighting].getBool("constant_material", false));
+  EXPECT_DOUBLE_EQ(a.after.params[lighting].getNumber("metallic", -1), 0.25);
+  EXPECT_DOUBLE_EQ(a.after.params[lighting].getNumber("roughness", -1), 0.75);
+}
+
+TEST(AdaptToScene, MetallicRoughnessVariationKeepsTheMaterialTarget) {
+  Scene scene = cubeScene();
+  Material other = scene.materials[0];
+  other.roughnessFactor = 0.2f;
+  scene.materials.push_back(other);
+  Primitive p = scene.primitives[0];
+  p.material = 1;
+  scene.primitives.push_back(p);
+  Adapted a = adapt("deferred-pbr.json", scene);
+  EXPECT_GE(resourceNamed(a.planAfter, "gMetalRough").physical, 0);
+  EXPECT_EQ(gbufferBytesPerPixel(a.after, a.planAfter), 36u);
+}
+
+TEST(AdaptToScene, NormalMapsAreAFeatureOfTheScene) {
+  // No normal maps: no tangents in the meshes (the GPU upload then carries no
+  // tangent attribute and the geometry pass compiles without normal mapping).
+  Scene plain = loadGltf(std::string(RGRAPH_ASSETS_DIR) + "/gltf/Box/Box.glb");
+  EXPECT_FALSE(sceneFeatures(plain).normalMaps);
+  for (const auto& m : plain.meshes) EXPECT_FALSE(m.hasTangents());
+  Scene mapped = loadGltf(std::string(RGRAPH_ASSETS_DIR) + "/gltf/NormalTangentMirrorTest/NormalTangentMirrorTest.glb");
+  EXPECT_TRUE(sceneFeatures(mapped).normalMaps);
+}
+
+TEST(AdaptToScene, TheLearnOpenGLSceneNeedsEverythingItsPipelineHas) {
+  Adapted a = adapt("deferred-light-volumes.json", makeLearnOpenGLScene());
+  for (const auto& p : a.planAfter.passes) EXPECT_FALSE(p.culled) << p.name;
+  // learnopengl layout has no material target to drop.
+  EXPECT_EQ(gbufferBytesPerPixel(a.before, a.planBefore), gbufferBytesPerPixel(a.after, a.planAfter));
+}
+
+}  // namespace
+}  // namespace rgraph
