@@ -10,6 +10,8 @@
 layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
 uniform int u_pointLightCount;  // 0 when another pass lights the point lights
 uniform int u_ambientAndSun;    // 1: add ambient and the directional light
+uniform int u_hasAo;            // 1: u_ao (r, any size) scales the ambient term
+layout(binding = 5) uniform sampler2D u_ao;
 
 layout(location = 0) out vec4 outColor;
 
@@ -18,7 +20,10 @@ void main() {
   if (!s.covered) discard;  // the target's clear value (background) stays
   vec3 V = safeNormal(u_cameraPos.xyz - s.position, s.normal);
   vec3 color = vec3(0.0);
-  if (u_ambientAndSun != 0) color += ambientTerm(s) + shadeDirectionalLight(s, V);
+  if (u_ambientAndSun != 0) {
+    float occlusion = u_hasAo != 0 ? texture(u_ao, gl_FragCoord.xy * u_viewport.zw).r : 1.0;
+    color += ambientTerm(s) * occlusion + shadeDirectionalLight(s, V);
+  }
   for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(lights[i], s, V);
   outColor = vec4(color, 1.0);
 }

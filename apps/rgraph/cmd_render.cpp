@@ -56,7 +56,7 @@ int runRender(const RenderOptions& options) {
 
   try {
     std::unique_ptr<Scene> scene;
-    const std::string sceneSpec = options.scene.empty() ? std::string("learnopengl") : options.scene;
+    const std::string sceneSpec = options.scene.empty() ? std::string("learnopengl:overview") : options.scene;
     scene = std::make_unique<Scene>(loadSceneAny(sceneSpec));
     // Model no more than the scene needs (no point lights: no light volumes...).
     for (const auto& note : adaptToScene(*pipeline, PassRegistry::builtins(), sceneFeatures(*scene)).notes)

@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
   auto* validate = app.add_subcommand("validate", "check a pipeline config; exit 1 with diagnostics if invalid");
   validate->add_option("pipeline", pipeline, "pipeline config (JSON)")->required();
   validate->add_flag("--json", json, "print diagnostics as a JSON array");
+  bool noShaders = false;
+  validate->add_flag("--no-shaders", noShaders, "skip the glslang shader checks");
   addSize(validate);
   addPluginPath(validate);
 
@@ -62,13 +64,23 @@ int main(int argc, char** argv) {
   auto* renderCmd = app.add_subcommand("render", "run a pipeline headless and write the output image");
   renderCmd->add_option("pipeline", render.pipeline, "pipeline config (default: pipelines/default.json)");
   renderCmd->add_option("--out,-o", render.out, "output PNG")->required();
-  renderCmd->add_option("--scene", render.scene, "scene file (.json), glTF (.gltf/.glb) or learnopengl | many-lights:N");
+  renderCmd->add_option("--scene", render.scene, "scene file (.json), glTF (.gltf/.glb), learnopengl, learnopengl:overview (default) or many-lights:N");
   renderCmd->add_option("--frames", render.frames, "frames to render (timings are medians)")->check(CLI::Range(1u, 100000u));
   renderCmd->add_option("--stats", render.stats, "write frame and pass timings and memory as JSON");
   renderCmd->add_flag("--window", render.window, "render in a GLFW window instead of headless EGL");
   addPluginPath(renderCmd);
   renderCmd->add_option("--width", render.size.width, "output width in pixels")->check(CLI::Range(1u, 16384u));
   renderCmd->add_option("--height", render.size.height, "output height in pixels")->check(CLI::Range(1u, 16384u));
+
+  BenchOptions bench;
+  auto* benchCmd = app.add_subcommand("bench", "sweep lighting methods, light counts, G-buffer layouts, cut-offs and "
+                                               "resolutions; write results.csv, results.json and charts");
+  benchCmd->add_option("--out,-o", bench.out, "output folder")->required();
+  benchCmd->add_flag("--quick", bench.quick, "fewer points and frames (light counts up to 1,024, 640x360 mostly)");
+  benchCmd->add_option("--scene", bench.scene, "scene (default: many-lights, N swept); a file's first N lights");
+  benchCmd->add_flag("--smoke", bench.smoke, "tiny sweep for tests (2 points, 64x64, 1 frame)")->group("");
+  benchCmd->add_option("--replot", bench.replot, "redraw the charts of a previous run's results.json (no rendering)")
+      ->type_name("JSON");
 
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(logLevel));
@@ -78,11 +90,12 @@ int main(int argc, char** argv) {
 
   try {
     if (*passes && !loadPlugins(passPlugins)) return kExitFailure;
-    if (*validate) return runValidate(pipeline, size, json);
+    if (*validate) return runValidate(pipeline, size, json, !noShaders);
     if (*plan) return runPlan(pipeline, size, json, planScene);
     if (*dot) return runDot(pipeline, size);
     if (*passes) return runPasses(json);
     if (*renderCmd) return runRender(render);
+    if (*benchCmd) return runBench(bench);
   } catch (const std::exception& e) {
     // Anything a user can cause is reported as a diagnostic or a RuntimeError
     // above; this is the last line of defence against a crash.

@@ -120,6 +120,15 @@ PassTypeDesc makeFullscreenPass() {
       decl::param("blend", ParamType::enumeration, std::string("none"), "blending into the colour output(s)",
                 {"none", "alpha", "additive"}),
   };
+  d.programs = [](const ParamSet& p) {
+    ShaderProgramSpec s;
+    s.vert = "fullscreen.vert";
+    s.frag = p.getString("shader");
+    if (s.frag.empty()) throw RuntimeError("parameter 'shader' is empty: name a fragment shader");
+    for (size_t i = 0; i < kInputs.size(); ++i) s.samplers.push_back({kInputs[i], kInputs[i], -1});  // set by setup()
+    s.blendsSourceAlpha = p.getString("blend", "none") == "alpha";
+    return std::vector<ShaderProgramSpec>{std::move(s)};
+  };
   d.shaders = {"fullscreen.vert"};
   d.create = [] { return std::make_unique<FullscreenPass>(); };
   return d;

@@ -54,6 +54,13 @@ PassTypeDesc makePresentPass() {
                {Format::rgba8, Format::srgb8_alpha8}),
   };
   d.params = {decl::param("gamma", ParamType::boolean, false, "apply the sRGB transfer when the target is linear rgba8")};
+  d.programs = [](const ParamSet&) {
+    ShaderProgramSpec s;
+    s.vert = "fullscreen.vert";
+    s.frag = "present.frag";
+    s.samplers = {{"src", "src", -1}};  // setup() sets the uniform to unit 0
+    return std::vector<ShaderProgramSpec>{std::move(s)};
+  };
   d.shaders = {"fullscreen.vert", "present.frag"};
   d.create = [] { return std::make_unique<PresentPass>(); };
   return d;

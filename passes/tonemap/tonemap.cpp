@@ -64,6 +64,13 @@ PassTypeDesc makeTonemapPass() {
       ranged("exposure", ParamType::number, 1.0, 0.0, 1000.0, "multiplies the HDR colour before the curve"),
       ranged("gamma", ParamType::number, 0.0, 0.0, 5.0, "0: the exact sRGB curve; otherwise pow(c, 1/gamma)"),
   };
+  d.programs = [](const ParamSet&) {
+    ShaderProgramSpec s;
+    s.vert = "fullscreen.vert";
+    s.frag = "tonemap.frag";
+    s.samplers = {{"hdr", "u_hdr", 0}};  // bound on unit 0, read through layout(binding = 0)
+    return std::vector<ShaderProgramSpec>{std::move(s)};
+  };
   d.shaders = {"fullscreen.vert", "tonemap.frag"};
   d.create = [] { return std::make_unique<TonemapPass>(); };
   return d;

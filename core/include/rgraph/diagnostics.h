@@ -71,7 +71,8 @@ using Diagnostics = std::vector<Diagnostic>;
 
 bool hasErrors(const Diagnostics& d);
 
-// `FILE:LINE:COL: error: PATH: message` when the location is known,
+// `FILE:LINE:COL: error: PATH: message` when the location is known
+// (`FILE:LINE: ...` when the column is 0, as for shader messages),
 // otherwise `error: message` prefixed with the pass/slot it concerns.
 std::string formatDiagnostic(const Diagnostic& d);
 

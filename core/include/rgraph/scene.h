@@ -293,7 +293,8 @@ Scene loadSceneFile(const std::string& path);
 Scene parseSceneText(const std::string& text, const std::string& file, const std::string& baseDir);
 
 // "path.json" -> loadSceneFile; "path.gltf" / "path.glb" -> loadGltf + applySceneDefaults;
-// "learnopengl" -> makeLearnOpenGLScene(); "many-lights:N[:seed]" -> makeManyLightsScene(N, seed).
+// "learnopengl" -> makeLearnOpenGLScene(); "learnopengl:overview" -> the same
+// scene seen from above and behind, all 9 objects in view (rgraph render's default); "many-lights:N[:seed]" -> makeManyLightsScene(N, seed).
 Scene loadSceneAny(const std::string& spec);
 
 // ---------------------------------------------------------------- procedural scenes

@@ -59,7 +59,11 @@ GpuScene::GpuScene(const Scene& scene) : scene_(scene) {
   meshes_.reserve(scene.meshes.size());
   hasTangents_ = scene.hasNormalMaps();
   for (const auto& m : scene.meshes) meshes_.push_back(upload(m, hasTangents_ && m.hasTangents()));
-  const MeshData sphere = makeIcosphere(3);
+  // Light volumes: subdivision 1 (80 triangles, scaled by 1/inradius = 1.07 to
+  // enclose the sphere). On llvmpipe, 1280 triangles (level 3) per light cost
+  // 2-3x more in setup than the 14% extra area costs in fragments, which
+  // light_volume.frag rejects by distance anyway (bench/render_methods.cpp).
+  const MeshData sphere = makeIcosphere(1);
   float inradius = 1.0f;  // smallest distance from the centre to a face plane
   for (size_t t = 0; t + 2 < sphere.indices.size(); t += 3) {
     const glm::vec3 a = sphere.positions[sphere.indices[t]], b = sphere.positions[sphere.indices[t + 1]],

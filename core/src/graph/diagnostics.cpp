@@ -55,7 +55,8 @@ std::string formatDiagnostic(const Diagnostic& d) {
   std::string out;
   if (!d.where.file.empty()) {
     out += d.where.file;
-    if (d.where.line > 0) out += ":" + std::to_string(d.where.line) + ":" + std::to_string(d.where.column);
+    if (d.where.line > 0) out += ":" + std::to_string(d.where.line);
+    if (d.where.line > 0 && d.where.column > 0) out += ":" + std::to_string(d.where.column);  // shader messages: no column
     out += ": ";
   }
   out += severityName(d.severity);

@@ -50,7 +50,10 @@ ImageData makeTileTexture(const std::string& name, int size, int tiles, glm::u8v
   ImageData im;
   im.name = name;
   im.width = im.height = size;
-  im.srgb = true;
+  // LearnOpenGL loads its textures as plain (linear) RGBA and writes its
+  // result without gamma: keeping these linear makes the demo look as the
+  // chapter shows it (an sRGB decode here would darken every texel).
+  im.srgb = false;
   im.rgba.resize(size_t(size) * size_t(size) * 4);
   const int tile = std::max(1, size / tiles);
   for (int y = 0; y < size; ++y) {

@@ -374,6 +374,15 @@ Scene loadSceneFile(const std::string& path) {
 
 Scene loadSceneAny(const std::string& spec) {
   if (spec == "learnopengl") return makeLearnOpenGLScene();
+  if (spec == "learnopengl:overview") {
+    // The chapter's start camera (0, 0, 5) sees 5 of the 9 objects; this one
+    // stands back and above so the whole 3x3 grid and its lights are in view.
+    Scene s = makeLearnOpenGLScene();
+    s.source = "learnopengl:overview";
+    s.camera.position = {0.0f, 4.5f, 9.5f};
+    s.camera.target = {0.0f, -0.75f, 0.0f};
+    return s;
+  }
   const std::string prefix = "many-lights:";
   if (spec.rfind(prefix, 0) == 0) {
     std::string_view rest(spec);
@@ -398,7 +407,7 @@ Scene loadSceneAny(const std::string& spec) {
     return s;
   }
   throw RuntimeError("unknown scene '" + spec +
-                     "': expected a scene file (.json), a glTF model (.gltf, .glb), 'learnopengl' or 'many-lights:N'");
+                     "': expected a scene file (.json), a glTF model (.gltf, .glb), 'learnopengl', 'learnopengl:overview' or 'many-lights:N'");
 }
 
 }  // namespace rgraph

@@ -1,0 +1,53 @@
+# rgraph_add_plugin(<name> SOURCES <file>... [SHADERS <file>...] [NO_INSTALL])
+#
+# Builds a pass plugin: a MODULE library librgraph_<name>.so in
+# <build>/lib/rgraph/plugins, linked to rgraph::rgraph, with its shaders
+# copied to <build>/share/rgraph/plugins/<name>/ (where PluginHost::shaderPath
+# finds them), and install rules that put both in the same places under the
+# install prefix. The same function serves the rgraph tree (plugins/) and
+# out-of-tree plugins (find_package(rgraph) provides it).
+#
+# The target is called <name>; shaders are copied flat (by file name).
+include_guard(GLOBAL)
+include(GNUInstallDirs)
+
+function(rgraph_add_plugin name)
+  cmake_parse_arguments(PARSE_ARGV 1 ARG "NO_INSTALL" "" "SOURCES;SHADERS")
+  if(NOT ARG_SOURCES)
+    message(FATAL_ERROR "rgraph_add_plugin(${name}): no SOURCES")
+  endif()
+  add_library(${name} MODULE ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE rgraph::rgraph)
+  set_target_properties(${name} PROPERTIES
+    PREFIX "lib"
+    OUTPUT_NAME "rgraph_${name}"
+    LIBRARY_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/lib/rgraph/plugins"
+    CXX_VISIBILITY_PRESET hidden       # only the RGRAPH_PLUGIN entry points are exported
+    VISIBILITY_INLINES_HIDDEN ON
+    INSTALL_RPATH "$ORIGIN/../..")     # <libdir>/rgraph/plugins -> <libdir> (librgraph.so)
+
+  set(shader_dir "${CMAKE_BINARY_DIR}/share/rgraph/plugins/${name}")
+  set(copies)
+  set(sources)
+  foreach(shader IN LISTS ARG_SHADERS)
+    get_filename_component(src "${shader}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
+    get_filename_component(file "${shader}" NAME)
+    add_custom_command(OUTPUT "${shader_dir}/${file}"
+      COMMAND ${CMAKE_COMMAND} -E make_directory "${shader_dir}"
+      COMMAND ${CMAKE_COMMAND} -E copy_if_different "${src}" "${shader_dir}/${file}"
+      DEPENDS "${src}" COMMENT "rgraph plugin ${name}: shader ${file}" VERBATIM)
+    list(APPEND copies "${shader_dir}/${file}")
+    list(APPEND sources "${src}")
+  endforeach()
+  if(copies)
+    add_custom_target(${name}_shaders DEPENDS ${copies})
+    add_dependencies(${name} ${name}_shaders)
+  endif()
+
+  if(NOT ARG_NO_INSTALL)
+    install(TARGETS ${name} LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}/rgraph/plugins")
+    if(sources)
+      install(FILES ${sources} DESTINATION "${CMAKE_INSTALL_DATADIR}/rgraph/plugins/${name}")
+    endif()
+  endif()
+endfunction()

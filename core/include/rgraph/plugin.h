@@ -1,0 +1,191 @@
+// Pass plugins: shared libraries that add pass types at run time.
+//
+// A plugin exports two C functions, both defined by RGRAPH_PLUGIN:
+//
+//   extern "C" uint32_t rgraph_plugin_abi_version(void);          // RGRAPH_PLUGIN_ABI_VERSION it was built with
+//   extern "C" int rgraph_plugin_register(rgraph::PluginHost* h);  // 0 on success
+//
+// The loader (PluginLoader) dlopens the library, reads the ABI version and
+// refuses the plugin unless it equals its own RGRAPH_PLUGIN_ABI_VERSION; only
+// then it calls rgraph_plugin_register, which registers pass types through
+// the host. Registration is all or nothing: when any type is refused
+// (duplicate name, bad declaration) or the entry point fails, none of the
+// plugin's types is added.
+//
+// A plugin, in full:
+//
+//   #include "rgraph/plugin.h"
+//   namespace {
+//   class MyPass final : public rgraph::PassInstance { ... };
+//   void registerTypes(rgraph::PluginHost& host) {
+//     rgraph::PassTypeDesc d;
+//     d.name = "my_pass";
+//     ...
+//     std::string frag = host.shaderPath("my_pass.frag");  // absolute path in the plugin's shader folder
+//     d.shaders = {"fullscreen.vert", frag};
+//     d.create = [frag] { return std::make_unique<MyPass>(frag); };
+//     host.addPassType(std::move(d));
+//   }
+//   }  // namespace
+//   RGRAPH_PLUGIN("my_plugin", registerTypes)
+//
+// Do not use RGRAPH_REGISTER_PASS in a plugin: it registers into the built-in
+// registry at load time, before the ABI check, without the plugin's origin.
+// See docs/writing-a-pass.md.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "rgraph/pass.h"
+
+// The plugin ABI version. Bumped whenever a type or function a plugin
+// compiles against changes in a way that breaks already-built plugins
+// (PassTypeDesc, SlotDecl, ParamDecl, ParamSet, PassInstance, PassContext,
+// PluginHost, ShaderLibrary, the gl/ helpers) or the entry points change.
+#define RGRAPH_PLUGIN_ABI_VERSION 1u
+
+#define RGRAPH_PLUGIN_ABI_SYMBOL "rgraph_plugin_abi_version"
+#define RGRAPH_PLUGIN_REGISTER_SYMBOL "rgraph_plugin_register"
+
+namespace rgraph {
+
+inline constexpr uint32_t kPluginAbiVersion = RGRAPH_PLUGIN_ABI_VERSION;
+
+// What the loader hands to a plugin's entry point.
+class PluginHost {
+ public:
+  virtual ~PluginHost() = default;
+
+  // The ABI version of the rgraph that loads the plugin.
+  virtual uint32_t abiVersion() const = 0;
+  // Absolute path of the plugin library (the `origin` of its pass types).
+  virtual const std::string& pluginPath() const = 0;
+
+  // Set by RGRAPH_PLUGIN before the plugin's function runs: the plugin's name
+  // names its data folder (shaders), see shaderDirectory().
+  virtual void setPluginName(const std::string& name) = 0;
+  virtual const std::string& pluginName() const = 0;
+
+  // The folder holding the plugin's shaders, or "" when there is none:
+  // the first that exists of
+  //   <ancestor of the library's folder>/share/rgraph/plugins/<name>
+  //       (an install: <prefix>/lib/rgraph/plugins/librgraph_<name>.so ->
+  //        <prefix>/share/rgraph/plugins/<name>; a build tree mirrors it),
+  //   <library's folder>/<name>.
+  virtual std::string shaderDirectory() const = 0;
+  // Absolute path of `file` in shaderDirectory(); `file` unchanged when that
+  // folder does not have it (it is then looked up in the ShaderLibrary's
+  // search path like a built-in shader).
+  virtual std::string shaderPath(const std::string& file) const = 0;
+
+  // Registers a pass type (origin set to pluginPath()). Returns false when the
+  // type is refused (duplicate name, inconsistent declaration); the reason is
+  // recorded and the whole plugin is refused.
+  virtual bool addPassType(PassTypeDesc desc) = 0;
+  // Refuses the plugin with a reason (e.g. a missing resource of its own).
+  virtual void fail(const std::string& reason) = 0;
+  virtual bool failed() const = 0;
+};
+
+namespace detail {
+// The body of rgraph_plugin_register: no exception crosses the C boundary.
+inline int runPluginRegister(PluginHost* host, const char* name, void (*fn)(PluginHost&)) {
+  if (!host) return 1;
+  try {
+    host->setPluginName(name);
+    fn(*host);
+  } catch (const std::exception& e) {
+    host->fail(std::string("registration threw: ") + e.what());
+  } catch (...) {
+    host->fail("registration threw an unknown exception");
+  }
+  return host->failed() ? 1 : 0;
+}
+}  // namespace detail
+
+}  // namespace rgraph
+
+extern "C" {
+typedef uint32_t (*rgraph_plugin_abi_version_fn)(void);
+typedef int (*rgraph_plugin_register_fn)(rgraph::PluginHost* host);
+}
+
+#define RGRAPH_PLUGIN_EXPORT extern "C" __attribute__((visibility("default")))
+
+// Defines both entry points. NAME: the plugin's name (a string literal, e.g.
+// "bloom"); REGISTER_FN: void fn(rgraph::PluginHost&), which registers the
+// plugin's pass types with host.addPassType. Use once per plugin, at global
+// scope.
+#define RGRAPH_PLUGIN(NAME, REGISTER_FN)                                                  \
+  RGRAPH_PLUGIN_EXPORT uint32_t rgraph_plugin_abi_version(void) {                         \
+    return RGRAPH_PLUGIN_ABI_VERSION;                                                     \
+  }                                                                                       \
+  RGRAPH_PLUGIN_EXPORT int rgraph_plugin_register(::rgraph::PluginHost* host) {           \
+    return ::rgraph::detail::runPluginRegister(host, NAME, REGISTER_FN);                  \
+  }
+
+namespace rgraph {
+
+class PassRegistry;
+
+// One loaded plugin.
+struct LoadedPlugin {
+  std::string name;          // as the plugin names itself (RGRAPH_PLUGIN)
+  std::string path;          // absolute path of the library
+  std::vector<std::string> passTypes;  // the types it registered
+};
+
+// Finds, loads and registers plugins into one registry. Libraries stay loaded
+// for the rest of the process (pass instances and factories run their code),
+// even after the loader is destroyed.
+//
+// A plugin is named either by a path (anything containing '/', or an
+// absolute path; relative paths are relative to `baseDir`, e.g. the config
+// file's folder) or by a name, looked up as librgraph_<name>.so, then
+// <name>.so (a name ending in ".so" is looked up as is) in, in order:
+//   1. directories given to addSearchDirectory (e.g. --plugin-path), in order;
+//   2. $RGRAPH_PLUGIN_PATH (':'-separated);
+//   3. the install's plugin folder: <libdir>/rgraph/plugins beside
+//      librgraph.so, and <exe>/../<libdir>/rgraph/plugins, and the configured
+//      install prefix;
+//   4. the build tree's plugin output folder (<build>/lib/rgraph/plugins).
+//
+// Every failure is a one-line message naming the plugin and the reason:
+// not found (with the folders searched), dlopen failure (dlerror), no entry
+// point, ABI mismatch (expected vs found), refused registration.
+class PluginLoader {
+ public:
+  explicit PluginLoader(PassRegistry& registry);
+  ~PluginLoader();
+  PluginLoader(const PluginLoader&) = delete;
+  PluginLoader& operator=(const PluginLoader&) = delete;
+
+  void addSearchDirectory(const std::string& dir);
+  // Every folder searched for a plugin name, in order (existing or not).
+  std::vector<std::string> searchDirectories() const;
+
+  // The file a name or path refers to; "" when no file matches.
+  std::string find(const std::string& nameOrPath, const std::string& baseDir = {}) const;
+
+  // Finds, loads and registers. Loading the same file again is a no-op that
+  // returns the same plugin. On failure returns nullptr and sets `error` to
+  // one line, e.g.
+  //   plugin 'bloom': not found (looked for librgraph_bloom.so, bloom.so in /a, /b)
+  //   plugin 'x' (/p/librgraph_x.so): ABI version mismatch: expected 1, found 7 (rebuild the plugin ...)
+  const LoadedPlugin* load(const std::string& nameOrPath, const std::string& baseDir, std::string& error);
+  // Loads a library file (absolute, or relative to the working directory).
+  const LoadedPlugin* loadFile(const std::string& path, std::string& error, const std::string& displayName = {});
+
+  const std::deque<LoadedPlugin>& loaded() const { return loaded_; }
+
+ private:
+  PassRegistry& registry_;
+  std::vector<std::string> dirs_;
+  std::deque<LoadedPlugin> loaded_;  // stable addresses
+};
+
+}  // namespace rgraph

@@ -1,0 +1,224 @@
+// Shader sources and shader checks without a GL context.
+//
+// 1. Shader sources: finding a shader file in the shader search directories,
+//    expanding its #include lines and inserting defines, with a line table
+//    that maps every expanded line back to its file and line. ShaderLibrary
+//    (the GL backend) loads every shader through these functions, so what is
+//    checked here is byte for byte what the driver compiles.
+//
+// 2. ShaderChecker: what `rgraph validate` runs after the graph compiles.
+//    For every enabled pass it asks the pass type which programs it would
+//    build for its params (PassTypeDesc::programs), compiles each stage with
+//    glslang (GLSL 4.50 as an OpenGL driver sees it), links the program, and
+//    reflects it against the config's bindings. Results are cached per
+//    (files, defines) for the checker's lifetime.
+//
+//    Errors (Severity::error, DiagCode::shader_error):
+//      - a shader file or an included file is missing; a nested #include;
+//      - a compile or link error: located at the shader's FILE:LINE (the
+//        included file's, for an error inside an include), with the pass;
+//      - fragment outputs vs colour attachments: the pass's colour
+//        attachments are its bound colour-attachment slots in slot
+//        declaration order at locations 0..N-1 (as the executor builds the
+//        framebuffer). An output at a location with no attachment (its values
+//        are discarded) or an attachment no output writes (its contents are
+//        undefined) is an error naming the pass, the shader and both lists;
+//      - an int/uint output into a float or normalized format (undefined);
+//      - an output with fewer components than its attachment's format when
+//        the program blends with source alpha and alpha is among the missing
+//        components (the blend itself is undefined, ShaderProgramSpec::
+//        blendsSourceAlpha);
+//      - a sampler the shader reads (active for the pass's defines) whose
+//        slot the config leaves unbound: it would sample texture 0 (unless
+//        the mapping is SamplerSlot::optional: the pass tells the shader);
+//      - a sampler whose layout(binding) differs from the texture unit the
+//        pass binds its slot to; an integer sampler (isampler/usampler) on a
+//        float/normalized texture; a multisample sampler on a single-sample
+//        texture or the reverse; a shadow sampler on a colour texture.
+//    Warnings:
+//      - an output with more components than its attachment's format (the
+//        extra components are dropped: legal, but usually a wrong format);
+//      - an output with fewer components than the format (the missing
+//        components are undefined; legal while nothing reads them, and which
+//        later pass reads which channel is not known here), unless it is
+//        the blending error above;
+//      - a sampled slot bound in the config whose sampler the program never
+//        declares (the binding does nothing);
+//      - an active sampler that is neither mapped to a slot nor one the pass
+//        binds itself (ShaderProgramSpec::ownSamplers): nothing binds it;
+//      - several fragment outputs without layout(location) (their locations
+//        are the linker's choice and cannot be checked);
+//      - glslang's own warnings.
+//    Pass types without `programs` are checked by compiling each file of
+//    PassTypeDesc::shaders on its own (stage from the extension, no
+//    defines): compile errors only, no reflection.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rgraph/diagnostics.h"
+#include "rgraph/error.h"
+#include "rgraph/format.h"
+#include "rgraph/graph.h"
+#include "rgraph/pass.h"
+
+namespace rgraph {
+
+struct PipelineConfig;
+class PassRegistry;
+
+// ------------------------------------------------------------ shader sources
+
+// The default shader search directories, in order: $RGRAPH_SHADER_DIR
+// (':'-separated), <exe dir>/../share/rgraph/shaders, the install directory,
+// the source tree's shaders/. (ShaderLibrary puts the directories added with
+// addSearchDirectory in front of these.)
+std::vector<std::string> defaultShaderSearchDirectories();
+
+// Full path of a shader file: absolute paths as they are, relative ones in
+// the first directory that has them. "" when not found.
+std::string findShaderFile(const std::string& file, const std::vector<std::string>& dirs);
+// Like findShaderFile but throws RuntimeError listing the directories searched.
+std::string resolveShaderFile(const std::string& file, const std::vector<std::string>& dirs);
+
+// A path as shown in messages: relative to the working directory when inside it.
+std::string shaderDisplayPath(const std::string& path);
+
+// A load failure with a location: a missing include or a nested #include.
+// what() is `FILE:LINE: error: message`.
+class ShaderSourceError : public RuntimeError {
+ public:
+  ShaderSourceError(std::string file, int line, std::string message);
+  const std::string& file() const { return file_; }
+  int line() const { return line_; }
+  const std::string& message() const { return message_; }
+
+ private:
+  std::string file_;
+  int line_;
+  std::string message_;
+};
+
+struct ShaderSource {
+  std::string path;                        // the resolved file
+  std::string text;                        // after #include expansion and defines
+  std::vector<std::string> files;          // display paths: 0 the shader, then included files
+  std::vector<std::pair<int, int>> lines;  // expanded line - 1 -> (file index, line in that file)
+};
+
+// Loads a shader: `#include "file"` (or <file>) expanded one level deep
+// (relative to the including file first, then the search directories),
+// defines ("NAME" or "NAME=VALUE") inserted after the #version line
+// (`#version 450 core` is added when there is none). No #line directives:
+// compiler messages are mapped back through ShaderSource::lines.
+// Throws RuntimeError (missing file) or ShaderSourceError (missing include,
+// nested include).
+ShaderSource loadShaderSource(const std::string& file, const std::vector<std::string>& defines,
+                              const std::vector<std::string>& dirs);
+
+// A compiler message mapped back to its file and line.
+struct ShaderMessage {
+  Severity severity = Severity::error;
+  std::string file;  // display path; the shader itself when the compiler gave no line
+  int line = 0;      // 0: no line
+  std::string text;  // the compiler's message without its location prefix
+};
+
+// Parses a compiler log (glslang `ERROR: 0:12: ...`, Mesa `0:12(5): error: ...`,
+// NVIDIA `0(12) : error C0000: ...`) into messages located in the original
+// files. Lines that name no location are kept with line 0; glslang's
+// "N compilation errors" summary is dropped.
+std::vector<ShaderMessage> parseShaderLog(const std::string& log, const ShaderSource& src);
+// The same log with locations rewritten to `FILE:LINE: ...` (what
+// ShaderLibrary throws on a compile error).
+std::string mapShaderLog(const std::string& log, const ShaderSource& src);
+
+// ------------------------------------------------------------ reflection
+
+struct FragmentOutput {
+  std::string name;
+  int location = -1;   // -1: no layout(location)
+  int arraySize = 0;   // 0: not an array; an array takes locations location..location+arraySize-1
+  int components = 4;  // 1..4
+  enum class Kind { floating, signed_int, unsigned_int } kind = Kind::floating;
+};
+
+struct SamplerUniform {
+  std::string name;
+  int binding = -1;  // layout(binding), -1 when none (the unit is then 0 unless the pass sets it)
+  bool active = false;  // read by the program (declared-only samplers are inactive)
+  bool multisample = false;
+  bool shadow = false;
+  bool integer = false;  // isampler / usampler
+};
+
+// One program, compiled, linked and reflected.
+struct ProgramCheck {
+  ShaderProgramSpec spec;
+  std::vector<std::string> files;  // display paths of its stages (vert, frag or comp)
+  bool ok = false;                 // every stage compiled and the program linked
+  std::vector<ShaderMessage> messages;  // errors and warnings, located
+  std::vector<FragmentOutput> outputs;  // user fragment outputs (built-ins left out)
+  std::vector<SamplerUniform> samplers; // every declared sampler, active or not
+  const SamplerUniform* findSampler(const std::string& name) const;
+};
+
+// A slot of a pass instance as the config binds it.
+struct BoundSlot {
+  std::string slot;
+  Access access = Access::sampled;
+  std::string resource;           // the resource (or version) name, for messages
+  std::optional<Format> format;   // unknown when the graph could not resolve it
+  uint32_t samples = 1;
+  SourceLocation where;           // the binding in the config
+};
+
+struct ShaderCheckStats {
+  size_t programsCompiled = 0;  // distinct (files, defines) compiled with glslang
+  size_t cacheHits = 0;
+  double seconds = 0.0;         // time spent compiling and reflecting
+};
+
+class ShaderChecker {
+ public:
+  // Shader files are looked up in these directories, in order (usually a
+  // ShaderLibrary's searchDirectories(), which includes the directories
+  // plugins add).
+  explicit ShaderChecker(std::vector<std::string> searchDirectories = defaultShaderSearchDirectories());
+  ~ShaderChecker();
+  ShaderChecker(const ShaderChecker&) = delete;
+  ShaderChecker& operator=(const ShaderChecker&) = delete;
+
+  const std::vector<std::string>& searchDirectories() const { return dirs_; }
+
+  // Every enabled pass of a pipeline (culled ones included). `plan` is the
+  // compiled graph (for the formats of bound resources); pass types come
+  // from `registry`. Passes whose type is unknown are skipped (the config
+  // loader reported them).
+  Diagnostics checkPipeline(const PipelineConfig& pipeline, const Plan& plan, const PassRegistry& registry);
+
+  // One pass instance: name, type, params and how the config binds its slots.
+  // `passWhere` locates the pass in the config (diagnostics about bindings
+  // point there or at the binding).
+  Diagnostics checkPass(const std::string& passName, const PassTypeDesc& type, const ParamSet& params,
+                        const std::vector<BoundSlot>& bound, const SourceLocation& passWhere = {});
+
+  // Compiles, links and reflects one program (cached by files + defines).
+  // Never throws: load failures become error messages.
+  const ProgramCheck& program(const ShaderProgramSpec& spec);
+
+  const ShaderCheckStats& stats() const { return stats_; }
+
+ private:
+  const ProgramCheck& compileOnly(const std::string& file);
+  std::vector<std::string> dirs_;
+  std::map<std::string, std::unique_ptr<ProgramCheck>> cache_;
+  ShaderCheckStats stats_;
+};
+
+}  // namespace rgraph

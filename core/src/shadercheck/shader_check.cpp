@@ -1,0 +1,587 @@
+// The glslang shader checker (see rgraph/shader_check.h). No GL here: stages
+// are compiled and linked by glslang as GLSL 4.50 for OpenGL, and the linked
+// program is reflected to compare its fragment outputs and samplers with
+// what the config binds.
+#include "rgraph/shader_check.h"
+
+#include <glslang/Include/Types.h>
+#include <glslang/MachineIndependent/localintermediate.h>
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+#include <set>
+
+#include "rgraph/config.h"
+#include "rgraph/registry.h"
+
+namespace rgraph {
+namespace {
+
+void initGlslang() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    glslang::InitializeProcess();
+    // Cached results hold no glslang objects, so its tables can go at exit
+    // (keeps leak checkers quiet).
+    std::atexit([] { glslang::FinalizeProcess(); });
+  });
+}
+
+std::string join(const std::vector<std::string>& v, const std::string& sep) {
+  std::string out;
+  for (const auto& s : v) out += (out.empty() ? "" : sep) + s;
+  return out;
+}
+
+// The stage of a file from its extension (fallback checks of
+// PassTypeDesc::shaders); EShLangCount when unknown.
+EShLanguage stageOfFile(const std::string& file) {
+  std::string ext = std::filesystem::path(file).extension().string();
+  if (ext == ".vert") return EShLangVertex;
+  if (ext == ".frag") return EShLangFragment;
+  if (ext == ".comp") return EShLangCompute;
+  if (ext == ".geom") return EShLangGeometry;
+  if (ext == ".tesc") return EShLangTessControl;
+  if (ext == ".tese") return EShLangTessEvaluation;
+  return EShLangCount;
+}
+
+const char* stageName(EShLanguage s) {
+  switch (s) {
+    case EShLangVertex: return "vertex";
+    case EShLangFragment: return "fragment";
+    case EShLangCompute: return "compute";
+    case EShLangGeometry: return "geometry";
+    case EShLangTessControl: return "tessellation control";
+    case EShLangTessEvaluation: return "tessellation evaluation";
+    default: return "shader";
+  }
+}
+
+// One stage to compile: its file name as the pass gave it, and the loaded source.
+struct Stage {
+  EShLanguage lang;
+  std::string file;
+  ShaderSource src;
+  bool loaded = false;
+  std::unique_ptr<glslang::TShader> shader;
+};
+
+// Compiles one stage as an OpenGL driver would: desktop GLSL, core profile,
+// default version 450. The input dialect is left at "none" on purpose:
+// EShClientOpenGL as *input* dialect switches glslang to ARB_gl_spirv rules
+// (every in/out and loose uniform must have a location), which GLSL compiled
+// by a GL driver does not require; the client is still OpenGL 4.5 (not
+// Vulkan), no SPIR-V target.
+bool compileStage(Stage& st, std::vector<ShaderMessage>& messages) {
+  st.shader = std::make_unique<glslang::TShader>(st.lang);
+  const char* text = st.src.text.c_str();
+  const int length = static_cast<int>(st.src.text.size());
+  st.shader->setStringsWithLengths(&text, &length, 1);
+  st.shader->setEnvInput(glslang::EShSourceGlsl, st.lang, glslang::EShClientNone, 0);
+  st.shader->setEnvClient(glslang::EShClientOpenGL, glslang::EShTargetOpenGL_450);
+  st.shader->setEnvTarget(glslang::EShTargetNone, glslang::EShTargetSpv_1_0);
+  const bool ok = st.shader->parse(GetDefaultResources(), 450, ECoreProfile, false, false, EShMsgDefault);
+  std::vector<ShaderMessage> parsed = parseShaderLog(st.shader->getInfoLog(), st.src);
+  if (!ok && std::none_of(parsed.begin(), parsed.end(), [](const ShaderMessage& m) { return m.severity == Severity::error; })) {
+    ShaderMessage m;
+    m.file = st.src.files.empty() ? st.file : st.src.files[0];
+    m.text = std::string(stageName(st.lang)) + " shader failed to compile";
+    parsed.push_back(std::move(m));
+  }
+  for (auto& m : parsed) messages.push_back(std::move(m));
+  return ok;
+}
+
+// Loads a stage's source; a missing file or include becomes an error message.
+bool loadStage(Stage& st, const ShaderProgramSpec& spec, const std::vector<std::string>& dirs,
+               std::vector<ShaderMessage>& messages) {
+  ShaderMessage m;
+  try {
+    st.src = loadShaderSource(st.file, spec.defines, dirs);
+    st.loaded = true;
+    return true;
+  } catch (const ShaderSourceError& e) {
+    m.file = e.file();
+    m.line = e.line();
+    m.text = e.message();
+  } catch (const std::exception& e) {
+    m.text = e.what();  // the file itself is missing: no file to point at (reported at the pass)
+  }
+  messages.push_back(std::move(m));
+  return false;
+}
+
+FragmentOutput::Kind outputKind(glslang::TBasicType t) {
+  switch (t) {
+    case glslang::EbtInt:
+    case glslang::EbtInt8:
+    case glslang::EbtInt16:
+    case glslang::EbtInt64: return FragmentOutput::Kind::signed_int;
+    case glslang::EbtUint:
+    case glslang::EbtUint8:
+    case glslang::EbtUint16:
+    case glslang::EbtUint64: return FragmentOutput::Kind::unsigned_int;
+    default: return FragmentOutput::Kind::floating;
+  }
+}
+
+std::string baseName(const std::string& reflected) {
+  size_t b = reflected.find('[');
+  return b == std::string::npos ? reflected : reflected.substr(0, b);
+}
+
+// Every sampler a stage declares (used or not), from its linker objects.
+void collectDeclaredSamplers(const glslang::TIntermediate* interm, std::vector<SamplerUniform>& out) {
+  if (!interm || !interm->getTreeRoot()) return;
+  glslang::TIntermAggregate* root = interm->getTreeRoot()->getAsAggregate();
+  if (!root) return;
+  for (TIntermNode* node : root->getSequence()) {
+    glslang::TIntermAggregate* agg = node ? node->getAsAggregate() : nullptr;
+    if (!agg || agg->getOp() != glslang::EOpLinkerObjects) continue;
+    for (TIntermNode* obj : agg->getSequence()) {
+      glslang::TIntermSymbol* sym = obj ? obj->getAsSymbolNode() : nullptr;
+      if (!sym) continue;
+      const glslang::TType& type = sym->getType();
+      if (type.getQualifier().storage != glslang::EvqUniform || type.getBasicType() != glslang::EbtSampler) continue;
+      const glslang::TSampler& s = type.getSampler();
+      if (!s.isTexture()) continue;  // images and pure samplers are not sampled slots
+      std::string name(sym->getName().c_str());
+      if (name.empty() || name.rfind("gl_", 0) == 0) continue;
+      if (std::any_of(out.begin(), out.end(), [&](const SamplerUniform& u) { return u.name == name; })) continue;
+      SamplerUniform u;
+      u.name = name;
+      u.binding = type.getQualifier().hasBinding() ? static_cast<int>(type.getQualifier().layoutBinding) : -1;
+      u.multisample = s.isMultiSample();
+      u.shadow = s.isShadow();
+      u.integer = s.getBasicType() == glslang::EbtInt || s.getBasicType() == glslang::EbtUint;
+      out.push_back(std::move(u));
+    }
+  }
+}
+
+std::string cacheKey(const ShaderProgramSpec& spec) {
+  std::string key = spec.vert + '\x1f' + spec.frag + '\x1f' + spec.comp + '\x1e';
+  for (const auto& d : spec.defines) key += d + '\x1f';
+  return key;
+}
+
+std::string componentLetters(uint32_t from, uint32_t to) {  // 0-based [from, to)
+  static const char* names[] = {"r", "g", "b", "a"};
+  std::vector<std::string> v;
+  for (uint32_t i = from; i < to && i < 4; ++i) v.push_back(names[i]);
+  return join(v, ", ");
+}
+
+std::string glslTypeName(const FragmentOutput& o) {
+  const char* prefix = o.kind == FragmentOutput::Kind::signed_int ? "i" : o.kind == FragmentOutput::Kind::unsigned_int ? "u" : "";
+  if (o.components == 1) return o.kind == FragmentOutput::Kind::signed_int ? "int"
+                              : o.kind == FragmentOutput::Kind::unsigned_int ? "uint" : "float";
+  return std::string(prefix) + "vec" + std::to_string(o.components);
+}
+
+}  // namespace
+
+const SamplerUniform* ProgramCheck::findSampler(const std::string& name) const {
+  for (const auto& s : samplers)
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+ShaderChecker::ShaderChecker(std::vector<std::string> searchDirectories) : dirs_(std::move(searchDirectories)) {}
+ShaderChecker::~ShaderChecker() = default;
+
+const ProgramCheck& ShaderChecker::program(const ShaderProgramSpec& spec) {
+  const std::string key = cacheKey(spec);
+  if (auto it = cache_.find(key); it != cache_.end()) {
+    ++stats_.cacheHits;
+    return *it->second;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  initGlslang();
+  auto result = std::make_unique<ProgramCheck>();
+  ProgramCheck& pc = *result;
+  pc.spec = spec;
+
+  // Stages are declared before the program: a TProgram must be destroyed
+  // before the shaders linked into it.
+  std::vector<Stage> stages;
+  if (!spec.comp.empty()) stages.push_back(Stage{EShLangCompute, spec.comp, {}, false, nullptr});
+  if (!spec.vert.empty()) stages.push_back(Stage{EShLangVertex, spec.vert, {}, false, nullptr});
+  if (!spec.frag.empty()) stages.push_back(Stage{EShLangFragment, spec.frag, {}, false, nullptr});
+  if (stages.empty()) {
+    pc.messages.push_back(ShaderMessage{Severity::error, "", 0, "the program names no shader file"});
+  }
+  bool ok = !stages.empty();
+  for (auto& st : stages) {
+    if (!loadStage(st, spec, dirs_, pc.messages)) {
+      ok = false;
+      pc.files.push_back(st.file);
+      continue;
+    }
+    pc.files.push_back(st.src.files[0]);
+    if (!compileStage(st, pc.messages)) ok = false;
+  }
+  if (ok) {
+    glslang::TProgram program;
+    for (auto& st : stages) program.addShader(st.shader.get());
+    if (!program.link(EShMsgDefault)) {
+      ok = false;
+      const Stage& last = stages.back();
+      std::vector<ShaderMessage> linkMessages = parseShaderLog(program.getInfoLog(), last.src);
+      if (linkMessages.empty()) linkMessages.push_back(ShaderMessage{Severity::error, last.src.files[0], 0, "program failed to link"});
+      for (auto& m : linkMessages) {
+        m.text = "link: " + m.text;
+        pc.messages.push_back(std::move(m));
+      }
+    } else if (program.buildReflection(EShReflectionAllIOVariables)) {
+      if (!spec.frag.empty()) {
+        for (int i = 0; i < program.getNumPipeOutputs(); ++i) {
+          const glslang::TObjectReflection& r = program.getPipeOutput(i);
+          const glslang::TType* t = r.getType();
+          if (!t || r.name.rfind("gl_", 0) == 0) continue;
+          if (t->getQualifier().builtIn != glslang::EbvNone) continue;
+          FragmentOutput o;
+          o.name = baseName(r.name);
+          o.location = t->getQualifier().hasLocation() ? static_cast<int>(t->getQualifier().layoutLocation) : -1;
+          o.arraySize = t->isArray() ? std::max(1, t->getOuterArraySize()) : 0;
+          o.components = std::clamp(t->getVectorSize(), 1, 4);
+          o.kind = outputKind(t->getBasicType());
+          pc.outputs.push_back(std::move(o));
+        }
+        std::sort(pc.outputs.begin(), pc.outputs.end(),
+                  [](const FragmentOutput& a, const FragmentOutput& b) { return a.location < b.location; });
+      }
+      for (auto& st : stages) collectDeclaredSamplers(program.getIntermediate(st.lang), pc.samplers);
+      for (int i = 0; i < program.getNumUniformVariables(); ++i) {
+        const std::string name = baseName(program.getUniform(i).name);
+        for (auto& s : pc.samplers)
+          if (s.name == name) s.active = true;
+      }
+    }
+  }
+  pc.ok = ok;
+  ++stats_.programsCompiled;
+  stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return *cache_.emplace(key, std::move(result)).first->second;
+}
+
+const ProgramCheck& ShaderChecker::compileOnly(const std::string& file) {
+  const std::string key = "\x1d" + file;
+  if (auto it = cache_.find(key); it != cache_.end()) {
+    ++stats_.cacheHits;
+    return *it->second;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  initGlslang();
+  auto result = std::make_unique<ProgramCheck>();
+  ProgramCheck& pc = *result;
+  Stage st{stageOfFile(file), file, {}, false, nullptr};
+  bool ok = false;
+  if (st.lang == EShLangCount) {
+    pc.files.push_back(file);
+    ok = true;  // not a stage we can tell from its name (an include, a data file): nothing to compile
+  } else if (loadStage(st, ShaderProgramSpec{}, dirs_, pc.messages)) {
+    pc.files.push_back(st.src.files[0]);
+    ok = compileStage(st, pc.messages);
+  } else {
+    pc.files.push_back(file);
+  }
+  pc.ok = ok;
+  ++stats_.programsCompiled;
+  stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return *cache_.emplace(key, std::move(result)).first->second;
+}
+
+Diagnostics ShaderChecker::checkPass(const std::string& passName, const PassTypeDesc& type, const ParamSet& params,
+                                     const std::vector<BoundSlot>& bound, const SourceLocation& passWhere) {
+  Diagnostics out;
+  std::set<std::string> seen;  // variants of one pass often repeat the same finding
+  auto add = [&](Severity sev, std::string message, SourceLocation where, std::string slot = {},
+                 std::string resource = {}) {
+    Diagnostic d;
+    d.code = DiagCode::shader_error;
+    d.severity = sev;
+    d.message = std::move(message);
+    d.pass = passName;
+    d.slot = std::move(slot);
+    d.resource = std::move(resource);
+    d.where = std::move(where);
+    std::string key = formatDiagnostic(d);
+    if (seen.insert(key).second) out.push_back(std::move(d));
+  };
+  const std::string who = "pass '" + passName + "' (" + type.name + ")";
+  auto reportMessages = [&](const ProgramCheck& pc) {
+    std::string context;
+    if (pc.files.size() > 1 || !pc.spec.defines.empty()) {
+      context = " [" + join(pc.files, " + ");
+      if (!pc.spec.defines.empty()) context += " with " + join(pc.spec.defines, " ");
+      context += "]";
+    }
+    for (const auto& m : pc.messages) {
+      if (m.file.empty()) {  // nothing in a shader to point at: the pass in the config
+        add(m.severity, who + ": " + m.text + context, passWhere);
+        continue;
+      }
+      SourceLocation where;
+      where.file = m.file;
+      where.line = m.line;
+      add(m.severity, m.text + context, where);
+    }
+  };
+
+  if (!type.programs) {
+    for (const auto& file : type.shaders) reportMessages(compileOnly(file));
+    return out;
+  }
+
+  std::vector<ShaderProgramSpec> specs;
+  try {
+    specs = type.programs(params);
+  } catch (const std::exception& e) {
+    add(Severity::error, who + ": " + e.what(), passWhere);
+    return out;
+  }
+
+  // Colour attachments in slot-declaration order at locations 0..N-1 (as the
+  // executor builds the pass's framebuffer); sampled inputs by slot.
+  auto slotIndex = [&](const std::string& slot) {
+    for (size_t i = 0; i < type.slots.size(); ++i)
+      if (type.slots[i].name == slot) return i;
+    return type.slots.size();
+  };
+  std::vector<const BoundSlot*> attachments;
+  std::map<std::string, const BoundSlot*> sampled;
+  for (const auto& b : bound) {
+    if (b.access == Access::color_attachment) attachments.push_back(&b);
+    if (b.access == Access::sampled) sampled.emplace(b.slot, &b);
+  }
+  std::stable_sort(attachments.begin(), attachments.end(),
+                   [&](const BoundSlot* a, const BoundSlot* b) { return slotIndex(a->slot) < slotIndex(b->slot); });
+
+  for (const auto& spec : specs) {
+    const ProgramCheck& pc = program(spec);
+    reportMessages(pc);
+    if (!pc.ok) continue;
+    const std::string shader = pc.files.empty() ? spec.frag : pc.files.back();
+
+    // ---- fragment outputs vs colour attachments
+    if (!spec.frag.empty() && spec.drawsToAttachments) {
+      std::vector<FragmentOutput> outs;  // one per location
+      size_t unlocated = 0;
+      for (const auto& o : pc.outputs) unlocated += o.location < 0 ? 1 : 0;
+      bool locationsKnown = true;
+      if (unlocated > 0 && pc.outputs.size() == 1 && pc.outputs[0].arraySize == 0) {
+        outs.push_back(pc.outputs[0]);
+        outs.back().location = 0;  // a single output without a location goes to location 0
+      } else if (unlocated > 0) {
+        locationsKnown = false;
+        add(Severity::warning,
+            who + ": " + shader + " declares " + std::to_string(pc.outputs.size()) +
+                " colour outputs, some without layout(location): their locations are the linker's choice; give "
+                "each output a location matching the pass's colour attachments",
+            passWhere);
+      } else {
+        for (const auto& o : pc.outputs) {
+          const int n = o.arraySize > 0 ? o.arraySize : 1;
+          for (int i = 0; i < n; ++i) {
+            FragmentOutput e = o;
+            e.location = o.location + i;
+            e.arraySize = 0;
+            if (o.arraySize > 0) e.name = o.name + "[" + std::to_string(i) + "]";
+            outs.push_back(std::move(e));
+          }
+        }
+      }
+      auto outputList = [&] {
+        std::vector<std::string> v;
+        for (const auto& o : outs) v.push_back("'" + o.name + "' at " + std::to_string(o.location));
+        return v.empty() ? std::string("none") : join(v, ", ");
+      };
+      auto attachmentList = [&] {
+        std::vector<std::string> v;
+        for (size_t i = 0; i < attachments.size(); ++i)
+          v.push_back("'" + attachments[i]->slot + "' (" + attachments[i]->resource + ") at " + std::to_string(i));
+        return v.empty() ? std::string("none") : join(v, ", ");
+      };
+      const size_t outputCount = locationsKnown ? outs.size() : pc.outputs.size();
+      if (locationsKnown) {
+        std::vector<std::string> problems;
+        for (const auto& o : outs)
+          if (o.location < 0 || static_cast<size_t>(o.location) >= attachments.size())
+            problems.push_back("output '" + o.name + "' (location " + std::to_string(o.location) +
+                               ") has no colour attachment: its values are discarded");
+        for (size_t i = 0; i < attachments.size(); ++i)
+          if (std::none_of(outs.begin(), outs.end(), [&](const FragmentOutput& o) { return o.location == static_cast<int>(i); }))
+            problems.push_back("colour attachment '" + attachments[i]->slot + "' (location " + std::to_string(i) +
+                               ") is written by no output: its contents would be undefined");
+        if (!problems.empty())
+          add(Severity::error,
+              who + ": fragment shader " + shader + " writes " + std::to_string(outputCount) + " colour output" +
+                  (outputCount == 1 ? "" : "s") + " (" + outputList() + ") but the pass binds " +
+                  std::to_string(attachments.size()) + " colour attachment" + (attachments.size() == 1 ? "" : "s") +
+                  " (" + attachmentList() + "): " + join(problems, "; "),
+              passWhere);
+      } else if (outputCount != attachments.size()) {
+        add(Severity::error,
+            who + ": fragment shader " + shader + " writes " + std::to_string(outputCount) +
+                " colour outputs but the pass binds " + std::to_string(attachments.size()) + " colour attachments (" +
+                attachmentList() + ")",
+            passWhere);
+      }
+
+      // Per attachment: output type and components against the format.
+      if (locationsKnown) {
+        for (size_t i = 0; i < attachments.size(); ++i) {
+          const BoundSlot& a = *attachments[i];
+          auto it = std::find_if(outs.begin(), outs.end(), [&](const FragmentOutput& o) { return o.location == static_cast<int>(i); });
+          if (it == outs.end() || !a.format) continue;
+          const FormatInfo& fi = formatInfo(*a.format);
+          if (fi.isDepth) continue;  // the graph reports a depth format bound as a colour attachment
+          const std::string target = "colour attachment '" + a.slot + "' (" + a.resource + ", " +
+                                     std::string(fi.name) + ", " + std::to_string(fi.components) + " component" +
+                                     (fi.components == 1 ? "" : "s") + ")";
+          const SourceLocation& where = a.where.known() ? a.where : passWhere;
+          if (it->kind != FragmentOutput::Kind::floating) {
+            add(Severity::error,
+                who + ": fragment shader " + shader + " writes " + glslTypeName(*it) + " '" + it->name + "' into " +
+                    target + ": integer outputs into a float or normalized format are undefined",
+                where, a.slot, a.resource);
+            continue;
+          }
+          const uint32_t comps = static_cast<uint32_t>(it->components);
+          if (comps > fi.components) {
+            add(Severity::warning,
+                who + ": fragment shader " + shader + " writes " + glslTypeName(*it) + " '" + it->name + "' into " +
+                    target + ": components " + componentLetters(fi.components, comps) +
+                    " are dropped (is the format right?)",
+                where, a.slot, a.resource);
+          } else if (comps < fi.components) {
+            const bool alphaMissing = fi.components == 4 && comps < 4;
+            const bool error = spec.blendsSourceAlpha && alphaMissing;
+            add(error ? Severity::error : Severity::warning,
+                who + ": fragment shader " + shader + " writes " + glslTypeName(*it) + " '" + it->name + "' into " +
+                    target + ": components " + componentLetters(comps, fi.components) + " are left undefined" +
+                    (error ? ", and the pass blends with source alpha" : ""),
+                where, a.slot, a.resource);
+          }
+        }
+      }
+    }
+
+    // ---- samplers vs sampled inputs
+    if (spec.checkSamplers) {
+      std::set<std::string> mapped;
+      for (const auto& m : spec.samplers) {
+        mapped.insert(m.uniform);
+        const SamplerUniform* s = pc.findSampler(m.uniform);
+        auto bit = sampled.find(m.slot);
+        const BoundSlot* b = bit == sampled.end() ? nullptr : bit->second;
+        if (!s) {
+          if (b)
+            add(Severity::warning,
+                who + ": input '" + m.slot + "' is bound (" + b->resource + ") but " + join(pc.files, " + ") +
+                    " declares no sampler '" + m.uniform + "' to read it: the binding is unused",
+                b->where.known() ? b->where : passWhere, m.slot, b->resource);
+          continue;
+        }
+        if (!s->active) continue;  // declared, not read with these defines: binding it or not makes no difference
+        if (!b) {
+          if (m.optional) continue;  // the pass tells the shader the slot is unbound
+          add(Severity::error,
+              who + ": " + shader + " samples '" + m.uniform + "' (input '" + m.slot + "') but the config binds no " +
+                  "resource to '" + m.slot + "': it would read texture 0 (bind the input)",
+              passWhere, m.slot);
+          continue;
+        }
+        const SourceLocation& where = b->where.known() ? b->where : passWhere;
+        const int unit = s->binding < 0 ? 0 : s->binding;
+        if (m.unit >= 0 && unit != m.unit)
+          add(Severity::error,
+              who + ": sampler '" + m.uniform + "' in " + shader + " reads texture unit " + std::to_string(unit) +
+                  (s->binding < 0 ? " (no layout(binding))" : " (layout(binding = " + std::to_string(s->binding) + "))") +
+                  " but the pass binds input '" + m.slot + "' to unit " + std::to_string(m.unit),
+              where, m.slot, b->resource);
+        if (s->integer)
+          add(Severity::error,
+              who + ": sampler '" + m.uniform + "' in " + shader + " is an integer sampler but input '" + m.slot +
+                  "' (" + b->resource + (b->format ? ", " + std::string(formatName(*b->format)) : std::string()) +
+                  ") is a float or normalized texture: the results are undefined",
+              where, m.slot, b->resource);
+        if (s->multisample != (b->samples > 1))
+          add(Severity::error,
+              who + ": sampler '" + m.uniform + "' in " + shader + " is " +
+                  (s->multisample ? "a multisample sampler" : "not a multisample sampler") + " but input '" + m.slot +
+                  "' (" + b->resource + ") has " + std::to_string(b->samples) + " sample" + (b->samples == 1 ? "" : "s"),
+              where, m.slot, b->resource);
+        if (s->shadow && b->format && !isDepthFormat(*b->format))
+          add(Severity::error,
+              who + ": sampler '" + m.uniform + "' in " + shader + " is a shadow sampler but input '" + m.slot +
+                  "' (" + b->resource + ", " + std::string(formatName(*b->format)) + ") has no depth",
+              where, m.slot, b->resource);
+      }
+      for (const auto& s : pc.samplers) {
+        if (!s.active || mapped.count(s.name)) continue;
+        if (std::find(spec.ownSamplers.begin(), spec.ownSamplers.end(), s.name) != spec.ownSamplers.end()) continue;
+        std::vector<std::string> known;
+        for (const auto& m : spec.samplers) known.push_back(m.uniform + " <- " + m.slot);
+        add(Severity::warning,
+            who + ": sampler '" + s.name + "' in " + shader + " is bound to no input of the pass (it reads whatever " +
+                "texture is on unit " + std::to_string(s.binding < 0 ? 0 : s.binding) + ")" +
+                (known.empty() ? std::string() : "; the pass binds " + join(known, ", ")),
+            passWhere);
+      }
+    }
+  }
+  return out;
+}
+
+Diagnostics ShaderChecker::checkPipeline(const PipelineConfig& pipeline, const Plan& plan,
+                                         const PassRegistry& registry) {
+  Diagnostics out;
+  const GraphDesc& g = pipeline.graph;
+  for (size_t p = 0; p < g.passes.size(); ++p) {
+    const PassDecl& pd = g.passes[p];
+    if (!pd.enabled) continue;
+    const PassTypeDesc* type = registry.find(pd.type);
+    if (!type) continue;
+    ParamSet params = defaultParams(type->params);
+    if (p < pipeline.params.size())
+      for (const auto& [k, v] : pipeline.params[p].values()) params.set(k, v);
+
+    const std::vector<BoundUse>* uses = p < plan.bindings.size() ? &plan.bindings[p] : nullptr;
+    std::vector<BoundSlot> bound;
+    for (size_t u = 0; u < pd.uses.size(); ++u) {
+      const ResourceUse& ru = pd.uses[u];
+      BoundSlot b;
+      b.slot = ru.slot;
+      b.access = ru.access;
+      const bool write = isWriteAccess(ru.access);
+      b.resource = write ? ru.output : ru.input;
+      b.where = write ? ru.outputWhere : ru.inputWhere;
+      const BoundUse* bu = nullptr;
+      if (uses && u < uses->size() && (*uses)[u].slot == ru.slot) bu = &(*uses)[u];
+      if (uses && !bu)
+        for (const auto& x : *uses)
+          if (x.slot == ru.slot) bu = &x;
+      if (bu && bu->resource >= 0 && static_cast<size_t>(bu->resource) < g.resources.size()) {
+        const ResourceDecl& rd = g.resources[bu->resource];
+        if (rd.kind == ResourceKind::texture) {
+          b.format = rd.texture.format;
+          b.samples = std::max<uint32_t>(1, rd.texture.samples);
+        }
+      }
+      bound.push_back(std::move(b));
+    }
+    Diagnostics d = checkPass(pd.name, *type, params, bound, pd.where);
+    out.insert(out.end(), std::make_move_iterator(d.begin()), std::make_move_iterator(d.end()));
+  }
+  return out;
+}
+
+}  // namespace rgraph

@@ -1,0 +1,338 @@
+// Shader sources without a GL context: search directories, #include
+// expansion, defines, the line table, and compiler-log mapping. Shared by
+// ShaderLibrary (core/src/gl) and the glslang checker (shader_check.cpp).
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+
+#include "rgraph/shader_check.h"
+
+#ifndef RGRAPH_SHADER_SOURCE_DIR
+#define RGRAPH_SHADER_SOURCE_DIR ""
+#endif
+#ifndef RGRAPH_SHADER_INSTALL_DIR
+#define RGRAPH_SHADER_INSTALL_DIR ""
+#endif
+
+namespace fs = std::filesystem;
+
+namespace rgraph {
+namespace {
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw RuntimeError("cannot read shader file " + path);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<std::string> splitLines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::string line;
+  std::istringstream ss(text);
+  while (std::getline(ss, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+std::string trimLeft(const std::string& s) {
+  size_t i = s.find_first_not_of(" \t");
+  return i == std::string::npos ? std::string() : s.substr(i);
+}
+
+// A tiny cursor for the line parsers below (no std::regex: slow to build and
+// noisy under the sanitizers).
+struct Cursor {
+  const std::string& s;
+  size_t i = 0;
+  void spaces() {
+    while (i < s.size() && (s[i] == ' ' || s[i] == '\t')) ++i;
+  }
+  bool lit(std::string_view t) {
+    if (s.compare(i, t.size(), t) != 0) return false;
+    i += t.size();
+    return true;
+  }
+  bool number(std::string& out) {
+    size_t b = i;
+    while (i < s.size() && s[i] >= '0' && s[i] <= '9') ++i;
+    out = s.substr(b, i - b);
+    return i > b && i - b < 9;
+  }
+  std::string rest() const { return i < s.size() ? s.substr(i) : std::string(); }
+};
+
+// `#include "file"` (or <file>) -> file.
+bool parseInclude(const std::string& line, std::string& file) {
+  Cursor c{line};
+  c.spaces();
+  if (!c.lit("#")) return false;
+  c.spaces();
+  if (!c.lit("include")) return false;
+  c.spaces();
+  if (c.i >= line.size() || (line[c.i] != '"' && line[c.i] != '<')) return false;
+  char close = line[c.i] == '"' ? '"' : '>';
+  size_t end = line.find(close, c.i + 1);
+  if (end == std::string::npos || end == c.i + 1) return false;
+  file = line.substr(c.i + 1, end - c.i - 1);
+  c.i = end + 1;
+  c.spaces();
+  return c.i >= line.size() || c.lit("//");
+}
+
+}  // namespace
+
+ShaderSourceError::ShaderSourceError(std::string file, int line, std::string message)
+    : RuntimeError(file + ":" + std::to_string(line) + ": error: " + message),
+      file_(std::move(file)),
+      line_(line),
+      message_(std::move(message)) {}
+
+std::vector<std::string> defaultShaderSearchDirectories() {
+  std::vector<std::string> dirs;
+  if (const char* env = std::getenv("RGRAPH_SHADER_DIR")) {
+    std::string s = env;
+    size_t start = 0;
+    while (start <= s.size()) {
+      size_t end = s.find(':', start);
+      if (end == std::string::npos) end = s.size();
+      if (end > start) dirs.push_back(s.substr(start, end - start));
+      start = end + 1;
+    }
+  }
+  std::error_code ec;
+  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) dirs.push_back((exe.parent_path() / ".." / "share" / "rgraph" / "shaders").lexically_normal().string());
+  if (std::string(RGRAPH_SHADER_INSTALL_DIR).size()) dirs.push_back(RGRAPH_SHADER_INSTALL_DIR);
+  if (std::string(RGRAPH_SHADER_SOURCE_DIR).size()) dirs.push_back(RGRAPH_SHADER_SOURCE_DIR);
+  return dirs;
+}
+
+std::string findShaderFile(const std::string& file, const std::vector<std::string>& dirs) {
+  std::error_code ec;
+  fs::path p(file);
+  if (p.is_absolute()) return fs::is_regular_file(p, ec) ? p.string() : std::string();
+  for (const auto& dir : dirs) {
+    fs::path candidate = fs::path(dir) / p;
+    if (fs::is_regular_file(candidate, ec)) return candidate.lexically_normal().string();
+  }
+  return {};
+}
+
+std::string resolveShaderFile(const std::string& file, const std::vector<std::string>& dirs) {
+  std::string path = findShaderFile(file, dirs);
+  if (!path.empty()) return path;
+  std::string list;
+  for (const auto& d : dirs) list += (list.empty() ? "" : ", ") + d;
+  throw RuntimeError("shader file '" + file + "' not found (searched: " + list + ")");
+}
+
+std::string shaderDisplayPath(const std::string& path) {
+  std::error_code ec;
+  fs::path rel = fs::relative(path, fs::current_path(ec), ec);
+  if (!ec && !rel.empty() && *rel.begin() != "..") return rel.generic_string();
+  return fs::path(path).lexically_normal().generic_string();
+}
+
+ShaderSource loadShaderSource(const std::string& file, const std::vector<std::string>& defines,
+                              const std::vector<std::string>& dirs) {
+  // Expanded into one source string without #line directives (drivers disagree
+  // on source-string numbers, Mesa even within one log); every expanded line
+  // remembers its file and line instead.
+  ShaderSource src;
+  src.path = resolveShaderFile(file, dirs);
+  const std::string& path = src.path;
+  src.files.push_back(shaderDisplayPath(path));
+  std::vector<std::string> lines = splitLines(readFile(path));
+
+  std::string out;
+  auto emit = [&](const std::string& line, int fileIndex, int lineNo) {
+    out += line;
+    out += '\n';
+    src.lines.emplace_back(fileIndex, lineNo);
+  };
+  auto emitDefines = [&](int lineNo) {
+    for (const auto& d : defines) {
+      size_t eq = d.find('=');
+      emit(eq == std::string::npos ? "#define " + d : "#define " + d.substr(0, eq) + " " + d.substr(eq + 1), 0,
+           lineNo);
+    }
+  };
+
+  bool hasVersion = false;
+  for (const auto& line : lines)
+    if (trimLeft(line).rfind("#version", 0) == 0) hasVersion = true;
+  if (!hasVersion) {
+    emit("#version 450 core", 0, 1);
+    emitDefines(1);
+  }
+  bool versionSeen = false;
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const std::string& line = lines[i];
+    int lineNo = static_cast<int>(i) + 1;
+    if (!versionSeen && trimLeft(line).rfind("#version", 0) == 0) {
+      versionSeen = true;
+      emit(line, 0, lineNo);
+      emitDefines(lineNo);
+      continue;
+    }
+    std::string inc;
+    if (parseInclude(line, inc)) {
+      fs::path local = fs::path(path).parent_path() / inc;
+      std::error_code ec;
+      std::string incPath = fs::is_regular_file(local, ec) ? local.lexically_normal().string() : findShaderFile(inc, dirs);
+      if (incPath.empty()) throw ShaderSourceError(src.files[0], lineNo, "included file '" + inc + "' not found");
+      int id = static_cast<int>(src.files.size());
+      src.files.push_back(shaderDisplayPath(incPath));
+      std::vector<std::string> incLines = splitLines(readFile(incPath));
+      for (size_t j = 0; j < incLines.size(); ++j) {
+        std::string nested;
+        if (parseInclude(incLines[j], nested))
+          throw ShaderSourceError(src.files[id], static_cast<int>(j) + 1,
+                                  "nested #include is not supported (include '" + nested + "' from " + src.files[0] +
+                                      " instead)");
+        emit(incLines[j], id, static_cast<int>(j) + 1);
+      }
+      continue;
+    }
+    emit(line, 0, lineNo);
+  }
+  src.text = std::move(out);
+  return src;
+}
+
+std::vector<ShaderMessage> parseShaderLog(const std::string& log, const ShaderSource& src) {
+  const std::string main = src.files.empty() ? std::string("<shader>") : src.files[0];
+  // Source string 0, expanded line L -> the file and line of the original text.
+  auto locate = [&](ShaderMessage& m, const std::string& srcNo, const std::string& lineNo) {
+    size_t l = std::stoul(lineNo);
+    m.file = main;
+    m.line = static_cast<int>(l);
+    if (std::stoul(srcNo) != 0 || l == 0 || l > src.lines.size()) return;
+    const auto& [f, orig] = src.lines[l - 1];
+    m.file = static_cast<size_t>(f) < src.files.size() ? src.files[f] : main;
+    m.line = orig;
+  };
+  // "error: text" / "warning: text" at the start of a driver message.
+  auto severityOf = [](std::string& text) {
+    for (auto [word, sev] : {std::pair{"error", Severity::error}, std::pair{"warning", Severity::warning}}) {
+      std::string w = word;
+      if (text.rfind(w, 0) == 0) {
+        size_t i = w.size();
+        while (i < text.size() && text[i] != ':' && text[i] != ' ') ++i;  // "error C0000"
+        if (i < text.size() && text[i] == ' ') {
+          size_t colon = text.find(':', i);
+          if (colon != std::string::npos && colon - i < 10) i = colon;
+        }
+        if (i < text.size() && text[i] == ':') {
+          text = trimLeft(text.substr(i + 1));
+          return sev;
+        }
+      }
+    }
+    return Severity::error;
+  };
+
+  std::vector<ShaderMessage> out;
+  for (const auto& line : splitLines(log)) {
+    if (trimLeft(line).empty()) continue;
+    ShaderMessage m;
+    std::string srcNo, ln, col;
+    Cursor c{line};
+    c.spaces();
+    size_t start = c.i;
+    if (c.number(srcNo) && c.lit(":") && c.number(ln) && c.lit("(") && c.number(col) && c.lit("):")) {
+      c.spaces();  // Mesa: 0:12(5): error: ...
+      locate(m, srcNo, ln);
+      m.text = c.rest();
+      m.severity = severityOf(m.text);
+    } else if ((c.i = start, c.number(srcNo) && c.lit("(") && c.number(ln) && c.lit(")"))) {
+      c.spaces();  // NVIDIA: 0(12) : error C0000: ...
+      if (c.lit(":")) {
+        c.spaces();
+        locate(m, srcNo, ln);
+        m.text = c.rest();
+        m.severity = severityOf(m.text);
+      } else {
+        m.file = main;
+        m.text = trimLeft(line);
+      }
+    } else {
+      c.i = start;  // glslang: ERROR: 0:12: ... (and WARNING:)
+      bool error = c.lit("ERROR:");
+      bool warning = !error && c.lit("WARNING:");
+      c.spaces();
+      size_t afterSeverity = c.i;
+      m.severity = warning ? Severity::warning : Severity::error;
+      if ((error || warning) && c.number(srcNo) && c.lit(":") && c.number(ln) && c.lit(":")) {
+        c.spaces();
+        locate(m, srcNo, ln);
+        m.text = c.rest();
+      } else if (error || warning) {
+        c.i = afterSeverity;
+        std::string rest = c.rest();
+        // glslang's summary ("1 compilation errors.  No code generated.") says nothing new.
+        if (rest.find("compilation errors") != std::string::npos || rest.find("compilation error") != std::string::npos)
+          continue;
+        m.file = main;
+        m.text = rest;
+      } else {
+        m.file = main;
+        m.text = trimLeft(line);
+        m.severity = severityOf(m.text);
+      }
+    }
+    while (!m.text.empty() && (m.text.back() == ' ' || m.text.back() == '\t')) m.text.pop_back();
+    if (m.text.rfind("'' :", 0) == 0) m.text = trimLeft(m.text.substr(4));  // glslang names no token
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
+std::string mapShaderLog(const std::string& log, const ShaderSource& src) {
+  // Same rewriting as before the move: a located line becomes `FILE:LINE: `
+  // followed by the driver's text after its location; other lines stay.
+  const std::string main = src.files.empty() ? std::string("<shader>") : src.files[0];
+  auto where = [&](const std::string& srcNo, const std::string& lineNo) {
+    size_t l = std::stoul(lineNo);
+    if (std::stoul(srcNo) != 0 || l == 0 || l > src.lines.size()) return main + ":" + lineNo;
+    const auto& [f, orig] = src.lines[l - 1];
+    return (static_cast<size_t>(f) < src.files.size() ? src.files[f] : main) + ":" + std::to_string(orig);
+  };
+  std::string out;
+  for (const auto& line : splitLines(log)) {
+    if (trimLeft(line).empty()) continue;
+    std::string mapped = line, srcNo, ln, col;
+    Cursor c{line};
+    c.spaces();
+    size_t start = c.i;
+    if (c.number(srcNo) && c.lit(":") && c.number(ln) && c.lit("(") && c.number(col) && c.lit("):")) {
+      c.spaces();  // Mesa: 0:12(5): error: ...
+      mapped = where(srcNo, ln) + ": " + c.rest();
+    } else if ((c.i = start, c.number(srcNo) && c.lit("(") && c.number(ln) && c.lit(")"))) {
+      c.spaces();  // NVIDIA: 0(12) : error C0000: ...
+      if (c.lit(":")) {
+        c.spaces();
+        mapped = where(srcNo, ln) + ": " + c.rest();
+      }
+    } else {
+      c.i = start;  // ERROR: 0:12: ... (and WARNING:)
+      std::string sev = c.lit("ERROR:") ? "error" : c.lit("WARNING:") ? "warning" : "";
+      c.spaces();
+      if (!sev.empty() && c.number(srcNo) && c.lit(":") && c.number(ln) && c.lit(":")) {
+        c.spaces();
+        mapped = where(srcNo, ln) + ": " + sev + ": " + c.rest();
+      }
+    }
+    if (!out.empty()) out += "\n";
+    out += mapped;
+  }
+  return out;
+}
+
+}  // namespace rgraph

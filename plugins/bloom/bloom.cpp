@@ -1,0 +1,250 @@
+// The bloom plugin: three pass types that a pipeline chains before tone
+// mapping (LearnOpenGL's bloom chapter, with a soft threshold):
+//
+//   bloom_bright     HDR image -> its bright part (threshold, knee), at the
+//                    size of the target the config binds (full or reduced)
+//   bloom_blur       separable 9-tap Gaussian, `iterations` times horizontal +
+//                    vertical, ping-ponging between its two targets
+//   bloom_composite  HDR + intensity * blurred -> a new HDR image (or added
+//                    into the HDR target it loads)
+//
+// Every intermediate texture is a slot the config binds to a transient
+// resource, so the graph sees their lifetimes and aliases them (e.g. with
+// G-buffer targets that are dead after lighting). The passes own framebuffers
+// only (the blur renders into each of its two targets in turn).
+#include <GL/glcorearb.h>
+
+#include "rgraph/error.h"
+#include "rgraph/gl/fullscreen.h"
+#include "rgraph/gl/objects.h"
+#include "rgraph/gl/shader_library.h"
+#include "rgraph/pass_decl.h"
+#include "rgraph/plugin.h"
+
+namespace {
+using namespace rgraph;
+
+const std::vector<Format> kHdrFormats = {Format::rgba16f, Format::rgba32f, Format::r11g11b10f};
+
+GLint loc(uint32_t program, const char* name) { return glGetUniformLocation(program, name); }
+
+// A framebuffer with one colour attachment, for passes that draw into
+// several targets in turn.
+gl::Framebuffer singleTargetFbo(uint32_t texture, const std::string& what) {
+  gl::Framebuffer fbo = gl::createFramebuffer();
+  glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, texture, 0);
+  glNamedFramebufferDrawBuffer(fbo.id(), GL_COLOR_ATTACHMENT0);
+  GLenum status = glCheckNamedFramebufferStatus(fbo.id(), GL_DRAW_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE)
+    throw RuntimeError(what + ": framebuffer incomplete (status 0x" + std::to_string(status) + ")");
+  return fbo;
+}
+
+// ------------------------------------------------------------ bloom_bright
+
+class BrightPass final : public PassInstance {
+ public:
+  explicit BrightPass(std::string frag) : frag_(std::move(frag)) {}
+  void setup(PassContext& ctx) override {
+    program_ = ctx.shaders().program("fullscreen.vert", frag_);
+    triangle_ = std::make_unique<gl::FullscreenTriangle>();
+  }
+  void execute(PassContext& ctx) override {
+    const ParamSet& p = ctx.params();
+    gl::bindPassFramebuffer(ctx);
+    glUseProgram(program_);
+    glProgramUniform1f(program_, loc(program_, "u_threshold"), static_cast<float>(p.getNumber("threshold", 1.0)));
+    glProgramUniform1f(program_, loc(program_, "u_knee"), static_cast<float>(p.getNumber("knee", 0.5)));
+    glProgramUniform1f(program_, loc(program_, "u_clamp"), static_cast<float>(p.getNumber("clamp", 64.0)));
+    glBindTextureUnit(0, ctx.texture("hdr"));
+    triangle_->draw();
+  }
+
+ private:
+  std::string frag_;
+  uint32_t program_ = 0;
+  std::unique_ptr<gl::FullscreenTriangle> triangle_;
+};
+
+// ------------------------------------------------------------ bloom_blur
+
+class BlurPass final : public PassInstance {
+ public:
+  explicit BlurPass(std::string frag) : frag_(std::move(frag)) {}
+  void setup(PassContext& ctx) override {
+    if (ctx.extent("dst") != ctx.extent("temp"))
+      throw RuntimeError("bloom_blur pass '" + ctx.passName() + "': 'dst' and 'temp' must have the same size");
+    program_ = ctx.shaders().program("fullscreen.vert", frag_);
+    triangle_ = std::make_unique<gl::FullscreenTriangle>();
+    dstFbo_ = singleTargetFbo(ctx.texture("dst"), "bloom_blur pass '" + ctx.passName() + "' target 'dst'");
+    tempFbo_ = singleTargetFbo(ctx.texture("temp"), "bloom_blur pass '" + ctx.passName() + "' target 'temp'");
+  }
+
+  void execute(PassContext& ctx) override {
+    const ParamSet& p = ctx.params();
+    const int iterations = static_cast<int>(p.getInt("iterations", 5));
+    const float radius = static_cast<float>(p.getNumber("radius", 1.0));
+    const Extent size = ctx.extent("dst");
+    glUseProgram(program_);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    glViewport(0, 0, static_cast<GLsizei>(size.width), static_cast<GLsizei>(size.height));
+    glProgramUniform2f(program_, loc(program_, "u_targetTexel"), 1.0f / static_cast<float>(size.width),
+                       1.0f / static_cast<float>(size.height));
+    // One blur direction from `source` into `fbo`; taps `radius` source texels apart.
+    auto direction = [&](uint32_t source, Extent sourceSize, const gl::Framebuffer& fbo, bool horizontal) {
+      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo.id());
+      glBindTextureUnit(0, source);
+      glProgramUniform2f(program_, loc(program_, "u_step"),
+                         horizontal ? radius / static_cast<float>(sourceSize.width) : 0.0f,
+                         horizontal ? 0.0f : radius / static_cast<float>(sourceSize.height));
+      triangle_->draw();
+    };
+    // src -> temp -> dst, then dst -> temp -> dst for every further iteration.
+    for (int i = 0; i < iterations; ++i) {
+      if (i == 0)
+        direction(ctx.texture("src"), ctx.extent("src"), tempFbo_, true);
+      else
+        direction(ctx.texture("dst"), size, tempFbo_, true);
+      direction(ctx.texture("temp"), size, dstFbo_, false);
+    }
+    glBindTextureUnit(0, 0);
+  }
+
+ private:
+  std::string frag_;
+  uint32_t program_ = 0;
+  std::unique_ptr<gl::FullscreenTriangle> triangle_;
+  gl::Framebuffer dstFbo_, tempFbo_;
+};
+
+// ------------------------------------------------------------ bloom_composite
+
+class CompositePass final : public PassInstance {
+ public:
+  explicit CompositePass(std::string frag) : frag_(std::move(frag)) {}
+  void setup(PassContext& ctx) override {
+    const bool loads = ctx.loads("color");
+    const bool hasHdr = ctx.bound("hdr");
+    if (loads == hasHdr)
+      throw RuntimeError("bloom_composite pass '" + ctx.passName() +
+                         "': bind either 'hdr' (writes hdr + bloom into 'color') or load 'color' (adds the bloom "
+                         "into it), not " + (loads ? "both" : "neither"));
+    if (hasHdr && ctx.extent("hdr") != ctx.framebufferExtent())
+      throw RuntimeError("bloom_composite pass '" + ctx.passName() + "': 'hdr' and 'color' must have the same size");
+    program_ = ctx.shaders().program("fullscreen.vert", frag_);
+    triangle_ = std::make_unique<gl::FullscreenTriangle>();
+  }
+  void execute(PassContext& ctx) override {
+    const bool hasHdr = ctx.bound("hdr");
+    gl::bindPassFramebuffer(ctx);
+    glDisable(GL_DEPTH_TEST);
+    if (hasHdr) {
+      glDisable(GL_BLEND);
+    } else {
+      glEnable(GL_BLEND);
+      glBlendEquation(GL_FUNC_ADD);
+      glBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);  // add rgb, keep alpha
+    }
+    glUseProgram(program_);
+    glProgramUniform1i(program_, loc(program_, "u_hasHdr"), hasHdr ? 1 : 0);
+    glProgramUniform1f(program_, loc(program_, "u_intensity"),
+                       static_cast<float>(ctx.params().getNumber("intensity", 1.0)));
+    glBindTextureUnit(0, hasHdr ? ctx.texture("hdr") : 0);
+    glBindTextureUnit(1, ctx.texture("bloom"));
+    triangle_->draw();
+    glDisable(GL_BLEND);
+  }
+
+ private:
+  std::string frag_;
+  uint32_t program_ = 0;
+  std::unique_ptr<gl::FullscreenTriangle> triangle_;
+};
+
+// ------------------------------------------------------------ registration
+
+ShaderProgramSpec fullscreenProgram(const std::string& frag, std::vector<SamplerSlot> samplers, bool attachments) {
+  ShaderProgramSpec s;
+  s.vert = "fullscreen.vert";
+  s.frag = frag;
+  s.samplers = std::move(samplers);
+  s.drawsToAttachments = attachments;
+  return s;
+}
+
+void registerBloom(PluginHost& host) {
+  using namespace rgraph::decl;
+  {
+    const std::string frag = host.shaderPath("bloom_bright.frag");
+    PassTypeDesc d;
+    d.name = "bloom_bright";
+    d.description = "Bloom 1/3: the bright part of an HDR image (soft threshold), at the bright target's size";
+    d.slots = {
+        slot("hdr", Access::sampled, true, SlotDecl::Load::never, "HDR image", kHdrFormats),
+        slot("bright", Access::color_attachment, true, SlotDecl::Load::never,
+             "its bright part (any size: a smaller target is a 2x2 box downsample at half size)", kHdrFormats),
+    };
+    d.params = {
+        ranged("threshold", ParamType::number, 1.0, 0.0, 1000.0, "brightness (max channel) where bloom starts"),
+        ranged("knee", ParamType::number, 0.5, 0.0, 100.0, "soft transition below the threshold (0: hard cut)"),
+        ranged("clamp", ParamType::number, 64.0, 0.0, 65504.0, "brightest value kept, against fireflies"),
+    };
+    d.shaders = {"fullscreen.vert", frag};
+    d.programs = [frag](const ParamSet&) {
+      return std::vector<ShaderProgramSpec>{fullscreenProgram(frag, {{"hdr", "u_hdr", 0}}, true)};
+    };
+    d.create = [frag] { return std::make_unique<BrightPass>(frag); };
+    host.addPassType(std::move(d));
+  }
+  {
+    const std::string frag = host.shaderPath("bloom_blur.frag");
+    PassTypeDesc d;
+    d.name = "bloom_blur";
+    d.description = "Bloom 2/3: separable Gaussian blur, ping-pong between 'temp' and 'dst' (LearnOpenGL)";
+    d.slots = {
+        slot("src", Access::sampled, true, SlotDecl::Load::never, "image to blur (e.g. bloom_bright's output)",
+             kHdrFormats),
+        slot("dst", Access::color_attachment, true, SlotDecl::Load::never, "the blurred image", kHdrFormats),
+        slot("temp", Access::color_attachment, true, SlotDecl::Load::never,
+             "scratch target of dst's size and format (the other half of the ping-pong)", kHdrFormats),
+    };
+    d.params = {
+        ranged("iterations", ParamType::integer, int64_t{5}, 1.0, 64.0,
+               "horizontal + vertical passes (the blur widens with their square root)"),
+        ranged("radius", ParamType::number, 1.0, 0.0, 16.0, "spacing of the 9 taps in source texels"),
+    };
+    d.shaders = {"fullscreen.vert", frag};
+    d.programs = [frag](const ParamSet&) {
+      // Draws into dst and temp in turn through framebuffers of its own.
+      return std::vector<ShaderProgramSpec>{fullscreenProgram(frag, {{"src", "u_image", 0}}, false)};
+    };
+    d.create = [frag] { return std::make_unique<BlurPass>(frag); };
+    host.addPassType(std::move(d));
+  }
+  {
+    const std::string frag = host.shaderPath("bloom_composite.frag");
+    PassTypeDesc d;
+    d.name = "bloom_composite";
+    d.description = "Bloom 3/3: HDR + intensity * bloom into a new HDR image (or added into a loaded 'color')";
+    d.slots = {
+        slot("hdr", Access::sampled, false, SlotDecl::Load::never,
+             "HDR image (same size as 'color'); leave unbound to add into a loaded 'color' instead", kHdrFormats),
+        slot("bloom", Access::sampled, true, SlotDecl::Load::never, "blurred bright image (any size)", kHdrFormats),
+        slot("color", Access::color_attachment, true, SlotDecl::Load::optional, "the HDR image with bloom",
+             kHdrFormats),
+    };
+    d.params = {ranged("intensity", ParamType::number, 1.0, 0.0, 100.0, "bloom strength")};
+    d.shaders = {"fullscreen.vert", frag};
+    d.programs = [frag](const ParamSet&) {
+      return std::vector<ShaderProgramSpec>{
+          fullscreenProgram(frag, {{"hdr", "u_hdr", 0, true}, {"bloom", "u_bloom", 1}}, true)};
+    };
+    d.create = [frag] { return std::make_unique<CompositePass>(frag); };
+    host.addPassType(std::move(d));
+  }
+}
+
+}  // namespace
+
+RGRAPH_PLUGIN("bloom", registerBloom)

@@ -1,0 +1,220 @@
+#include "render_util.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+
+#include <glm/gtc/packing.hpp>
+
+#include "rgraph/error.h"
+#include "rgraph/image.h"
+
+namespace rgraph::rtest {
+
+namespace {
+std::unique_ptr<GlContext>& contextSlot() {
+  static std::unique_ptr<GlContext> ctx;
+  return ctx;
+}
+
+// Destroys the context after the last test, before static destructors run.
+class GlEnvironment : public ::testing::Environment {
+ public:
+  void TearDown() override { contextSlot().reset(); }
+};
+[[maybe_unused]] ::testing::Environment* const gEnv = ::testing::AddGlobalTestEnvironment(new GlEnvironment);
+}  // namespace
+
+GlContext& glContext() {
+  auto& ctx = contextSlot();
+  if (!ctx) ctx = GlContext::create(ContextOptions{});
+  return *ctx;
+}
+
+void RenderTest::SetUp() {
+  try {
+    glContext();
+  } catch (const RuntimeError& e) {
+    FAIL() << "no headless GL context: " << e.what();
+  }
+  shaders = std::make_unique<ShaderLibrary>();
+  errorsAtStart = glContext().debugErrorCount();
+}
+
+void RenderTest::TearDown() {
+  shaders.reset();
+  if (contextSlot()) {
+    EXPECT_EQ(glContext().debugErrorCount(), errorsAtStart) << "GL debug errors, last: " << glContext().lastDebugError();
+  }
+}
+
+std::string repoPath(const std::string& rel) { return std::string(RGRAPH_SOURCE_DIR) + "/" + rel; }
+std::string testPipeline(const std::string& name) {
+  return std::string(RGRAPH_TEST_DATA_DIR) + "/render/pipelines/" + name;
+}
+std::string assetPath(const std::string& rel) { return std::string(RGRAPH_ASSETS_DIR) + "/" + rel; }
+
+PipelineConfig loadPipeline(const std::string& path) {
+  Diagnostics diags;
+  ConfigDocument doc = ConfigDocument::parseFile(path, diags);
+  PipelineConfig cfg;
+  if (doc.ok()) cfg = doc.build(PassRegistry::builtins(), diags);
+  if (!doc.ok() || hasErrors(diags)) {
+    std::string msg = "pipeline " + path + " has errors:";
+    for (const auto& d : diags) msg += "\n  " + formatDiagnostic(d);
+    throw RuntimeError(msg);
+  }
+  return cfg;
+}
+
+void setParam(PipelineConfig& cfg, const std::string& pass, const std::string& key, ParamValue value) {
+  for (size_t i = 0; i < cfg.graph.passes.size(); ++i) {
+    if (cfg.graph.passes[i].name == pass) {
+      cfg.params[i].set(key, std::move(value));
+      return;
+    }
+  }
+  throw RuntimeError("setParam: no pass named '" + pass + "' in " + cfg.file);
+}
+
+Image render(const PipelineConfig& cfg, const Scene& scene, Extent size, ShaderLibrary& shaders,
+             const std::function<void(Executor&)>& inspect) {
+  Executor exec(cfg, PassRegistry::builtins(), shaders, &scene);
+  exec.resize(size);
+  exec.renderFrame();
+  Image img;
+  img.extent = exec.outputExtent();
+  img.rgba = exec.readOutputRGBA8();
+  if (inspect) inspect(exec);
+  return img;
+}
+
+std::string pixelText(glm::ivec3 c) {
+  return "(" + std::to_string(c.r) + "," + std::to_string(c.g) + "," + std::to_string(c.b) + ")";
+}
+
+std::string ImageDiff::describe() const {
+  if (worstX < 0) return "max abs diff 0";
+  return "max abs diff " + std::to_string(maxDiff) + "/255 at pixel (" + std::to_string(worstX) + "," +
+         std::to_string(worstRow) + "): " + pixelText(worstA) + " vs " + pixelText(worstB) + "; " +
+         std::to_string(over) + " pixels over the tolerance";
+}
+
+ImageDiff compareImages(const Image& a, const Image& b, int tolerance) {
+  ImageDiff d;
+  if (a.extent != b.extent || a.rgba.size() != b.rgba.size()) {
+    d.maxDiff = 255;
+    d.over = static_cast<size_t>(-1);
+    return d;
+  }
+  for (int row = 0; row < static_cast<int>(a.extent.height); ++row) {
+    for (int x = 0; x < static_cast<int>(a.extent.width); ++x) {
+      const glm::ivec3 ca = a.rgb(x, row), cb = b.rgb(x, row);
+      const glm::ivec3 delta = glm::abs(ca - cb);
+      const int m = std::max({delta.r, delta.g, delta.b});
+      if (m > tolerance) ++d.over;
+      if (m > d.maxDiff) {
+        d.maxDiff = m;
+        d.worstX = x;
+        d.worstRow = row;
+        d.worstA = ca;
+        d.worstB = cb;
+      }
+    }
+  }
+  return d;
+}
+
+double coverage(const Image& img, glm::ivec3 background, int tolerance) {
+  size_t n = 0;
+  const size_t total = static_cast<size_t>(img.extent.width) * img.extent.height;
+  for (int row = 0; row < static_cast<int>(img.extent.height); ++row)
+    for (int x = 0; x < static_cast<int>(img.extent.width); ++x) {
+      const glm::ivec3 d = glm::abs(img.rgb(x, row) - background);
+      if (std::max({d.r, d.g, d.b}) > tolerance) ++n;
+    }
+  return total ? static_cast<double>(n) / static_cast<double>(total) : 0.0;
+}
+
+std::string saveImage(const Image& img, const std::string& name) {
+  const char* env = std::getenv("RGRAPH_TEST_OUTPUT");
+  const std::filesystem::path dir =
+      env && *env ? std::filesystem::path(env) : std::filesystem::temp_directory_path() / "rgraph-render-tests";
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  const std::string path = (dir / (name + ".png")).string();
+  try {
+    writePng(path, img.extent.width, img.extent.height, img.rgba);
+  } catch (const RuntimeError&) {
+    return "(could not write " + path + ")";
+  }
+  return path;
+}
+
+// ---------------------------------------------------------------- camera maths
+
+namespace {
+glm::dmat4 viewProj(const Camera& cam, Extent size) {
+  const double aspect = static_cast<double>(size.width) / static_cast<double>(size.height);
+  return glm::dmat4(cam.projection(static_cast<float>(aspect))) * glm::dmat4(cam.view());
+}
+}  // namespace
+
+Ray pixelRay(const Camera& cam, Extent size, int x, int row) {
+  const glm::dmat4 inv = glm::inverse(viewProj(cam, size));
+  const double ndcX = (x + 0.5) / size.width * 2.0 - 1.0;
+  const double ndcY = 1.0 - (row + 0.5) / size.height * 2.0;
+  glm::dvec4 nearP = inv * glm::dvec4(ndcX, ndcY, -1.0, 1.0);
+  glm::dvec4 farP = inv * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
+  nearP /= nearP.w;
+  farP /= farP.w;
+  Ray r;
+  r.origin = glm::dvec3(cam.position);
+  r.dir = glm::normalize(glm::dvec3(farP) - glm::dvec3(nearP));
+  return r;
+}
+
+std::optional<ScreenPoint> project(const Camera& cam, Extent size, glm::dvec3 world) {
+  const glm::dvec4 clip = viewProj(cam, size) * glm::dvec4(world, 1.0);
+  if (clip.w <= 0.0) return std::nullopt;
+  const glm::dvec3 ndc = glm::dvec3(clip) / clip.w;
+  ScreenPoint p;
+  p.x = (ndc.x * 0.5 + 0.5) * size.width;
+  p.row = (0.5 - ndc.y * 0.5) * size.height;
+  p.depth = glm::dot(world - glm::dvec3(cam.position), glm::dvec3(cam.forward()));
+  return p;
+}
+
+std::optional<double> hitBox(const Ray& r, glm::dvec3 bmin, glm::dvec3 bmax) {
+  double t0 = 0.0, t1 = 1e300;
+  for (int a = 0; a < 3; ++a) {
+    if (std::abs(r.dir[a]) < 1e-300) {
+      if (r.origin[a] < bmin[a] || r.origin[a] > bmax[a]) return std::nullopt;
+      continue;
+    }
+    double ta = (bmin[a] - r.origin[a]) / r.dir[a], tb = (bmax[a] - r.origin[a]) / r.dir[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return std::nullopt;
+  }
+  return t0 > 0.0 ? std::optional<double>(t0) : std::nullopt;
+}
+
+std::optional<double> hitSphere(const Ray& r, glm::dvec3 centre, double radius) {
+  const glm::dvec3 oc = r.origin - centre;
+  const double b = glm::dot(oc, r.dir);
+  const double c = glm::dot(oc, oc) - radius * radius;
+  const double disc = b * b - c;
+  if (disc < 0.0) return std::nullopt;
+  const double s = std::sqrt(disc);
+  if (-b - s > 0.0) return -b - s;
+  if (-b + s > 0.0) return -b + s;
+  return std::nullopt;
+}
+
+float toHalf(float v) { return glm::unpackHalf1x16(glm::packHalf1x16(v)); }
+
+}  // namespace rgraph::rtest

@@ -1,0 +1,4 @@
+// Included by include_error.frag.
+float helper() {
+  return missing_value;
+}

@@ -1,0 +1,206 @@
+// tiled_deferred against the fullscreen deferred_lighting pass: the same
+// G-buffer and lighting parameters must give the same HDR image (only the
+// order in which lights are summed differs), whatever the layout, with partial
+// tiles at the image edges, with more lights in a tile than its list holds,
+// with no cut-off, when adding to an ambient pass's output, and with no lights.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "rgraph/adapt.h"
+#include "rgraph/config.h"
+#include "rgraph/error.h"
+#include "rgraph/gl/context.h"
+#include "rgraph/gl/executor.h"
+#include "rgraph/gl/shader_library.h"
+#include "rgraph/registry.h"
+#include "rgraph/scene.h"
+
+namespace {
+using namespace rgraph;
+using nlohmann::json;
+
+std::unique_ptr<GlContext>& contextSlot() {
+  static std::unique_ptr<GlContext> ctx;
+  return ctx;
+}
+class GlEnvironment : public ::testing::Environment {
+ public:
+  void TearDown() override { contextSlot().reset(); }
+};
+[[maybe_unused]] ::testing::Environment* const gEnv = ::testing::AddGlobalTestEnvironment(new GlEnvironment);
+
+GlContext& context() {
+  if (!contextSlot()) contextSlot() = GlContext::create(ContextOptions{});
+  return *contextSlot();
+}
+
+struct Options {
+  std::string layout = "pbr";
+  double threshold = 5.0 / 256.0;
+  std::string lighting = "tiled";  // tiled | fullscreen | ambient+tiled
+  int maxTileLights = 1024;
+};
+
+// A G-buffer of the layout, lit by one method, into an rgba32f HDR target.
+PipelineConfig pipeline(const Options& o) {
+  const bool compact = o.layout == "compact";
+  json res = {{"g_normal", {{"format", compact ? "rg16f" : "rgba16f"}, {"size", "output"}}},
+              {"g_albedo", {{"format", "rgba8"}, {"size", "output"}}},
+              {"g_depth", {{"format", "depth32f"}, {"size", "output"}}},
+              {"hdr", {{"format", "rgba32f"}, {"size", "output"}, {"clear", {0.1, 0.2, 0.3, 1.0}}}},
+              {"output", {{"format", "rgba8"}, {"size", "output"}}}};
+  json gOut = {{"normal", "g_normal"}, {"albedo", "g_albedo"}, {"depth", "g_depth"}};
+  json gIn = {{"normal", "g_normal"}, {"albedo", "g_albedo"}};
+  if (compact) {
+    res["g_material"] = {{"format", "rg8"}, {"size", "output"}};
+    gIn["depth"] = "g_depth";
+  } else {
+    res["g_position"] = {{"format", "rgba32f"}, {"size", "output"}};
+    res["g_material"] = {{"format", "rgba16f"}, {"size", "output"}};
+    gOut["position"] = "g_position";
+    gIn["position"] = "g_position";
+  }
+  gOut["material"] = "g_material";
+  gIn["material"] = "g_material";
+  json params = {{"layout", o.layout}, {"model", "blinn_phong"}, {"attenuation", "classic"}, {"threshold", o.threshold}};
+  json passes = json::array();
+  passes.push_back({{"name", "gbuffer"}, {"type", "geometry"}, {"params", {{"layout", o.layout}}}, {"outputs", gOut}});
+  std::string lit = "hdr";
+  if (o.lighting == "fullscreen") {
+    passes.push_back({{"name", "lighting"}, {"type", "deferred_lighting"}, {"params", params}, {"inputs", gIn},
+                      {"outputs", {{"color", "hdr"}}}});
+  } else if (o.lighting == "tiled") {
+    json p = params;
+    p["max_tile_lights"] = o.maxTileLights;
+    passes.push_back({{"name", "lighting"}, {"type", "tiled_deferred"}, {"params", p}, {"inputs", gIn},
+                      {"outputs", {{"color", "hdr"}}}});
+  } else {
+    json ambient = params;
+    ambient["point_lights"] = false;
+    passes.push_back({{"name", "ambient"}, {"type", "deferred_lighting"}, {"params", ambient}, {"inputs", gIn},
+                      {"outputs", {{"color", "hdr"}}}});
+    json p = params;
+    p["ambient_and_sun"] = false;
+    json in = gIn;
+    in["color"] = "hdr";
+    passes.push_back({{"name", "lighting"}, {"type", "tiled_deferred"}, {"params", p}, {"inputs", in},
+                      {"outputs", {{"color", "hdr_lit"}}}});
+    lit = "hdr_lit";
+  }
+  passes.push_back({{"name", "tonemap"}, {"type", "tonemap"}, {"params", {{"operator", "none"}, {"gamma", 1.0}}},
+                    {"inputs", {{"hdr", lit}}}, {"outputs", {{"output", "output"}}}});
+  const json doc = {{"version", 1}, {"resources", res}, {"passes", passes}, {"output", "output"}};
+  Diagnostics diags;
+  ConfigDocument d = ConfigDocument::parseText(doc.dump(), "<tiled test>", diags);
+  PipelineConfig cfg;
+  if (d.ok()) cfg = d.build(PassRegistry::builtins(), diags);
+  std::string msg;
+  for (const auto& diag : diags) msg += formatDiagnostic(diag) + "\n";
+  if (!d.ok() || hasErrors(diags)) throw RuntimeError("test pipeline has errors:\n" + msg);
+  return cfg;
+}
+
+std::vector<float> renderHdr(const Options& o, const Scene& scene, Extent size) {
+  ShaderLibrary shaders;
+  PipelineConfig cfg = pipeline(o);
+  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
+  Executor exec(cfg, PassRegistry::builtins(), shaders, &scene);
+  exec.resize(size);
+  exec.renderFrame();
+  return exec.readTextureRGBA32F(o.lighting == "ambient+tiled" ? "hdr_lit" : "hdr");
+}
+
+struct Diff {
+  double worst = 0;  // relative to max(1, |reference|)
+  size_t at = 0;
+  size_t nonFinite = 0;
+  double sum = 0;  // of the reference's RGB (the image is not black)
+};
+
+Diff compare(const std::vector<float>& a, const std::vector<float>& ref) {
+  Diff d;
+  EXPECT_EQ(a.size(), ref.size());
+  for (size_t i = 0; i < std::min(a.size(), ref.size()); ++i) {
+    if (i % 4 == 3) continue;
+    if (!std::isfinite(a[i])) ++d.nonFinite;
+    d.sum += ref[i];
+    const double e = std::abs(double(a[i]) - ref[i]) / std::max(1.0, std::abs(double(ref[i])));
+    if (e > d.worst) d.worst = e, d.at = i / 4;
+  }
+  return d;
+}
+
+class TiledDeferred : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    try {
+      context();
+    } catch (const RuntimeError& e) {
+      GTEST_SKIP() << "no headless GL context: " << e.what();
+    }
+    errors_ = context().debugErrorCount();
+  }
+  void TearDown() override {
+    if (contextSlot()) {
+      EXPECT_EQ(context().debugErrorCount(), errors_) << context().lastDebugError();
+    }
+  }
+  void expectSame(const Options& tiled, const Scene& scene, Extent size, double tolerance = 1e-4) {
+    Options full = tiled;
+    full.lighting = "fullscreen";
+    const std::vector<float> ref = renderHdr(full, scene, size);
+    const Diff d = compare(renderHdr(tiled, scene, size), ref);
+    EXPECT_EQ(d.nonFinite, 0u);
+    EXPECT_GT(d.sum, 1.0) << "the reference image is black";
+    EXPECT_LE(d.worst, tolerance) << "at pixel " << d.at % size.width << "," << d.at / size.width << " (row from the bottom)";
+  }
+  uint64_t errors_ = 0;
+};
+
+TEST_F(TiledDeferred, MatchesFullscreenWithPartialTiles) {
+  const Scene scene = makeManyLightsScene(64);
+  expectSame(Options{}, scene, {150, 90});  // 10 x 6 tiles, the last column and row partial
+}
+
+TEST_F(TiledDeferred, MatchesFullscreenWithTheCompactLayout) {
+  Options o;
+  o.layout = "compact";
+  expectSame(o, makeManyLightsScene(64), {128, 72});
+}
+
+TEST_F(TiledDeferred, MoreLightsThanTheTileListHoldsStillShadesThemAll) {
+  Options o;
+  o.maxTileLights = 16;  // ~16 volumes overlap each point: many tiles overflow
+  expectSame(o, makeManyLightsScene(256), {96, 64});
+}
+
+TEST_F(TiledDeferred, NoCutOffKeepsEveryLight) {
+  Options o;
+  o.threshold = 0.0;
+  expectSame(o, makeManyLightsScene(32), {96, 64});
+}
+
+TEST_F(TiledDeferred, AddsToALoadedTarget) {
+  Options o;
+  o.lighting = "ambient+tiled";
+  expectSame(o, makeManyLightsScene(64), {96, 64});
+}
+
+TEST_F(TiledDeferred, ZeroLightsGivesAmbientAndSun) {
+  Scene scene = makeManyLightsScene(0);
+  scene.directionalLights.push_back(DirectionalLight{glm::normalize(glm::vec3(-0.3f, -1.0f, -0.2f)), glm::vec3(1.0f), 1.0f});
+  expectSame(Options{}, scene, {64, 64});
+}
+
+TEST_F(TiledDeferred, LearnOpenGLSceneCameraInsideVolumes) {
+  // The camera at (0,0,5) sits inside several of the 32 lights' volumes.
+  expectSame(Options{}, makeLearnOpenGLScene(), {128, 96});
+}
+
+}  // namespace
