@@ -1,28 +1,11 @@
 #include "gl_test_util.h"
 
 #include "rgraph/error.h"
+#include "support/test_support.h"
 
 namespace rgraph::test {
 
-namespace {
-std::unique_ptr<GlContext>& contextSlot() {
-  static std::unique_ptr<GlContext> ctx;
-  return ctx;
-}
-
-// Destroys the context after the last test, before static destructors run.
-class GlEnvironment : public ::testing::Environment {
- public:
-  void TearDown() override { contextSlot().reset(); }
-};
-[[maybe_unused]] ::testing::Environment* const gEnv = ::testing::AddGlobalTestEnvironment(new GlEnvironment);
-}  // namespace
-
-GlContext& glContext() {
-  auto& ctx = contextSlot();
-  if (!ctx) ctx = GlContext::create(ContextOptions{});
-  return *ctx;
-}
+GlContext& glContext() { return testsupport::sharedGlContext(); }
 
 void GlTest::SetUp() {
   try {
@@ -37,7 +20,7 @@ void GlTest::SetUp() {
 
 void GlTest::TearDown() {
   shaders.reset();
-  if (contextSlot()) {
+  if (testsupport::hasSharedGlContext()) {
     EXPECT_EQ(glContext().debugErrorCount(), errorsAtStart) << "GL debug errors, last: " << glContext().lastDebugError();
   }
 }

@@ -9,29 +9,12 @@
 #include <glm/gtc/packing.hpp>
 
 #include "rgraph/error.h"
+#include "support/test_support.h"
 #include "rgraph/image.h"
 
 namespace rgraph::rtest {
 
-namespace {
-std::unique_ptr<GlContext>& contextSlot() {
-  static std::unique_ptr<GlContext> ctx;
-  return ctx;
-}
-
-// Destroys the context after the last test, before static destructors run.
-class GlEnvironment : public ::testing::Environment {
- public:
-  void TearDown() override { contextSlot().reset(); }
-};
-[[maybe_unused]] ::testing::Environment* const gEnv = ::testing::AddGlobalTestEnvironment(new GlEnvironment);
-}  // namespace
-
-GlContext& glContext() {
-  auto& ctx = contextSlot();
-  if (!ctx) ctx = GlContext::create(ContextOptions{});
-  return *ctx;
-}
+GlContext& glContext() { return testsupport::sharedGlContext(); }
 
 void RenderTest::SetUp() {
   try {
@@ -45,7 +28,7 @@ void RenderTest::SetUp() {
 
 void RenderTest::TearDown() {
   shaders.reset();
-  if (contextSlot()) {
+  if (testsupport::hasSharedGlContext()) {
     EXPECT_EQ(glContext().debugErrorCount(), errorsAtStart) << "GL debug errors, last: " << glContext().lastDebugError();
   }
 }
@@ -56,18 +39,7 @@ std::string testPipeline(const std::string& name) {
 }
 std::string assetPath(const std::string& rel) { return std::string(RGRAPH_ASSETS_DIR) + "/" + rel; }
 
-PipelineConfig loadPipeline(const std::string& path) {
-  Diagnostics diags;
-  ConfigDocument doc = ConfigDocument::parseFile(path, diags);
-  PipelineConfig cfg;
-  if (doc.ok()) cfg = doc.build(PassRegistry::builtins(), diags);
-  if (!doc.ok() || hasErrors(diags)) {
-    std::string msg = "pipeline " + path + " has errors:";
-    for (const auto& d : diags) msg += "\n  " + formatDiagnostic(d);
-    throw RuntimeError(msg);
-  }
-  return cfg;
-}
+PipelineConfig loadPipeline(const std::string& path) { return testsupport::loadPipelineOrThrow(path); }
 
 void setParam(PipelineConfig& cfg, const std::string& pass, const std::string& key, ParamValue value) {
   for (size_t i = 0; i < cfg.graph.passes.size(); ++i) {

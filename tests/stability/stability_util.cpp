@@ -6,42 +6,28 @@
 #include <limits>
 
 #include "rgraph/error.h"
+#include "support/test_support.h"
 #include "rgraph/image.h"
 
 namespace rgraph::stab {
 
 namespace {
-std::unique_ptr<GlContext>& contextSlot() {
-  static std::unique_ptr<GlContext> ctx;
-  return ctx;
-}
 std::unique_ptr<ShaderLibrary>& shadersSlot() {
   static std::unique_ptr<ShaderLibrary> lib;
   return lib;
 }
-
-// Destroys the shader library, then the context, after the last test and
-// before static destructors run.
-class GlEnvironment : public ::testing::Environment {
- public:
-  void TearDown() override {
-    shadersSlot().reset();
-    contextSlot().reset();
-  }
-};
-[[maybe_unused]] ::testing::Environment* const gEnv = ::testing::AddGlobalTestEnvironment(new GlEnvironment);
 }  // namespace
 
-GlContext& glContext() {
-  auto& ctx = contextSlot();
-  if (!ctx) ctx = GlContext::create(ContextOptions{});
-  return *ctx;
-}
+GlContext& glContext() { return testsupport::sharedGlContext(); }
 
 ShaderLibrary& sharedShaders() {
   glContext();
   auto& lib = shadersSlot();
-  if (!lib) lib = std::make_unique<ShaderLibrary>();
+  if (!lib) {
+    lib = std::make_unique<ShaderLibrary>();
+    // Its programs must go before the context does.
+    testsupport::destroyBeforeContext([] { shadersSlot().reset(); });
+  }
   return *lib;
 }
 
@@ -55,7 +41,7 @@ void Stability::SetUp() {
 }
 
 void Stability::TearDown() {
-  if (contextSlot()) {
+  if (testsupport::hasSharedGlContext()) {
     EXPECT_EQ(glContext().debugErrorCount(), errorsAtStart) << "GL debug errors, last: " << glContext().lastDebugError();
   }
 }
@@ -63,31 +49,12 @@ void Stability::TearDown() {
 // ---------------------------------------------------------------- pipelines
 
 PipelineConfig pipelineFromJson(const nlohmann::json& doc, const std::string& name) {
-  Diagnostics diags;
-  ConfigDocument d = ConfigDocument::parseText(doc.dump(2), name, diags);
-  PipelineConfig cfg;
-  if (d.ok()) cfg = d.build(PassRegistry::builtins(), diags);
-  if (!d.ok() || hasErrors(diags)) {
-    std::string msg = "pipeline " + name + " has errors:";
-    for (const auto& diag : diags) msg += "\n  " + formatDiagnostic(diag);
-    msg += "\n" + doc.dump(2);
-    throw RuntimeError(msg);
-  }
-  return cfg;
+  const std::string text = doc.dump(2);
+  return testsupport::buildPipelineOrThrow(text, name, text);
 }
 
 PipelineConfig repoPipeline(const std::string& name) {
-  const std::string path = std::string(RGRAPH_SOURCE_DIR) + "/pipelines/" + name;
-  Diagnostics diags;
-  ConfigDocument d = ConfigDocument::parseFile(path, diags);
-  PipelineConfig cfg;
-  if (d.ok()) cfg = d.build(PassRegistry::builtins(), diags);
-  if (!d.ok() || hasErrors(diags)) {
-    std::string msg = "pipeline " + path + " has errors:";
-    for (const auto& diag : diags) msg += "\n  " + formatDiagnostic(diag);
-    throw RuntimeError(msg);
-  }
-  return cfg;
+  return testsupport::loadPipelineOrThrow(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/" + name);
 }
 
 void setParam(PipelineConfig& cfg, const std::string& pass, const std::string& key, ParamValue value) {

@@ -20,25 +20,13 @@
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "support/test_support.h"
 
 namespace {
 using namespace rgraph;
 using nlohmann::json;
 
-std::unique_ptr<GlContext>& contextSlot() {
-  static std::unique_ptr<GlContext> ctx;
-  return ctx;
-}
-class GlEnvironment : public ::testing::Environment {
- public:
-  void TearDown() override { contextSlot().reset(); }
-};
-[[maybe_unused]] ::testing::Environment* const gEnv = ::testing::AddGlobalTestEnvironment(new GlEnvironment);
-
-GlContext& context() {
-  if (!contextSlot()) contextSlot() = GlContext::create(ContextOptions{});
-  return *contextSlot();
-}
+GlContext& context() { return testsupport::sharedGlContext(); }
 
 struct Options {
   std::string layout = "pbr";
@@ -142,12 +130,12 @@ class TiledDeferred : public ::testing::Test {
     try {
       context();
     } catch (const RuntimeError& e) {
-      GTEST_SKIP() << "no headless GL context: " << e.what();
+      FAIL() << "no headless GL context: " << e.what();
     }
     errors_ = context().debugErrorCount();
   }
   void TearDown() override {
-    if (contextSlot()) {
+    if (testsupport::hasSharedGlContext()) {
       EXPECT_EQ(context().debugErrorCount(), errors_) << context().lastDebugError();
     }
   }
