@@ -70,13 +70,7 @@ PassTypeDesc makeDeferredLightingPass() {
   d.params.push_back(param("radius_test", ParamType::boolean, false,
                            "skip a light's maths beyond its radius with a branch (LearnOpenGL's loop)"));
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
-  d.adapt = [](const SceneFeatures& f, PassAdaptation& a) {
-    lighting::adaptGBuffer(f, a);
-    if (!f.pointLights && a.params.getBool("point_lights", true)) {
-      a.params.set("point_lights", false);
-      a.notes.push_back("no point lights: ambient and directional light only");
-    }
-  };
+  d.adapt = lighting::adaptPointLightShading;
   d.programs = [](const ParamSet& p) {
     ShaderProgramSpec s;
     s.vert = "fullscreen.vert";

@@ -116,13 +116,7 @@ PassTypeDesc makeTiledDeferredPass() {
                             "lights one tile's list holds (shared memory, capped by the GL limit); a tile with "
                             "more shades every light"));
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
-  d.adapt = [](const SceneFeatures& f, PassAdaptation& a) {
-    lighting::adaptGBuffer(f, a);
-    if (!f.pointLights && a.params.getBool("point_lights", true)) {
-      a.params.set("point_lights", false);
-      a.notes.push_back("no point lights: ambient and directional light only");
-    }
-  };
+  d.adapt = lighting::adaptPointLightShading;
   d.programs = [](const ParamSet& p) {
     ShaderProgramSpec s;
     s.comp = "tiled_deferred.comp";

@@ -71,6 +71,14 @@ void adaptGBuffer(const SceneFeatures& f, PassAdaptation& a) {
                     std::to_string(f.metallic) + ", roughness " + std::to_string(f.roughness) + ")");
 }
 
+void adaptPointLightShading(const SceneFeatures& f, PassAdaptation& a) {
+  adaptGBuffer(f, a);
+  if (!f.pointLights && a.params.getBool("point_lights", true)) {
+    a.params.set("point_lights", false);
+    a.notes.push_back("no point lights: ambient and directional light only");
+  }
+}
+
 float threshold(const ParamSet& p) { return static_cast<float>(p.getNumber("threshold", 5.0 / 256.0)); }
 
 namespace {

@@ -28,6 +28,10 @@ std::vector<std::string> gbufferDefines(const ParamSet& params);
 std::vector<ParamDecl> constantMaterialParams();
 // The adapt hook of every pass that writes or reads the G-buffer material target.
 void adaptGBuffer(const SceneFeatures& features, PassAdaptation& adaptation);
+// adaptGBuffer, and without point lights in the scene, point_lights = false:
+// the adapt hook of the passes that shade point lights from the G-buffer in one
+// go (deferred_lighting, tiled_deferred).
+void adaptPointLightShading(const SceneFeatures& features, PassAdaptation& adaptation);
 float threshold(const ParamSet& params);
 
 // Binds the sampled G-buffer slots (position, normal, albedo, material, depth)
