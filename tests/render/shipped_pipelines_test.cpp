@@ -1,5 +1,6 @@
 // Shipped pipelines. The LearnOpenGL-style ones (pipelines/*.json: the same
-// Blinn-Phong lighting, 5/256 cut-off, light boxes and tone mapping) render
+// Blinn-Phong lighting, 5/256 cut-off (none in deferred-blinn-phong.json, as
+// in the chapter's 8.1 program), light boxes and tone mapping) render
 // the LearnOpenGL scene alike, whatever their method (fullscreen loop, light
 // volumes, forward) or G-buffer layout, within what their formats allow.
 #include <algorithm>
@@ -39,7 +40,7 @@ TEST_F(ShippedPipelines, LearnOpenGLFamilyAgreesWithForward) {
   // except on cut-off boundaries (at most 0.1% of the pixels, at most 6/255).
   const size_t maxOver = static_cast<size_t>(kSize.width) * kSize.height / 1000;
   for (const char* pipeline :
-       {"default.json", "deferred-light-volumes.json", "deferred-blinn-phong.json", "deferred-compact.json"}) {
+       {"default.json", "deferred-light-volumes.json", "deferred-compact.json"}) {
     SCOPED_TRACE(pipeline);
     const Image img = render(loadPipeline(repoPath(std::string("pipelines/") + pipeline)), scene, kSize, *shaders);
     const ImageDiff d = compareImages(reference, img, 2);
@@ -47,6 +48,33 @@ TEST_F(ShippedPipelines, LearnOpenGLFamilyAgreesWithForward) {
     EXPECT_LE(d.over, maxOver) << d.describe() << "; " << saveImage(img, std::string("shipped-") + pipeline);
     EXPECT_LE(d.maxDiff, 6) << d.describe() << "; " << saveImage(img, std::string("shipped-") + pipeline);
   }
+}
+
+// deferred-blinn-phong.json is LearnOpenGL 8.1: every light at every pixel
+// with no cut-off. So it agrees with forward shading at threshold 0 (the
+// same maths, no radius anywhere), and the chapter-8.2 radius would change
+// the picture far from the lights: a pipeline that cut its lights fails here.
+TEST_F(ShippedPipelines, BlinnPhongPipelineShadesEveryLightEverywhereLikeChapter81) {
+  const Scene scene = makeLearnOpenGLScene();
+  PipelineConfig forward = loadPipeline(repoPath("pipelines/forward.json"));
+  setParam(forward, "forward_lit", "threshold", 0.0);
+  const Image reference = render(forward, scene, kSize, *shaders);
+  EXPECT_GT(coverage(reference, {0, 0, 0}), 0.2);
+
+  const PipelineConfig shipped = loadPipeline(repoPath("pipelines/deferred-blinn-phong.json"));
+  const Image img = render(shipped, scene, kSize, *shaders);
+  // No cut-off ring: only half-float G-buffer positions and normals differ
+  // from forward's fp32 varyings, a smooth error of at most 1-2/255.
+  const ImageDiff d = compareImages(reference, img, 2);
+  std::printf("[ measure  ] deferred-blinn-phong.json vs forward.json at threshold 0: %s\n", d.describe().c_str());
+  EXPECT_LE(d.maxDiff, 2) << d.describe() << "; " << saveImage(img, "shipped-deferred-blinn-phong");
+
+  // The same pipeline with the 8.2 radius (5/256) is visibly different.
+  PipelineConfig cut = shipped;
+  setParam(cut, "lighting", "threshold", 5.0 / 256.0);
+  const ImageDiff dc = compareImages(reference, render(cut, scene, kSize, *shaders), 2);
+  std::printf("[ measure  ] deferred-blinn-phong.json cut at 5/256 vs no cut-off: %s\n", dc.describe().c_str());
+  EXPECT_GE(dc.maxDiff, 20) << dc.describe();
 }
 
 // Every shipped pipeline (built-in pass types only) renders the procedural
