@@ -30,6 +30,14 @@ ParamDecl layoutParam() {
 }
 
 std::vector<std::string> defines(const ParamSet& p) {
+  // The smooth falloff reaches zero at each light's radius, and threshold 0
+  // ("no cut-off") leaves the lights without one: the shader would light
+  // nothing. Refused here, where validate (through the pass's programs) and
+  // setup at render time both build the defines.
+  if (p.getString("attenuation", "classic") == "smooth" && p.has("threshold") && !(threshold(p) > 0.0f))
+    throw RuntimeError(
+        "attenuation 'smooth' falls to zero at each light's radius, and threshold 0 (no cut-off) gives the lights "
+        "none: set threshold above 0 (5/256 = 0.01953125 is LearnOpenGL's) or use attenuation 'classic'");
   return {p.getString("model", "blinn_phong") == "cook_torrance" ? "LIGHTING_COOK_TORRANCE" : "LIGHTING_BLINN_PHONG",
           p.getString("attenuation", "classic") == "smooth" ? "ATTENUATION_SMOOTH" : "ATTENUATION_CLASSIC"};
 }
