@@ -10,6 +10,7 @@ PACKAGES=(
   libspdlog-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libstb-dev libcli11-dev
   xvfb xauth
+  clang-14 libclang-rt-14-dev
 )
 
 missing=()

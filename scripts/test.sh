@@ -2,11 +2,13 @@
 # Install dependencies, build, and run the whole test suite.
 #   scripts/test.sh              release-ish build in ./build
 #   scripts/test.sh --sanitize   AddressSanitizer + UBSan build in ./build-asan
+#   scripts/test.sh --fuzz       clang-14 libFuzzer build in ./build-fuzz, fuzz smoke runs only (docs/fuzzing.md)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 build_dir=build
 cmake_args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo)
+ctest_args=()
 if [[ "${1:-}" == "--sanitize" ]]; then
   build_dir=build-asan
   cmake_args=(-DCMAKE_BUILD_TYPE=Debug -DRGRAPH_SANITIZE=ON -DRGRAPH_BUILD_BENCHMARKS=OFF)
@@ -14,9 +16,15 @@ if [[ "${1:-}" == "--sanitize" ]]; then
   # checked on rgraph's own GL objects by the object-count tests instead.
   export ASAN_OPTIONS="detect_leaks=0:abort_on_error=1"
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+elif [[ "${1:-}" == "--fuzz" ]]; then
+  build_dir=build-fuzz
+  cmake_args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DRGRAPH_FUZZ=ON
+              -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14)
+  ctest_args=(-R fuzz)
+  export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 fi
 
 bash scripts/install-deps.sh
 cmake -S . -B "$build_dir" "${cmake_args[@]}"
 cmake --build "$build_dir" -j"$(nproc)"
-ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)"
+ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" "${ctest_args[@]}"

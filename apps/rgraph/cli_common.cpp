@@ -8,6 +8,7 @@
 
 #include "rgraph/plugin.h"
 #include "rgraph/registry.h"
+#include "rgraph/shader_check.h"
 
 namespace rgraph::cli {
 
@@ -58,6 +59,31 @@ std::optional<PipelineConfig> loadPipeline(const std::string& path, Diagnostics&
   PipelineConfig pipeline = doc.build(PassRegistry::builtins(), diags);
   if (hasErrors(diags)) return std::nullopt;
   return pipeline;
+}
+
+bool addShaderPaths(const std::vector<std::string>& dirs) {
+  for (const auto& dir : dirs) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec)) {
+      std::cerr << "error: --shader-path '" << dir << "': no such folder\n";
+      return false;
+    }
+    addShaderSearchDirectory(std::filesystem::absolute(dir, ec).lexically_normal().string());
+  }
+  return true;
+}
+
+CompileOptions compileOptions(uint32_t width, uint32_t height, uint32_t maxTextureSize) {
+  CompileOptions o;
+  o.output = Extent{width, height};
+  if (maxTextureSize > 0) {
+    o.maxTextureSize = maxTextureSize;
+    o.maxTextureSizeOrigin = "the limit --max-texture-size sets";
+  } else {
+    o.maxTextureSizeOrigin =
+        "the GL_MAX_TEXTURE_SIZE every OpenGL 4.5 device reaches (--max-texture-size N sets another limit)";
+  }
+  return o;
 }
 
 void printDiagnostics(const Diagnostics& diags) {

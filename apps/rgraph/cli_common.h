@@ -30,10 +30,18 @@ void addPluginSearchDirectory(const std::string& dir);
 // false when any failed.
 bool loadPlugins(const std::vector<std::string>& namesOrPaths);
 
+// --shader-path folders: each must be an existing folder (else `error:` and
+// false); they are searched before the built-in shaders by validate and render.
+bool addShaderPaths(const std::vector<std::string>& dirs);
+
 // Prints diagnostics to stderr, one `FILE:LINE:COL: error: PATH: message` line each.
 void printDiagnostics(const Diagnostics& diags);
 // Diagnostics as the JSON array `rgraph validate --json` prints.
 std::string diagnosticsJson(const Diagnostics& diags);
+
+// Compile options for --width/--height and --max-texture-size (16384, the
+// OpenGL 4.5 minimum, when not given), with the limit's origin for messages.
+CompileOptions compileOptions(uint32_t width, uint32_t height, uint32_t maxTextureSize);
 
 // The pipeline used when `rgraph render` names none.
 std::string defaultPipelinePath();

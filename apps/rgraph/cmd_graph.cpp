@@ -1,4 +1,5 @@
 // validate, plan, dot, passes: everything that needs no GL context.
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -21,7 +22,7 @@ std::optional<std::pair<PipelineConfig, Plan>> loadAndCompile(const std::string&
                                                               Diagnostics& diags) {
   auto pipeline = loadPipeline(path, diags);
   if (!pipeline) return std::nullopt;
-  Plan plan = compile(pipeline->graph, CompileOptions{Extent{size.width, size.height}});
+  Plan plan = compile(pipeline->graph, compileOptions(size.width, size.height, size.maxTextureSize));
   diags.insert(diags.end(), plan.diagnostics.begin(), plan.diagnostics.end());
   return std::make_pair(std::move(*pipeline), std::move(plan));
 }
@@ -151,7 +152,7 @@ int runPlan(const std::string& path, const SizeOptions& size, bool json, const s
   }
   PipelineConfig adapted = result->first;
   const AdaptReport report = adaptToScene(adapted, PassRegistry::builtins(), sceneFeatures(scene));
-  Plan plan = compile(adapted.graph, CompileOptions{Extent{size.width, size.height}});
+  Plan plan = compile(adapted.graph, compileOptions(size.width, size.height, size.maxTextureSize));
   printDiagnostics(plan.diagnostics);
   if (!plan.ok()) return kExitFailure;
   const uint32_t before = gbufferBytesPerPixel(result->first, result->second);
@@ -237,18 +238,33 @@ int runPasses(bool json) {
     std::cout << out.dump(2) << "\n";
     return kExitOk;
   }
+  // Columns as wide as their longest entry over every type (plus two spaces),
+  // so that no name runs into the next column (constant_material, bool).
+  size_t nameWidth = 0, kindWidth = 0;
+  for (const auto& t : out) {
+    for (const auto& s : t["slots"]) {
+      nameWidth = std::max(nameWidth, s["name"].get<std::string>().size());
+      kindWidth = std::max(kindWidth, s["access"].get<std::string>().size());
+    }
+    for (const auto& p : t["params"]) {
+      nameWidth = std::max(nameWidth, p["name"].get<std::string>().size());
+      kindWidth = std::max(kindWidth, p["type"].get<std::string>().size());
+    }
+  }
+  const int nameCol = static_cast<int>(nameWidth + 2), kindCol = static_cast<int>(kindWidth + 2);
   for (const auto& t : out) {
     std::cout << t["type"].get<std::string>() << "  (" << t["origin"].get<std::string>() << ")\n    "
               << t["description"].get<std::string>() << "\n";
     for (const auto& s : t["slots"]) {
-      std::cout << "    slot  " << std::left << std::setw(14) << s["name"].get<std::string>() << std::setw(22)
-                << s["access"].get<std::string>() << std::right << (s["required"].get<bool>() ? "required" : "optional");
+      std::cout << "    slot  " << std::left << std::setw(nameCol) << s["name"].get<std::string>() << std::setw(kindCol)
+                << s["access"].get<std::string>() << std::right
+                << (s["required"].get<bool>() ? "required" : "optional");
       if (s["load"] != "never") std::cout << ", load " << s["load"].get<std::string>();
       std::cout << "\n";
     }
     for (const auto& p : t["params"]) {
-      std::cout << "    param " << std::left << std::setw(14) << p["name"].get<std::string>() << std::setw(8)
-                << p["type"].get<std::string>() << std::right << " = " << p["default"].dump();
+      std::cout << "    param " << std::left << std::setw(nameCol) << p["name"].get<std::string>() << std::setw(kindCol)
+                << p["type"].get<std::string>() << std::right << "= " << p["default"].dump();
       if (p.contains("min") || p.contains("max"))
         std::cout << "  [" << (p.contains("min") ? p["min"].dump() : "") << ", "
                   << (p.contains("max") ? p["max"].dump() : "") << "]";

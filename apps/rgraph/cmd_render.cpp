@@ -53,6 +53,17 @@ int runRender(const RenderOptions& options) {
   auto pipeline = loadPipeline(pipelinePath, diags);
   printDiagnostics(diags);
   if (!pipeline) return kExitFailure;
+  // An explicit --max-texture-size is checked before any GL work, as validate
+  // does; the device's own limit is checked when the executor compiles.
+  if (options.size.maxTextureSize > 0) {
+    const Plan plan =
+        compile(pipeline->graph, compileOptions(options.size.width, options.size.height, options.size.maxTextureSize));
+    if (!plan.ok()) {
+      for (const auto& d : plan.diagnostics)
+        if (d.severity == Severity::error) std::cerr << formatDiagnostic(d) << "\n";
+      return kExitFailure;
+    }
+  }
 
   try {
     std::unique_ptr<Scene> scene;

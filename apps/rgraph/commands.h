@@ -9,6 +9,7 @@ namespace rgraph::cli {
 struct SizeOptions {
   uint32_t width = 1280;
   uint32_t height = 720;
+  uint32_t maxTextureSize = 0;  // --max-texture-size; 0: not given (16384, or render: the device's)
 };
 
 // checkShaders: after the graph compiles, compile and reflect every enabled

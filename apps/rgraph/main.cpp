@@ -25,9 +25,24 @@ int main(int argc, char** argv) {
         ->type_name("DIR")
         ->allow_extra_args(false);
   };
+  auto addMaxTextureSize = [](CLI::App* cmd, uint32_t& target, const char* defaultText) {
+    cmd->add_option("--max-texture-size", target,
+                    std::string("largest texture width or height the pipeline may use (default: ") + defaultText + ")")
+        ->type_name("N")
+        ->check(CLI::Range(1u, 1u << 20));
+  };
   auto addSize = [&](CLI::App* cmd) {
     cmd->add_option("--width", size.width, "output width in pixels")->check(CLI::Range(1u, 16384u));
     cmd->add_option("--height", size.height, "output height in pixels")->check(CLI::Range(1u, 16384u));
+    addMaxTextureSize(cmd, size.maxTextureSize, "16384, what every OpenGL 4.5 device supports");
+  };
+  std::vector<std::string> shaderPaths;
+  auto addShaderPath = [&](CLI::App* cmd) {
+    cmd->add_option("--shader-path", shaderPaths,
+                    "folder of shaders, searched before the built-in ones (repeatable); shader names in a config "
+                    "are read only from inside shader folders")
+        ->type_name("DIR")
+        ->allow_extra_args(false);
   };
 
   auto* validate = app.add_subcommand("validate", "check a pipeline config; exit 1 with diagnostics if invalid");
@@ -37,6 +52,7 @@ int main(int argc, char** argv) {
   validate->add_flag("--no-shaders", noShaders, "skip the glslang shader checks");
   addSize(validate);
   addPluginPath(validate);
+  addShaderPath(validate);
 
   auto* plan = app.add_subcommand("plan", "print the compiled plan: order, culled passes, lifetimes, memory");
   plan->add_option("pipeline", pipeline, "pipeline config (JSON)")->required();
@@ -71,6 +87,8 @@ int main(int argc, char** argv) {
   addPluginPath(renderCmd);
   renderCmd->add_option("--width", render.size.width, "output width in pixels")->check(CLI::Range(1u, 16384u));
   renderCmd->add_option("--height", render.size.height, "output height in pixels")->check(CLI::Range(1u, 16384u));
+  addMaxTextureSize(renderCmd, render.size.maxTextureSize, "the device's GL_MAX_TEXTURE_SIZE");
+  addShaderPath(renderCmd);
 
   BenchOptions bench;
   auto* benchCmd = app.add_subcommand("bench", "sweep lighting methods, light counts, G-buffer layouts, cut-offs and "
@@ -87,6 +105,7 @@ int main(int argc, char** argv) {
   spdlog::set_default_logger(spdlog::default_logger());
 
   for (const auto& dir : pluginPaths) addPluginSearchDirectory(dir);
+  if (!addShaderPaths(shaderPaths)) return kExitFailure;
 
   try {
     if (*passes && !loadPlugins(passPlugins)) return kExitFailure;

@@ -110,7 +110,7 @@ PassTypeDesc makeFullscreenPass() {
   d.slots.push_back(decl::slot("depth", Access::depth_attachment, false, SlotDecl::Load::optional,
                              "optional depth attachment, tested with depth_func (write gl_FragDepth)"));
   d.params = {
-      decl::param("shader", ParamType::string, std::string(),
+      decl::param("shader", ParamType::shader, std::string(),
                 "fragment shader file under shaders/ (uniforms: input0..3, u_resolution, u_color, u_value)"),
       decl::param("color", ParamType::vec4, std::vector<double>{1.0, 1.0, 1.0, 1.0}, "value of `uniform vec4 u_color`"),
       decl::param("value", ParamType::number, 0.0, "value of `uniform float u_value`"),

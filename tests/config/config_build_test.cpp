@@ -188,7 +188,8 @@ TEST(ConfigBuild, DeferredPipeline) {
   EXPECT_EQ(p.getVector("rect"), (std::vector<double>{0, 0, 0.5, 0.5}));
   ASSERT_TRUE(p.has("bias"));  // default
   EXPECT_DOUBLE_EQ(p.getNumber("bias", 99), 0.0);
-  EXPECT_EQ(p.values().size(), 8u);
+  EXPECT_EQ(p.getString("program"), "x.frag");  // default
+  EXPECT_EQ(p.values().size(), 10u);             // every declared parameter
 
   // Blit into the output image, loading its previous version.
   const PassDecl& copy = g.passes[6];

@@ -43,6 +43,21 @@ Diagnostics check(const std::string& path) {
 // The diagnostic code each corpus file is about (its first error).
 const std::map<std::string, DiagCode>& expectedCodes() {
   static const std::map<std::string, DiagCode> codes = {
+      {"buffer_bytes_fractional", DiagCode::config_schema},
+      {"buffer_bytes_negative_zero", DiagCode::config_schema},
+      {"buffer_bytes_too_large", DiagCode::config_schema},
+      {"clear_stencil_too_large", DiagCode::config_schema},
+      {"clear_too_large", DiagCode::config_schema},
+      {"mips_too_large", DiagCode::config_schema},
+      {"param_float_too_large", DiagCode::param_range},
+      {"param_int_too_large", DiagCode::param_range},
+      {"param_int_unbounded_1e300", DiagCode::param_range},
+      {"param_int_unbounded_too_large", DiagCode::param_range},
+      {"param_vec_component_too_large", DiagCode::param_range},
+      {"samples_huge", DiagCode::config_schema},
+      {"shader_absolute", DiagCode::param_range},
+      {"shader_escape", DiagCode::param_range},
+      {"size_width_huge", DiagCode::config_schema},
       {"bad_clear", DiagCode::config_schema},
       {"bad_clear_element", DiagCode::config_schema},
       {"bad_enum", DiagCode::param_range},

@@ -62,8 +62,20 @@ TEST(Robustness, BinaryBytes) {
 }
 
 TEST(Robustness, DeepNesting) {
-  // Unclosed: the parser reports the end of input.
-  expectLocatedSyntaxError(std::string(10000, '['), 1, 10001);
+  // Unclosed: refused at the bracket that opens level 257, before any parse.
+  expectLocatedSyntaxError(std::string(10000, '['), 1, 257);
+  // A syntax error before the bracket that is too deep is still the one reported.
+  expectLocatedSyntaxError("[1 2, " + std::string(10000, '['), 1, 4);
+  // A deep value followed by another member: building the document would copy
+  // the deep value recursively (this overflowed the stack).
+  {
+    bool ok = true;
+    Diagnostics diags = run("{\"notes\": " + std::string(100000, '[') + std::string(100000, ']') + ", \"passes\": []}", &ok);
+    EXPECT_FALSE(ok);
+    ASSERT_EQ(diags.size(), 1u);
+    EXPECT_EQ(diags[0].where.column, 266);  // '{' is level 1; the 256th '[' after column 10 opens level 257
+    EXPECT_NE(diags[0].message.find("nested deeper than 256"), std::string::npos);
+  }
   // Closed: valid JSON, but deeper than the loader supports.
   std::string deep = std::string(10000, '[') + std::string(10000, ']');
   bool ok = true;
@@ -103,7 +115,9 @@ TEST(Robustness, HugeNumbers) {
   for (const auto& d : diags) paths.push_back(d.where.path);
   EXPECT_EQ(paths, (std::vector<std::string>{"/version", "/resources/a/samples", "/resources/a/mips",
                                              "/resources/a/size/0", "/resources/a/size/1", "/resources/b/buffer_bytes",
-                                             "/passes/0/params/count", "/passes/0/params/gain"}));
+                                             "/passes/0/params/count", "/passes/0/params/gain",
+                                             // rect has no range, but its components are floats for the pass
+                                             "/passes/0/params/rect/0", "/passes/0/params/rect/1"}));
   for (const auto& d : diags) EXPECT_TRUE(d.where.known());
   EXPECT_EQ(diags.back().code, DiagCode::param_range);
 }

@@ -77,7 +77,8 @@ PassRegistry makeRegistry() {
        param("gain", ParamType::number, 1.0, 0.0, 10.0), param("label", ParamType::string, std::string("x")),
        param("mode", ParamType::enumeration, std::string("nice"), {}, {}, {"fast", "nice", "exact"}),
        param("tint", ParamType::vec3, std::vector<double>{1, 1, 1}, 0.0, 1.0),
-       param("rect", ParamType::vec4, std::vector<double>{0, 0, 1, 1}), param("bias", ParamType::number, 0.0, -1.0)}));
+       param("rect", ParamType::vec4, std::vector<double>{0, 0, 1, 1}), param("bias", ParamType::number, 0.0, -1.0),
+       param("big", ParamType::integer, int64_t{0}), param("program", ParamType::shader, std::string("x.frag"))}));
   for (auto& t : types) {
     std::string error;
     if (!r.add(std::move(t), &error)) throw std::logic_error("test registry: " + error);

@@ -44,7 +44,7 @@ TEST(BuiltinPasses, AreRegistered) {
   EXPECT_EQ(fs->findSlot("color")->load, SlotDecl::Load::optional);
   EXPECT_FALSE(fs->findSlot("input0")->required);
   ASSERT_NE(fs->findParam("shader"), nullptr);
-  EXPECT_EQ(fs->findParam("shader")->type, ParamType::string);
+  EXPECT_EQ(fs->findParam("shader")->type, ParamType::shader);
   const ParamDecl* filter = builtins().find("blit")->findParam("filter");
   ASSERT_NE(filter, nullptr);
   EXPECT_EQ(filter->choices, (std::vector<std::string>{"nearest", "linear"}));

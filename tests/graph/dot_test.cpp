@@ -39,7 +39,7 @@ TEST(Dot, PassesVersionsEdgesCullingAndAliasing) {
       pass("present", {rd("src", "t2"), wr("color", "out")}),
       pass("blend", {rmw("color", "out", "out_ui")}),
   };
-  d.output = "out";
+  d.output = "out_ui";  // the final version (naming "out" would show the image before blend)
   Plan plan = compile(d);
   ASSERT_TRUE(plan.ok()) << dumpDiagnostics(plan);
   ASSERT_EQ(plan.resources[0].physical, plan.resources[2].physical);  // t0 and t2 alias

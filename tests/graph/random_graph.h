@@ -74,14 +74,16 @@ inline RandomGraph randomGraph(const RandomGraphOptions& o) {
   for (uint32_t r = 0; r < o.resources; ++r) {
     ResourceDecl& rd = d.resources[r];
     rd.name = "r" + std::to_string(r);
-    if (rng.chance(o.bufferProbability)) {
+    // r0 is a transient texture, written first: every graph writes an image to name as its output.
+    const bool isBuffer = rng.chance(o.bufferProbability) && r != 0;
+    if (isBuffer) {
       rd.kind = ResourceKind::buffer;
       rd.bufferBytes = rng.chance(0.5) ? 1024 : 4096;
     } else {
       rd.texture.format = formats[rng.below(3)];
       rd.texture.size = rng.chance(0.7) ? SizeSpec::output() : SizeSpec::relative(0.5f);
     }
-    if (rng.chance(o.importedProbability)) {
+    if (rng.chance(o.importedProbability) && r != 0) {
       rd.imported = true;
       rd.importedHasContent = true;
       st[r].latest = rd.name;
@@ -156,13 +158,14 @@ inline RandomGraph randomGraph(const RandomGraphOptions& o) {
       s.readers.clear();
       ++s.versions;
       recent.push_back(r);
-      lastWritten = static_cast<int>(r);
+      if (d.resources[r].kind == ResourceKind::texture) lastWritten = static_cast<int>(r);  // an output is an image
       const bool buffer = d.resources[r].kind == ResourceKind::buffer;
       u.access = buffer ? Access::storage_write : (i == 0 ? Access::color_attachment : Access::storage_write);
       pd.uses.push_back(std::move(u));
     }
   }
-  d.output = lastWritten >= 0 ? d.resources[lastWritten].name : std::string();
+  // The last written texture's latest version (a resource's name is its first version).
+  d.output = lastWritten >= 0 ? st[lastWritten].latest : std::string();
 
   // Declaration order: a random permutation of the generation order.
   std::vector<uint32_t> declOf(o.passes);

@@ -151,3 +151,99 @@ TEST(PluginCli, SsaoBloomPipelineAliasesToAtMost60PercentAt1080p) {
   }
   EXPECT_TRUE(sharesWithGBuffer) << r.out;
 }
+
+// ---- damaged plugin files: refused before dlopen (which would die of SIGBUS
+// reading a segment cut short), exit code 1, never a signal ----
+
+namespace {
+
+// Damaged copies of the shipped plugins, one folder per case, each holding
+// librgraph_<plugin>.so: cut at 4, 32 and 64 KiB, an empty file, a text file.
+struct DamagedPlugin {
+  std::string dir, plugin, file, problem;
+  std::string location() const {  // "plugins": ["ssao", "bloom"] on line 4 of deferred-ssao-bloom.json
+    return plugin == "ssao" ? "deferred-ssao-bloom.json:4:15: error: /plugins/0: "
+                            : "deferred-ssao-bloom.json:4:23: error: /plugins/1: ";
+  }
+};
+
+class DamagedPluginCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = (fs::temp_directory_path() / ("rgraph-damaged-plugins-" + std::to_string(getpid()))).string();
+    cases_.clear();
+    auto add = [](const std::string& name, const std::string& plugin, const std::string& bytes, const std::string& problem) {
+      const std::string dir = root_ + "/" + name;
+      fs::create_directories(dir);
+      const std::string file = dir + "/librgraph_" + plugin + ".so";
+      std::ofstream(file, std::ios::binary) << bytes;
+      cases_.push_back({dir, plugin, canonical(file), problem});
+    };
+    for (const std::string plugin : {"bloom", "ssao"}) {
+      std::ifstream in(kPlugins + "/librgraph_" + plugin + ".so", std::ios::binary);
+      const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      for (size_t cut : {4096u, 32768u, 65536u}) {
+        ASSERT_GT(bytes.size(), cut) << plugin;
+        add(plugin + "-cut-" + std::to_string(cut), plugin, bytes.substr(0, cut), "(PT_LOAD) ends at byte ");
+      }
+    }
+    add("empty", "bloom", "", "not a loadable plugin: the file is empty (0 bytes)");
+    add("text", "bloom", "#!/bin/sh\necho not a library\n",
+        "not a loadable plugin: not an ELF shared library: it starts with \"#!/bin/sh\\necho n...\"");
+  }
+  static void TearDownTestSuite() {
+    std::error_code ec;
+    fs::remove_all(root_, ec);
+  }
+  // What every refusal says: the location (when from a config), the file, the problem.
+  static void expectRefused(const Result& r, const DamagedPlugin& c, bool fromConfig) {
+    EXPECT_EQ(r.exit, 1) << c.file << "\n" << r.out;  // 128+N through the shell: killed by signal N
+    ASSERT_EQ(r.lines().size(), 1u) << r.out;
+    EXPECT_NE(r.out.find("(" + c.file + "): not a loadable plugin: "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(c.problem), std::string::npos) << r.out;
+    if (c.dir.find("-cut-") != std::string::npos) {
+      const std::string cut = c.dir.substr(c.dir.rfind('-') + 1);
+      EXPECT_NE(r.out.find("but the file has " + cut + " bytes (truncated?)"), std::string::npos) << r.out;
+    }
+    if (fromConfig) {
+      EXPECT_NE(r.out.find(c.location()), std::string::npos) << r.out;
+    }
+  }
+  static inline std::string root_;
+  static inline std::vector<DamagedPlugin> cases_;
+};
+
+const std::string kSsaoBloom = kSource + "/pipelines/deferred-ssao-bloom.json";
+
+}  // namespace
+
+TEST_F(DamagedPluginCli, ValidateRefusesEachWithTheConfigLocationAndTheFile) {
+  ASSERT_EQ(cases_.size(), 8u);
+  for (const auto& c : cases_) expectRefused(rgraph("validate " + kSsaoBloom + " --plugin-path " + c.dir), c, true);
+}
+
+TEST_F(DamagedPluginCli, PassesWithPluginRefusesEachNamingTheFile) {
+  for (const auto& c : cases_) expectRefused(rgraph("passes --plugin " + c.file), c, false);
+}
+
+TEST_F(DamagedPluginCli, RenderRefusesEachAndWritesNoImage) {
+  const std::string png = tempPng("damaged.png");
+  for (const auto& c : cases_) {
+    expectRefused(rgraph("render " + kSsaoBloom + " --plugin-path " + c.dir + " --width 32 --height 32 --out " + png), c, true);
+    EXPECT_FALSE(fs::exists(png)) << c.file;
+  }
+}
+
+// The C library stops at a NUL: the name would be looked up as "bloom" and
+// reported as not found. It is refused by name, at its place in the config.
+TEST(PluginCli, PluginNameWithANulByteIsRefusedAtItsConfigLocation) {
+  for (const std::string& cmd : {std::string("validate"), "render --width 32 --height 32 --out " + tempPng("nul.png")}) {
+    Result r = rgraph(cmd + " " + kConfigs + "/nul-plugin-name.json");
+    EXPECT_EQ(r.exit, 1) << r.out;
+    ASSERT_EQ(r.lines().size(), 1u) << r.out;
+    EXPECT_NE(r.out.find("nul-plugin-name.json:3:15: error: /plugins/0: plugin 'bloom\\u0000': the name contains a NUL "
+                         "byte (character 6); a plugin name or path cannot contain one"),
+              std::string::npos)
+        << r.out;
+  }
+}

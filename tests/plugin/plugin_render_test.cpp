@@ -50,6 +50,7 @@ class PluginRenderTest : public ::testing::Test {
   std::vector<float> render(const PipelineConfig& cfg, const std::string& resource, const Scene* scene = nullptr,
                             int channel = 0) {
     ShaderLibrary shaders;
+    shaders.addSearchDirectory(kTestShaders);  // bright_square.frag: names in a config stay inside shader folders
     Executor exec(cfg, registry, shaders, scene);
     exec.resize({64, 64});
     exec.renderFrame();
@@ -82,8 +83,8 @@ std::string bloomConfig(bool inPlace) {
       "out":    { "format": "rgba16f" }
     },
     "passes": [
-      { "name": "square", "type": "fullscreen", "params": { "shader": ")" +
-         kTestShaders + R"(/bright_square.frag" }, "outputs": { "color": "hdr" } },
+      { "name": "square", "type": "fullscreen", "params": { "shader": "bright_square.frag" },
+        "outputs": { "color": "hdr" } },
       { "name": "bright", "type": "bloom_bright", "params": { "threshold": 1.0, "knee": 0.0 },
         "inputs": { "hdr": "hdr" }, "outputs": { "bright": "bright" } },
       { "name": "blur", "type": "bloom_blur", "params": { "iterations": 3 },

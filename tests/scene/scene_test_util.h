@@ -12,7 +12,12 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+#include <sstream>
+
 #include <nlohmann/json.hpp>
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 #include <stb_image_write.h>
 #include <unistd.h>
 
@@ -31,6 +36,23 @@ inline void writeBytes(const std::string& path, const void* data, size_t size) {
 }
 
 inline void writeText(const std::string& path, const std::string& text) { writeBytes(path, text.data(), text.size()); }
+
+// Collects what spdlog prints while it lives (warnings the loaders give).
+class LogCapture {
+ public:
+  LogCapture() : previous_(spdlog::default_logger()) {
+    auto sink = std::make_shared<spdlog::sinks::ostream_sink_mt>(out_);
+    spdlog::set_default_logger(std::make_shared<spdlog::logger>("capture", sink));
+  }
+  ~LogCapture() { spdlog::set_default_logger(previous_); }
+  LogCapture(const LogCapture&) = delete;
+  LogCapture& operator=(const LogCapture&) = delete;
+  std::string text() const { return out_.str(); }
+
+ private:
+  std::ostringstream out_;
+  std::shared_ptr<spdlog::logger> previous_;
+};
 
 // A fresh directory per test under the system temp dir; removed afterwards.
 class TempDirTest : public ::testing::Test {
@@ -133,14 +155,23 @@ struct TriangleGltf {
     writeBytes(binPath, bin.data(), bin.size());
   }
 
-  // .glb with the buffer as the BIN chunk.
-  void writeGlb(const std::string& path) {
+  // The JSON of the .glb form (the buffer is the BIN chunk).
+  std::string glbJson() const {
     nlohmann::json d = doc;
     d["buffers"][0].erase("uri");
     d["buffers"][0]["byteLength"] = bin.size();
-    std::string js = d.dump();
+    return d.dump();
+  }
+
+  // .glb with the buffer as the BIN chunk.
+  void writeGlb(const std::string& path) {
+    const std::vector<uint8_t> out = makeGlb(glbJson(), bin);
+    writeBytes(path, out.data(), out.size());
+  }
+
+  // A .glb from JSON text and BIN chunk bytes (both padded here).
+  static std::vector<uint8_t> makeGlb(std::string js, std::vector<uint8_t> b) {
     while (js.size() % 4) js += ' ';
-    std::vector<uint8_t> b = bin;
     pad4(b);
     std::vector<uint8_t> out = {'g', 'l', 'T', 'F'};
     auto u32 = [&](uint32_t v) { append(out, std::vector<uint32_t>{v}); };
@@ -153,7 +184,7 @@ struct TriangleGltf {
     u32(uint32_t(b.size()));
     u32(0x004E4942);
     out.insert(out.end(), b.begin(), b.end());
-    writeBytes(path, out.data(), out.size());
+    return out;
   }
 };
 

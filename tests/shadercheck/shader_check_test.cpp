@@ -595,10 +595,16 @@ TEST(ShaderCheck, PassTypesWithoutProgramsCompileTheirShaderFiles) {
 }
 
 TEST(ShaderCheck, PluginShadersByAbsolutePath) {
-  // Plugins name their shaders by absolute path (PluginHost::shaderPath).
-  ShaderChecker checker;  // no test directory on the search path
-  Diagnostics d = checker.checkPass("p", type("fullscreen"), fullscreenParams(kTestShaders + "/four_outputs.frag"),
-                                    {slot("color", Access::color_attachment, "c", Format::rgba8)});
+  // Plugins name their shaders by absolute path (PluginHost::shaderPath) in
+  // their own folder, which the loader makes a shader folder. Outside every
+  // shader folder, an absolute path is refused.
+  const auto color = std::vector<BoundSlot>{slot("color", Access::color_attachment, "c", Format::rgba8)};
+  const std::string file = kTestShaders + "/four_outputs.frag";
+  Diagnostics refused = ShaderChecker().checkPass("p", type("fullscreen"), fullscreenParams(file), color);
+  EXPECT_NE(findContaining(refused, Severity::error, "outside the shader folders"), nullptr) << all(refused);
+  addPluginShaderDirectory(kTestShaders);
+  ShaderChecker checker;  // the default folders now end with the "plugin's" folder
+  Diagnostics d = checker.checkPass("p", type("fullscreen"), fullscreenParams(file), color);
   EXPECT_NE(findContaining(d, Severity::error, "writes 4 colour outputs"), nullptr) << all(d);
 }
 

@@ -28,6 +28,8 @@ enum class DiagCode {
   duplicate_resource,
   invalid_resource,       // bad descriptor: zero size, bad mip count, depth with samples on a storage image...
   access_format_mismatch, // e.g. depth format bound as a colour attachment
+  invalid_output,         // the output cannot be shown: multisampled, depth, a buffer, overwritten later
+  output_size,            // warning: the output's own size is not the requested output size
   // config
   json_syntax,
   file_not_found,

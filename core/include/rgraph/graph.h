@@ -12,7 +12,8 @@
 //    from names; write-after-read order follows from versions: the pass that
 //    produces version k+1 runs after every reader of version k.
 //  * compile() validates, orders passes topologically (ties keep declaration
-//    order), culls passes that feed no output and have no side effect,
+//    order), culls passes that feed no output and have no side effect (the
+//    output is one version: writers of its later versions are culled too),
 //    computes lifetimes over the order, and aliases transient textures whose
 //    descriptors match and whose lifetimes do not overlap.
 #pragma once
@@ -115,7 +116,10 @@ struct PassDecl {
 struct GraphDesc {
   std::vector<ResourceDecl> resources;
   std::vector<PassDecl> passes;
-  std::string output;  // resource (or version) name that becomes the output image
+  // The version that becomes the output image. A resource's name is its first
+  // version: naming "h_1" while a later pass writes "h_2" shows h_1, and the
+  // passes that only produce later versions are culled.
+  std::string output;
   SourceLocation outputWhere;
 };
 
@@ -124,6 +128,13 @@ struct GraphDesc {
 struct CompileOptions {
   Extent output{1280, 720};
   bool alias = true;  // false: every transient gets its own physical texture
+  // Largest width or height of a texture (0: no limit). 16384 is the
+  // GL_MAX_TEXTURE_SIZE every OpenGL 4.5 implementation must reach; the
+  // executor passes the device's own value.
+  uint32_t maxTextureSize = 16384;
+  // Where that limit comes from, as messages say it (e.g. "this device's
+  // GL_MAX_TEXTURE_SIZE"); empty: the OpenGL 4.5 minimum.
+  std::string maxTextureSizeOrigin = {};
 };
 
 struct PlannedPass {
@@ -174,7 +185,7 @@ struct Plan {
   std::vector<PhysicalTexture> physical;
   std::vector<std::vector<BoundUse>> bindings;  // per pass (declaration order)
   int outputResource = -1;
-  std::string outputVersion;                // the final version that becomes the image
+  std::string outputVersion;                // the version that becomes the image (see GraphDesc::output)
   uint64_t naiveBytes = 0;                  // every live transient on its own
   uint64_t allocatedBytes = 0;              // after aliasing
   Diagnostics diagnostics;

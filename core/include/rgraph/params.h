@@ -10,10 +10,12 @@
 
 namespace rgraph {
 
-enum class ParamType { boolean, integer, number, string, enumeration, vec3, vec4 };
+// `shader`: a shader file name (a string), relative to the shader folders; the
+// config loader refuses absolute names and names that lead outside them.
+enum class ParamType { boolean, integer, number, string, enumeration, vec3, vec4, shader };
 std::string_view paramTypeName(ParamType t);
 
-// bool, integer, number, string/enumeration, vec3/vec4
+// bool, integer, number, string/enumeration/shader, vec3/vec4
 using ParamValue = std::variant<bool, int64_t, double, std::string, std::vector<double>>;
 
 struct ParamDecl {

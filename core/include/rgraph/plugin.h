@@ -155,8 +155,11 @@ struct LoadedPlugin {
 //   4. the build tree's plugin output folder (<build>/lib/rgraph/plugins).
 //
 // Every failure is a one-line message naming the plugin and the reason:
-// not found (with the folders searched), dlopen failure (dlerror), no entry
-// point, ABI mismatch (expected vs found), refused registration.
+// not found (with the folders searched), a name with a NUL byte, a file that
+// is not a loadable library for this machine (checked before dlopen, see
+// plugin_file_check.h: a truncated file would crash inside it), dlopen
+// failure (dlerror), no entry point, ABI mismatch (expected vs found),
+// refused registration.
 class PluginLoader {
  public:
   explicit PluginLoader(PassRegistry& registry);

@@ -179,6 +179,10 @@ struct Primitive {
 
 // ---------------------------------------------------------------- lights and camera
 
+// The most lights a scene may have (point and directional together): the
+// many-lights:N limit, and what scene files and glTF models are held to.
+inline constexpr size_t kMaxSceneLights = 100000;
+
 // Default brightness threshold for light volumes (LearnOpenGL: 5/256).
 inline constexpr float kLightThreshold = 5.0f / 256.0f;
 
@@ -216,7 +220,11 @@ struct Camera {
   float far = 100.0f;
 
   glm::vec3 forward() const;  // unit, position -> target
-  glm::mat4 view() const;     // glm::lookAt (right-handed, looks down -Z)
+  // `up`, unless it is (nearly) parallel to the view direction, where lookAt
+  // has no orientation: then +Y, or -Z when looking along Y. Loaders warn when
+  // they replace a source's up with it.
+  glm::vec3 validUp() const;
+  glm::mat4 view() const;     // glm::lookAt (right-handed, looks down -Z), with validUp()
   glm::mat4 projection(float aspect) const;  // glm::perspective, GL clip space (-1..1 depth)
   glm::mat4 viewProjection(float aspect) const { return projection(aspect) * view(); }
 };
@@ -278,8 +286,20 @@ void applySceneDefaults(Scene& scene);
 // glTF 2.0 (.gltf with external or embedded buffers, .glb). Default scene (or
 // all root nodes), TRIANGLES primitives (others skipped with a warning),
 // materials, textures, samplers, KHR_lights_punctual (spot lights become point
-// lights), the first perspective camera. No defaults added: see loadSceneAny.
+// lights), the first perspective camera, KHR_materials_specular (onto Material::specular),
+// KHR_materials_emissive_strength. No defaults added: see loadSceneAny.
+// Values outside the ranges of the glTF schema (metallic 9, a negative light
+// intensity, asset version 3.0; the table is in scenes/README.md) are refused
+// with file:line:column (.gltf) and the JSON path. JSON nested deeper than 256
+// levels is refused before it is parsed; node hierarchies of any depth load.
 Scene loadGltf(const std::string& path);
+// The same from bytes in memory (what loadGltf reads the file into): .glb when
+// the data starts with the magic "glTF", else .gltf JSON text. Messages name
+// `nameForMessages`; external buffers and images resolve against `baseDir`
+// ("" = the current directory). Throws rgraph::RuntimeError on anything
+// malformed, and never crashes on any bytes (it is fuzzed).
+Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std::string& nameForMessages,
+                         const std::string& baseDir);
 
 // Scene file (JSON), documented in scenes/README.md:
 // {"models": [{"file": "x.gltf", "transform": {"translation": [..], "rotation_euler_deg": [..],
@@ -288,8 +308,10 @@ Scene loadGltf(const std::string& path);
 //  "camera": {"position": [..], "target": [..], "up": [..], "fov": 45, "near": 0.1, "far": 100}}
 // Relative paths resolve against the scene file's folder. Without "camera" one frames the scene; without
 // "lights" (and none in the models) applySceneDefaults adds one; radii of lights without falloff are capped
-// to reach the whole scene.
+// to reach the whole scene. A "file" model may carry a "material" whose values override the model's.
+// Errors read file:line:column: /json/pointer: message. At most kMaxSceneLights lights.
 Scene loadSceneFile(const std::string& path);
+// The same from text (any bytes: malformed input throws RuntimeError, never crashes; it is fuzzed).
 Scene parseSceneText(const std::string& text, const std::string& file, const std::string& baseDir);
 
 // "path.json" -> loadSceneFile; "path.gltf" / "path.glb" -> loadGltf + applySceneDefaults;
@@ -307,7 +329,7 @@ Scene loadSceneAny(const std::string& spec);
 // near 0.1, far 100; ambient 0.1; one material with a procedural albedo texture, specular 0.5.
 Scene makeLearnOpenGLScene();
 
-// A field of cubes and spheres on a floor plane with n point lights (0..100000)
+// A field of cubes and spheres on a floor plane with n point lights (0..kMaxSceneLights)
 // spread over it from a seeded PRNG. The field grows with n; each light's
 // attenuation is chosen so its radius keeps ~16 lights overlapping on average.
 Scene makeManyLightsScene(int n, uint32_t seed = 1);

@@ -79,11 +79,19 @@ class PassRegistry;
 // the source tree's shaders/. (ShaderLibrary puts the directories added with
 // addSearchDirectory in front of these.)
 std::vector<std::string> defaultShaderSearchDirectories();
+// Folders added for the whole process (thread-safe), seen by every later
+// defaultShaderSearchDirectories(): `--shader-path` folders come before the
+// defaults; a loaded plugin's own shader folder comes after them.
+void addShaderSearchDirectory(const std::string& dir);
+void addPluginShaderDirectory(const std::string& dir);
 
 // Full path of a shader file: absolute paths as they are, relative ones in
-// the first directory that has them. "" when not found.
+// the first directory that has them. Only files inside one of `dirs` count
+// (symbolic links resolved: `..`, absolute paths and links that lead out of
+// every folder are not found). "" when not found.
 std::string findShaderFile(const std::string& file, const std::vector<std::string>& dirs);
-// Like findShaderFile but throws RuntimeError listing the directories searched.
+// Like findShaderFile but throws RuntimeError listing the directories searched,
+// or saying where a name that leads outside them resolves to.
 std::string resolveShaderFile(const std::string& file, const std::vector<std::string>& dirs);
 
 // A path as shown in messages: relative to the working directory when inside it.

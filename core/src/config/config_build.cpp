@@ -12,15 +12,26 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "config_impl.h"
+#include "config_values.h"
 #include "rgraph/registry.h"
 
 namespace rgraph {
 namespace {
 
+using config_detail::describeValue;
+using config_detail::didYouMean;
 using config_detail::escapePointerToken;
+using config_detail::formatNumber;
+using config_detail::IntegerValue;
+using config_detail::integerInRange;
+using config_detail::jsonTypeName;
+using config_detail::quotedList;
+using config_detail::readInteger;
 
 // Local copies of the access helpers so that the loader does not depend on
 // the graph compiler's sources.
@@ -56,87 +67,6 @@ std::string_view accessLabel(Access a) {
       return "blit_dst";
   }
   return "unknown";
-}
-
-std::string jsonTypeName(const Json& v) {
-  switch (v.type()) {
-    case Json::value_t::null:
-      return "null";
-    case Json::value_t::boolean:
-      return "bool";
-    case Json::value_t::number_integer:
-    case Json::value_t::number_unsigned:
-      return "int";
-    case Json::value_t::number_float:
-      return "float";
-    case Json::value_t::string:
-      return "string";
-    case Json::value_t::array:
-      return "array";
-    case Json::value_t::object:
-      return "object";
-    default:
-      return "value";
-  }
-}
-
-std::string formatNumber(double v) {
-  if (std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 1e15) {
-    return std::to_string(static_cast<int64_t>(v));
-  }
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-
-// A short rendering of a scalar for messages: 2.5, 'text', true, array...
-std::string describeValue(const Json& v) {
-  if (v.is_number()) return formatNumber(v.get<double>());
-  if (v.is_string()) return "'" + v.get<std::string>() + "'";
-  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
-  return jsonTypeName(v);
-}
-
-std::string quotedList(const std::vector<std::string>& items) {
-  std::string out;
-  for (size_t i = 0; i < items.size(); ++i) out += (i ? ", '" : "'") + items[i] + "'";
-  return out;
-}
-
-std::string didYouMean(std::string_view word, const std::vector<std::string>& candidates) {
-  std::string best = closestMatch(word, candidates);
-  return best.empty() ? std::string() : " (did you mean '" + best + "'?)";
-}
-
-// An integer read from JSON: 4 and 4.0 are integers, 4.5 is not.
-struct IntegerValue {
-  enum class Status { ok, not_a_number, not_integral, too_large } status = Status::ok;
-  int64_t value = 0;
-};
-
-IntegerValue readInteger(const Json& v) {
-  IntegerValue r;
-  if (v.is_number_unsigned()) {
-    uint64_t u = v.get<uint64_t>();
-    if (u > static_cast<uint64_t>(std::numeric_limits<int64_t>::max()))
-      r.status = IntegerValue::Status::too_large;
-    else
-      r.value = static_cast<int64_t>(u);
-  } else if (v.is_number_integer()) {
-    r.value = v.get<int64_t>();
-  } else if (v.is_number_float()) {
-    double d = v.get<double>();
-    if (d != std::floor(d))
-      r.status = IntegerValue::Status::not_integral;
-    else if (std::fabs(d) >= 9.2e18)
-      r.status = IntegerValue::Status::too_large;
-    else
-      r.value = static_cast<int64_t>(d);
-  } else {
-    r.status = IntegerValue::Status::not_a_number;
-  }
-  return r;
 }
 
 const std::vector<std::string> kTopLevelKeys = {"version", "description", "plugins", "resources", "passes", "output"};
@@ -377,14 +307,16 @@ class Builder {
           error(DiagCode::config_schema, at(pointer), "buffer resource '" + r.name + "' needs \"buffer_bytes\"")
               .resource = r.name;
       } else {
-        IntegerValue v = readInteger(*bytes);
-        if (v.status == IntegerValue::Status::not_a_number)
+        // GL buffer sizes are signed 64-bit (GLsizeiptr).
+        int64_t n = 0;
+        if (readInteger(*bytes).status == IntegerValue::Status::not_a_number)
           typeError(sub("buffer_bytes"), "an integer", *bytes);
-        else if (v.status != IntegerValue::Status::ok || v.value < 1)
-          error(DiagCode::config_schema, at(sub("buffer_bytes")),
-                "buffer_bytes must be a positive integer, got " + describeValue(*bytes));
+        else if (std::string why = integerInRange(*bytes, "buffer_bytes", 1, std::numeric_limits<int64_t>::max(), n,
+                                                  "bytes (the largest size OpenGL can address)");
+                 !why.empty())
+          error(DiagCode::config_schema, at(sub("buffer_bytes")), why);
         else
-          r.bufferBytes = static_cast<uint64_t>(v.value);
+          r.bufferBytes = static_cast<uint64_t>(n);
       }
       return false;
     }
@@ -427,42 +359,60 @@ class Builder {
     }
 
     if (const Json* mips = member("mips")) {
-      IntegerValue v = readInteger(*mips);
-      if (v.status == IntegerValue::Status::not_a_number)
+      int64_t n = 0;
+      if (readInteger(*mips).status == IntegerValue::Status::not_a_number)
         typeError(sub("mips"), "an integer", *mips);
-      else if (v.status != IntegerValue::Status::ok || v.value < 0 || v.value > 32)
-        error(DiagCode::config_schema, at(sub("mips")),
-              "mips must be an integer from 0 (full chain) to 32, got " + describeValue(*mips));
+      else if (std::string why = integerInRange(*mips, "mips", 0, 32, n, {}, " (0: a full mip chain)"); !why.empty())
+        error(DiagCode::config_schema, at(sub("mips")), why);
       else
-        t.mips = static_cast<uint32_t>(v.value);
+        t.mips = static_cast<uint32_t>(n);
     }
 
-    if (const Json* clear = member("clear")) {
-      if (clear->is_number()) {
-        t.clear = std::vector<float>{clear->get<float>()};
-      } else if (clear->is_array()) {
-        if (clear->empty() || clear->size() > 4) {
-          error(
-              DiagCode::config_schema, at(sub("clear")),
-              "clear must be a number or an array of 1 to 4 numbers, got an array of " + std::to_string(clear->size()));
-        } else {
-          std::vector<float> values;
-          bool ok = true;
-          for (size_t i = 0; i < clear->size(); ++i) {
-            if ((*clear)[i].is_number()) {
-              values.push_back((*clear)[i].get<float>());
-            } else {
-              typeError(sub("clear") + "/" + std::to_string(i), "a number", (*clear)[i]);
-              ok = false;
-            }
-          }
-          if (ok) t.clear = std::move(values);
-        }
-      } else {
-        typeError(sub("clear"), "a number or an array of 1 to 4 numbers", *clear);
-      }
-    }
+    if (const Json* clear = member("clear")) checkClear(*clear, sub("clear"), formatOk, t);
     return formatOk;
+  }
+
+  // Clear values become floats (and a stencil value an integer): 1e300 must not
+  // turn into infinity, nor a stencil of 1e30 into an undefined conversion.
+  void checkClear(const Json& clear, const std::string& pointer, bool formatOk, TextureDesc& t) {
+    auto value = [&](const Json& v, const std::string& at_, size_t index) {
+      if (!v.is_number()) {
+        typeError(at_, "a number", v);
+        return false;
+      }
+      if (formatOk && index == 1 && formatInfo(t.format).hasStencil) {
+        int64_t n = 0;
+        if (std::string why = integerInRange(v, "the stencil clear value", 0, 255, n); !why.empty()) {
+          error(DiagCode::config_schema, at(at_), why);
+          return false;
+        }
+      }
+      if (std::string why = config_detail::floatProblem(v.get<double>()); !why.empty()) {
+        error(DiagCode::config_schema, at(at_), "clear value " + why);
+        return false;
+      }
+      return true;
+    };
+    if (clear.is_number()) {
+      if (value(clear, pointer, 0)) t.clear = std::vector<float>{clear.get<float>()};
+    } else if (clear.is_array()) {
+      if (clear.empty() || clear.size() > 4) {
+        error(DiagCode::config_schema, at(pointer),
+              "clear must be a number or an array of 1 to 4 numbers, got an array of " + std::to_string(clear.size()));
+        return;
+      }
+      std::vector<float> values;
+      bool ok = true;
+      for (size_t i = 0; i < clear.size(); ++i) {
+        if (value(clear[i], pointer + "/" + std::to_string(i), i))
+          values.push_back(clear[i].get<float>());
+        else
+          ok = false;
+      }
+      if (ok) t.clear = std::move(values);
+    } else {
+      typeError(pointer, "a number or an array of 1 to 4 numbers", clear);
+    }
   }
 
   void checkSize(const Json& size, const std::string& pointer, SizeSpec& out) {
@@ -481,18 +431,19 @@ class Builder {
       uint32_t wh[2] = {0, 0};
       bool ok = true;
       for (size_t i = 0; i < 2; ++i) {
-        IntegerValue v = readInteger(size[i]);
         std::string elem = pointer + "/" + std::to_string(i);
         const char* what = i == 0 ? "width" : "height";
-        if (v.status == IntegerValue::Status::not_a_number) {
+        // The schema's bound; compile() holds sizes to the texture size limit
+        // (16384, --max-texture-size, or the device's).
+        int64_t n = 0;
+        if (readInteger(size[i]).status == IntegerValue::Status::not_a_number) {
           typeError(elem, std::string("an integer ") + what, size[i]);
           ok = false;
-        } else if (v.status != IntegerValue::Status::ok || v.value < 1 || v.value > 65536) {
-          error(DiagCode::config_schema, at(elem),
-                std::string(what) + " must be an integer from 1 to 65536, got " + describeValue(size[i]));
+        } else if (std::string why = integerInRange(size[i], what, 1, 65536, n, "pixels"); !why.empty()) {
+          error(DiagCode::config_schema, at(elem), why);
           ok = false;
         } else {
-          wh[i] = static_cast<uint32_t>(v.value);
+          wh[i] = static_cast<uint32_t>(n);
         }
       }
       if (ok) out = SizeSpec::absolute(wh[0], wh[1]);
@@ -762,110 +713,36 @@ class Builder {
 
   std::optional<ParamValue> checkParam(const ParamDecl& decl, const Json& v, const std::string& pointer,
                                        const PassInfo& info, const std::string& passName) {
-    std::string what = "parameter '" + decl.name + "' of " + info.label;
-    std::string expected(paramTypeName(decl.type));
-    auto fail = [&](DiagCode code, const std::string& where, const std::string& message) {
-      error(code, at(where), what + ": " + message).pass = passName;
-      return std::nullopt;
-    };
-    auto wrongType = [&](const std::string& exp) {
-      return fail(DiagCode::param_type, pointer, "expected " + exp + ", got " + jsonTypeName(v));
-    };
-    // Range check of one number; `where` is the value (or vector component).
-    auto inRange = [&](double x, const std::string& where, const std::string& label) {
-      if ((decl.min && x < *decl.min) || (decl.max && x > *decl.max)) {
-        std::string range = decl.min && decl.max
-                                ? "outside its range [" + formatNumber(*decl.min) + ", " + formatNumber(*decl.max) + "]"
-                            : decl.min ? "below its minimum " + formatNumber(*decl.min)
-                                       : "above its maximum " + formatNumber(*decl.max);
-        fail(DiagCode::param_range, where, label + formatNumber(x) + ", " + range);
-        return false;
-      }
-      return true;
-    };
-
-    switch (decl.type) {
-      case ParamType::boolean:
-        if (!v.is_boolean()) return wrongType(expected);
-        return ParamValue{v.get<bool>()};
-      case ParamType::integer: {
-        IntegerValue i = readInteger(v);
-        if (i.status == IntegerValue::Status::not_a_number) return wrongType(expected);
-        if (i.status == IntegerValue::Status::not_integral)
-          return fail(DiagCode::param_type, pointer, "expected int, got " + describeValue(v));
-        if (i.status == IntegerValue::Status::too_large)
-          return fail(DiagCode::param_range, pointer, describeValue(v) + " does not fit a 64-bit integer");
-        if (!inRange(static_cast<double>(i.value), pointer, "value ")) return std::nullopt;
-        return ParamValue{i.value};
-      }
-      case ParamType::number: {
-        if (!v.is_number()) return wrongType(expected);
-        double x = v.get<double>();
-        if (!inRange(x, pointer, "value ")) return std::nullopt;
-        return ParamValue{x};
-      }
-      case ParamType::string:
-        if (!v.is_string()) return wrongType(expected);
-        return ParamValue{v.get<std::string>()};
-      case ParamType::enumeration: {
-        if (!v.is_string()) return wrongType("one of " + quotedList(decl.choices));
-        std::string s = v.get<std::string>();
-        if (std::find(decl.choices.begin(), decl.choices.end(), s) == decl.choices.end())
-          return fail(DiagCode::param_range, pointer,
-                      "'" + s + "' is not one of " + quotedList(decl.choices) + didYouMean(s, decl.choices));
-        return ParamValue{s};
-      }
-      case ParamType::vec3:
-      case ParamType::vec4: {
-        size_t n = decl.type == ParamType::vec3 ? 3 : 4;
-        std::string exp = expected + " (an array of " + std::to_string(n) + " numbers)";
-        if (!v.is_array()) return wrongType(exp);
-        if (v.size() != n)
-          return fail(DiagCode::param_type, pointer,
-                      "expected " + exp + ", got an array of " + std::to_string(v.size()));
-        std::vector<double> out;
-        bool ok = true;
-        for (size_t i = 0; i < n; ++i) {
-          std::string ep = pointer + "/" + std::to_string(i);
-          if (!v[i].is_number()) {
-            fail(DiagCode::param_type, ep,
-                 "component " + std::to_string(i) + ": expected a number, got " + jsonTypeName(v[i]));
-            ok = false;
-          } else if (!inRange(v[i].get<double>(), ep, "component " + std::to_string(i) + " is ")) {
-            ok = false;
-          } else {
-            out.push_back(v[i].get<double>());
-          }
-        }
-        if (!ok) return std::nullopt;
-        return ParamValue{std::move(out)};
-      }
-    }
-    return std::nullopt;
+    std::vector<config_detail::ValueProblem> problems;
+    std::optional<ParamValue> value = config_detail::checkParamValue(decl, v, pointer, problems);
+    for (const auto& p : problems)
+      error(p.code, at(p.pointer), "parameter '" + decl.name + "' of " + info.label + ": " + p.message).pass = passName;
+    return value;
   }
 
   // ------------------------------------------------------------ formats
 
   // Maps version names to resources by following, within the document, the
-  // passes that load one name and produce another. Best effort: names that
-  // cannot be resolved are left to compile().
+  // passes that load one name and produce another: a breadth-first walk from
+  // the resources, linear however the passes are ordered (a chain declared
+  // last to first took one sweep over all passes per link). Best effort:
+  // names that cannot be resolved are left to compile().
   void resolveVersions() {
-    for (size_t round = 0; round <= passInfo_.size(); ++round) {
-      bool changed = false;
-      for (const PassInfo& info : passInfo_) {
-        if (!info.type) continue;
-        for (const auto& [slot, out] : info.outputs) {
-          const SlotDecl* decl = info.type->findSlot(slot);
-          if (!decl || !writes(decl->access) || versions_.count(out.name)) continue;
-          auto in = info.inputs.find(slot);
-          if (in == info.inputs.end()) continue;
-          if (auto r = versions_.find(in->second.name); r != versions_.end()) {
-            versions_[out.name] = r->second;
-            changed = true;
-          }
-        }
+    std::unordered_map<std::string_view, std::vector<std::string_view>> produced;  // loaded name -> names made from it
+    for (const PassInfo& info : passInfo_) {
+      if (!info.type) continue;
+      for (const auto& [slot, out] : info.outputs) {
+        const SlotDecl* decl = info.type->findSlot(slot);
+        if (!decl || !writes(decl->access)) continue;
+        if (auto in = info.inputs.find(slot); in != info.inputs.end()) produced[in->second.name].push_back(out.name);
       }
-      if (!changed) break;
+    }
+    std::vector<std::pair<std::string_view, size_t>> queue(versions_.begin(), versions_.end());
+    for (size_t next = 0; next < queue.size(); ++next) {
+      auto edges = produced.find(queue[next].first);
+      if (edges == produced.end()) continue;
+      for (std::string_view out : edges->second)
+        if (versions_.emplace(std::string(out), queue[next].second).second) queue.emplace_back(out, queue[next].second);
     }
   }
 

@@ -10,69 +10,10 @@
 #include <utility>
 
 #include "config_impl.h"
+#include "json_text.h"
 
 namespace rgraph {
 namespace {
-
-// nlohmann's own DOM builder, except that a parse error records where and
-// why instead of throwing (number overflow, for instance, would otherwise
-// arrive as an out_of_range exception without a position).
-class DomBuilder : public nlohmann::detail::json_sax_dom_parser<Json> {
- public:
-  explicit DomBuilder(Json& root) : json_sax_dom_parser<Json>(root, false) {}
-
-  // Shadows the base's parse_error: sax_parse calls it on the static type.
-  template <class Exception>
-  bool parse_error(std::size_t position, const std::string& lastToken, const Exception& ex) {
-    failed = true;
-    message = ex.what();
-    errorOffset = position - std::min(position, tokenLength(message, lastToken));
-    return false;
-  }
-
-  bool failed = false;
-  std::size_t errorOffset = 0;  // of the first byte of the offending token
-  std::string message;
-
- private:
-  // The position the library reports is just past the last character read.
-  // For an unexpected number, string or literal, point at its first
-  // character instead of its last. The token text is only reliable for
-  // strings and numbers (the lexer resets it for those); literals have fixed
-  // lengths; anything else is one character or a lexer error at that spot.
-  static std::size_t tokenLength(const std::string& message, const std::string& token) {
-    if (message.find("unexpected number literal") != std::string::npos ||
-        message.find("unexpected string literal") != std::string::npos ||
-        message.find("number overflow") != std::string::npos)
-      return std::max<std::size_t>(1, token.size());
-    if (message.find("unexpected true literal") != std::string::npos) return 4;
-    if (message.find("unexpected false literal") != std::string::npos) return 5;
-    if (message.find("unexpected null literal") != std::string::npos) return 4;
-    return 1;
-  }
-};
-
-// "[json.exception.parse_error.101] parse error at line 1, column 5: syntax
-// error while parsing ..." -> "syntax error while parsing ...": the position
-// is printed by formatDiagnostic already.
-std::string parserMessage(std::string m) {
-  if (!m.empty() && m[0] == '[') {
-    size_t end = m.find("] ");
-    if (end != std::string::npos) m.erase(0, end + 2);
-  }
-  if (m.rfind("parse error", 0) == 0) {
-    size_t colon = m.find(": ");
-    if (colon != std::string::npos) m.erase(0, colon + 2);
-  }
-  // "; last read: '<token>'" repeats raw input (possibly invalid UTF-8, and
-  // not always only the bad token): the position says where it is.
-  size_t last = m.find("; last read: '");
-  if (last != std::string::npos) {
-    size_t expected = m.find("'; expected ", last);
-    m.erase(last, expected == std::string::npos ? std::string::npos : expected + 1 - last);
-  }
-  return m;
-}
 
 Diagnostic syntaxError(const config_detail::SourceMap& map, const std::string& file, size_t offset,
                        std::string message) {
@@ -124,33 +65,15 @@ ConfigDocument ConfigDocument::parseText(const std::string& text, const std::str
   impl.file = file;
   impl.map.indexLines(text);
 
-  DomBuilder builder(impl.root);
-  bool parsed = false;
-  try {
-    parsed = Json::sax_parse(text, &builder);
-  } catch (const std::exception& e) {  // not expected: the builder does not throw
-    builder.failed = true;
-    builder.message = e.what();
-  }
-  if (!parsed || builder.failed) {
-    diags.push_back(syntaxError(impl.map, impl.file, std::min(builder.errorOffset, text.size()),
-                                builder.message.empty() ? "invalid JSON" : parserMessage(builder.message)));
-    impl.root = Json();
-    return doc;
-  }
-
-  // The library stops at a NUL byte as if the input ended there.
-  if (size_t nul = text.find('\0'); nul != std::string::npos) {
-    diags.push_back(syntaxError(impl.map, impl.file, nul, "unexpected NUL byte after the top-level value"));
-    impl.root = Json();
+  if (auto error = config_detail::parseJsonText(text, impl.root)) {
+    diags.push_back(syntaxError(impl.map, impl.file, error->offset, std::move(error->message)));
     return doc;
   }
 
   size_t tooDeepAt = 0;
   if (!impl.map.scan(text, &tooDeepAt)) {
     diags.push_back(syntaxError(impl.map, impl.file, tooDeepAt,
-                                "values nested deeper than " + std::to_string(config_detail::SourceMap::kMaxDepth) +
-                                    " levels are not supported"));
+                                config_detail::nestingTooDeepMessage()));
     impl.root = Json();
     return doc;
   }

@@ -364,6 +364,16 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(uint32_t passIndex, Extent ou
 void Executor::Impl::build(Extent output) {
   CompileOptions opts;
   opts.output = output;
+  // The device's own limit, so that a texture it cannot hold is a located
+  // diagnostic here rather than a GL error later.
+  GLint maxTexture = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+  if (maxTexture > 0) {
+    const GLubyte* renderer = glGetString(GL_RENDERER);
+    opts.maxTextureSize = static_cast<uint32_t>(maxTexture);
+    opts.maxTextureSizeOrigin = std::string("this device's GL_MAX_TEXTURE_SIZE") +
+                                (renderer ? std::string(" (") + reinterpret_cast<const char*>(renderer) + ")" : "");
+  }
   plan = compile(pipeline.graph, opts);
   if (!plan.ok()) {
     std::string msg = "the render graph";
@@ -387,8 +397,16 @@ void Executor::Impl::build(Extent output) {
     try {
       run->instance->setup(*run);
     } catch (const RuntimeError& e) {
+      // Where the pass is in the config, when it came from one.
+      std::string at;
+      if (run->decl < pipeline.graph.passes.size()) {
+        const SourceLocation& w = pipeline.graph.passes[run->decl].where;
+        if (w.known())
+          at = " at " + w.file + ":" + std::to_string(w.line) + ":" + std::to_string(w.column) +
+               (w.path.empty() ? "" : " (" + w.path + ")");
+      }
       throw RuntimeError(std::string(e.what()) + "\n  (in setup of pass '" + run->name + "' of type '" +
-                         run->typeName + "')");
+                         run->typeName + "'" + at + ")");
     }
   }
   size = output;

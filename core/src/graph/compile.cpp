@@ -34,18 +34,14 @@
 #include <vector>
 
 #include "rgraph/graph.h"
+#include "name_table.h"
 #include "rgraph/registry.h"  // closestMatch
 
 namespace rgraph {
 namespace {
 
-inline void prefetch(const void* p) {
-#if defined(__GNUC__) || defined(__clang__)
-  __builtin_prefetch(p);
-#else
-  (void)p;
-#endif
-}
+using graph_detail::NameTable;
+using graph_detail::prefetch;
 
 bool locationSet(const SourceLocation& l) { return l.line > 0 || !l.file.empty() || !l.path.empty(); }
 
@@ -65,95 +61,6 @@ std::string q(std::string_view s) {
   out += '\'';
   return out;
 }
-
-uint64_t hashName(std::string_view s) {
-  uint64_t h = 0x9E3779B97F4A7C15ull ^ (s.size() * 0xC2B2AE3D27D4EB4Full);
-  size_t i = 0;
-  for (; i + 8 <= s.size(); i += 8) {
-    uint64_t w;
-    std::memcpy(&w, s.data() + i, 8);
-    h = (h ^ w) * 0xFF51AFD7ED558CCDull;
-    h ^= h >> 32;
-  }
-  uint64_t w = 0;
-  std::memcpy(&w, s.data() + i, s.size() - i);
-  h = (h ^ w) * 0xC4CEB9FE1A85EC53ull;
-  h ^= h >> 29;
-  h *= 0xFF51AFD7ED558CCDull;
-  h ^= h >> 32;
-  return h;
-}
-
-// Name -> id. Open addressing with linear probing over 16-byte slots (a tag
-// from the hash, the id, and where the key lies in one contiguous arena of
-// copied keys), so that confirming a hit does not chase a pointer into the
-// (large, scattered) description.
-class NameTable {
- public:
-  void reserve(size_t n) {
-    size_t cap = 16;
-    while (cap < n + n / 2) cap <<= 1;
-    slots_.assign(cap, Slot{0, -1, 0, 0});
-    mask_ = cap - 1;
-    arena_.reserve(n * 8);
-    byId_.reserve(n);
-  }
-  // Returns the id already stored under the name, or stores `id` and returns -1.
-  int insert(std::string_view key, int id) {
-    if ((count_ + 1) * 3 > slots_.size() * 2) grow();
-    const uint64_t h = hashName(key);
-    const uint32_t tag = static_cast<uint32_t>(h >> 32);
-    size_t i = h & mask_;
-    for (; slots_[i].id >= 0; i = (i + 1) & mask_)
-      if (matches(slots_[i], tag, key)) return slots_[i].id;
-    slots_[i] = {tag, id, static_cast<uint32_t>(arena_.size()), static_cast<uint32_t>(key.size())};
-    if (static_cast<size_t>(id) >= byId_.size()) byId_.resize(static_cast<size_t>(id) + 1, {0, kNoKey});
-    byId_[id] = {slots_[i].offset, slots_[i].size};
-    arena_.append(key);
-    ++count_;
-    return -1;
-  }
-  // The key stored for an id (a copy in the arena), if any.
-  bool name(int id, std::string_view& out) const {
-    if (id < 0 || static_cast<size_t>(id) >= byId_.size() || byId_[id].second == kNoKey) return false;
-    out = std::string_view(arena_).substr(byId_[id].first, byId_[id].second);
-    return true;
-  }
-  int find(std::string_view key) const {
-    if (slots_.empty()) return -1;
-    const uint64_t h = hashName(key);
-    const uint32_t tag = static_cast<uint32_t>(h >> 32);
-    for (size_t i = h & mask_; slots_[i].id >= 0; i = (i + 1) & mask_)
-      if (matches(slots_[i], tag, key)) return slots_[i].id;
-    return -1;
-  }
-
- private:
-  struct Slot {
-    uint32_t tag;
-    int32_t id;
-    uint32_t offset, size;
-  };
-  bool matches(const Slot& s, uint32_t tag, std::string_view key) const {
-    return s.tag == tag && s.size == key.size() && std::memcmp(arena_.data() + s.offset, key.data(), s.size) == 0;
-  }
-  void grow() {
-    std::vector<Slot> old = std::move(slots_);
-    slots_.assign(std::max<size_t>(16, old.size() * 2), Slot{0, -1, 0, 0});
-    mask_ = slots_.size() - 1;
-    for (const Slot& s : old) {
-      if (s.id < 0) continue;
-      size_t i = hashName(std::string_view(arena_).substr(s.offset, s.size)) & mask_;
-      while (slots_[i].id >= 0) i = (i + 1) & mask_;
-      slots_[i] = s;
-    }
-  }
-  static constexpr uint32_t kNoKey = 0xFFFFFFFFu;
-  std::vector<Slot> slots_;
-  std::vector<std::pair<uint32_t, uint32_t>> byId_;  // id -> (offset, size) in the arena
-  std::string arena_;
-  size_t mask_ = 0, count_ = 0;
-};
 
 // Aliasing pools: resources may share a physical only with identical keys.
 struct PoolKey {
@@ -232,6 +139,7 @@ class Compiler {
     bool passThrough = false;
     bool reachable = false;  // part of a chain rooted at a resource
     bool alive = true;       // an in-place write whose output name was accepted
+    bool afterOutput = false;  // a later version of the output's resource than the output
   };
   enum : uint8_t { kEnabled = 1, kSideEffect = 2 };
 
@@ -276,17 +184,36 @@ class Compiler {
     return diag(code, std::move(message), d_.passes[u_[flat].pass].name, use(flat).slot, resource,
                 useWhere(flat, outputSide));
   }
+  // "did you mean" compares the word with every name: with an unknown name in
+  // each of n passes that is n^2 comparisons (50,000 typos in a generated
+  // config took minutes). The comparisons are budgeted per compile; once
+  // spent, the remaining messages come without a suggestion.
+  static constexpr size_t kSuggestionBudget = 4'000'000;  // name comparisons, about 0.3 s
   std::string suggestion(std::string_view word) {
     if (candidates_.empty()) {
       candidates_.reserve(nRes_ + defUse_.size());
       for (const auto& r : d_.resources) candidates_.push_back(r.name);
       for (int f : defUse_) candidates_.push_back(u_[f].ru->output);
     }
+    if (candidates_.size() > kSuggestionBudget - suggestionWork_) return {};
+    suggestionWork_ += candidates_.size();
     std::string best = closestMatch(word, candidates_);
     if (best.empty() || best == word) return {};
     return " (did you mean " + q(best) + "?)";
   }
   const std::string& passName(int p) const { return d_.passes[p].name; }
+  // What a use binds, as messages name it: the version the config names,
+  // with its resource when that differs: 'hdr_lit' (a version of 'hdr').
+  std::string_view boundVersion(uint32_t f) const {
+    const Use& u = u_[f];
+    const std::string& n = u.write ? u.ru->output : u.ru->input;
+    return n.empty() && u.res >= 0 ? resName_[u.res] : std::string_view(n);
+  }
+  std::string boundName(uint32_t f) const {
+    const std::string_view n = boundVersion(f);
+    if (u_[f].res < 0 || n == resName_[u_[f].res]) return q(n);
+    return q(n) + " (a version of " + q(resName_[u_[f].res]) + ")";
+  }
 
   // ------------------------------------------------------------ steps
   void resources() {
@@ -346,6 +273,14 @@ class Compiler {
       if (!bad && (e.width == 0 || e.height == 0))
         invalid("texture " + q(rd.name) + " resolves to size " + extentString(e) + " (output size " +
                 extentString(o_.output) + ")");
+      else if (!bad && o_.maxTextureSize > 0 && std::max(e.width, e.height) > o_.maxTextureSize)
+        invalid("texture " + q(rd.name) + " is " + extentString(e) +
+                (td.size.kind == SizeSpec::Kind::absolute ? std::string()
+                                                          : " (at output size " + extentString(o_.output) + ")") +
+                ", larger than " + std::to_string(o_.maxTextureSize) + " pixels per side, " +
+                (o_.maxTextureSizeOrigin.empty()
+                     ? std::string("the GL_MAX_TEXTURE_SIZE every OpenGL 4.5 device reaches")
+                     : o_.maxTextureSizeOrigin));
       if (td.samples != 1 && td.samples != 2 && td.samples != 4 && td.samples != 8)
         invalid("texture " + q(rd.name) + " has " + std::to_string(td.samples) +
                 " samples; the sample count must be 1, 2, 4 or 8");
@@ -634,10 +569,11 @@ class Compiler {
         for (const Att& a : attachments)
           if (s.res == a.res) {
             useDiag(DiagCode::feedback_loop,
-                    slotLabel(s.flat) + " reads " + q(resName_[s.res]) + " while " + slotLabel(a.flat) +
-                        " binds it as an attachment of the same pass; reading a texture while rendering into it "
-                        "is a feedback loop (copy it first, or read an earlier version in another pass)",
-                    s.flat, resName_[s.res], false);
+                    slotLabel(s.flat) + " reads " + boundName(s.flat) + " while " + slotLabel(a.flat) + " binds " +
+                        boundName(a.flat) +
+                        " as an attachment of the same pass; reading a texture while rendering into it is a feedback "
+                        "loop (copy it first, or read an earlier version in another pass)",
+                    s.flat, boundVersion(s.flat), false);
             break;
           }
       // Attachments of one framebuffer: one size and one sample count.
@@ -655,16 +591,16 @@ class Compiler {
           const bool out = u_[a.flat].write;
           if (rs.extent != b.extent)
             useDiag(DiagCode::attachment_size_mismatch,
-                    slotLabel(a.flat) + " (" + q(resName_[a.res]) + ") is " + extentString(rs.extent) + " but " +
-                        slotLabel(base->flat) + " (" + q(resName_[base->res]) + ") is " + extentString(b.extent) +
+                    slotLabel(a.flat) + " (" + boundName(a.flat) + ") is " + extentString(rs.extent) + " but " +
+                        slotLabel(base->flat) + " (" + boundName(base->flat) + ") is " + extentString(b.extent) +
                         "; all attachments of a pass must have the same size",
-                    a.flat, resName_[a.res], out);
+                    a.flat, boundVersion(a.flat), out);
           if (rs.samples != b.samples)
             useDiag(DiagCode::attachment_samples_mismatch,
-                    slotLabel(a.flat) + " (" + q(resName_[a.res]) + ") has " + std::to_string(rs.samples) +
-                        " samples but " + slotLabel(base->flat) + " (" + q(resName_[base->res]) + ") has " +
+                    slotLabel(a.flat) + " (" + boundName(a.flat) + ") has " + std::to_string(rs.samples) +
+                        " samples but " + slotLabel(base->flat) + " (" + boundName(base->flat) + ") has " +
                         std::to_string(b.samples) + "; all attachments of a pass must have the same sample count",
-                    a.flat, resName_[a.res], out);
+                    a.flat, boundVersion(a.flat), out);
         }
       }
       // Depth blits need identical formats.
@@ -673,10 +609,10 @@ class Compiler {
           const Format fs = r_[s.res].format, ft = r_[t.res].format;
           if (fs != ft && (isDepthFormat(fs) || isDepthFormat(ft)))
             useDiag(DiagCode::depth_blit_format_mismatch,
-                    "blit from " + q(resName_[s.res]) + " (" + std::string(formatName(fs)) + ") to " +
-                        q(resName_[t.res]) + " (" + std::string(formatName(ft)) +
+                    "blit from " + boundName(s.flat) + " (" + std::string(formatName(fs)) + ") to " +
+                        boundName(t.flat) + " (" + std::string(formatName(ft)) +
                         "): blitting depth requires identical source and destination formats",
-                    t.flat, resName_[t.res], true);
+                    t.flat, boundVersion(t.flat), true);
         }
     }
   }
@@ -720,9 +656,9 @@ class Compiler {
     if (rs.kind == ResourceKind::buffer) {
       if (u.access != Access::storage_read && u.access != Access::storage_write)
         useDiag(DiagCode::access_format_mismatch,
-                slotLabel(f) + " binds buffer " + q(resName_[r]) + " as " + std::string(accessName(u.access)) +
+                slotLabel(f) + " binds buffer " + boundName(f) + " as " + std::string(accessName(u.access)) +
                     "; buffers can only be bound as storage_read or storage_write",
-                f, resName_[r], u.write);
+                f, boundVersion(f), u.write);
       return;
     }
     switch (u.access) {
@@ -730,15 +666,15 @@ class Compiler {
         const FormatInfo& fi = formatInfo(rs.format);
         if (fi.isDepth)
           useDiag(DiagCode::access_format_mismatch,
-                  slotLabel(f) + " binds " + q(resName_[r]) + " as a colour attachment, but its format " +
+                  slotLabel(f) + " binds " + boundName(f) + " as a colour attachment, but its format " +
                       std::string(fi.name) + " is a depth format (bind it as depth_attachment)",
-                  f, resName_[r], u.write);
+                  f, boundVersion(f), u.write);
         else if (!fi.colorRenderable)
           useDiag(DiagCode::rgb_float_attachment,
-                  slotLabel(f) + " binds " + q(resName_[r]) + " (format " + std::string(fi.name) +
+                  slotLabel(f) + " binds " + boundName(f) + " (format " + std::string(fi.name) +
                       ") as a colour attachment; three-channel float formats are not colour-renderable in "
                       "OpenGL 4.5: use " + (rs.format == Format::rgb32f ? "rgba32f" : "rgba16f") + " instead",
-                  f, resName_[r], u.write);
+                  f, boundVersion(f), u.write);
         attachments.push_back({f, r});
         break;
       }
@@ -746,19 +682,19 @@ class Compiler {
       case Access::depth_attachment_read:
         if (!isDepthFormat(rs.format))
           useDiag(DiagCode::access_format_mismatch,
-                  slotLabel(f) + " binds " + q(resName_[r]) + " as a depth attachment, but its format " +
+                  slotLabel(f) + " binds " + boundName(f) + " as a depth attachment, but its format " +
                       std::string(formatName(rs.format)) +
                       " is a colour format (use depth24, depth32f, depth24_stencil8 or depth32f_stencil8)",
-                  f, resName_[r], u.write);
+                  f, boundVersion(f), u.write);
         attachments.push_back({f, r});
         break;
       case Access::sampled:
         if (rs.samples > 1 && !u.acceptsMultisample)
           useDiag(DiagCode::multisample_sampled,
-                  slotLabel(f) + " samples " + q(resName_[r]) + ", which has " + std::to_string(rs.samples) +
+                  slotLabel(f) + " samples " + boundName(f) + ", which has " + std::to_string(rs.samples) +
                       " samples; resolve it first (blit it into a single-sample texture) or bind it to a slot "
                       "that accepts multisample textures",
-                  f, resName_[r], u.write);
+                  f, boundVersion(f), u.write);
         sampledReads.push_back({f, r});
         break;
       case Access::storage_read: sampledReads.push_back({f, r}); break;
@@ -783,22 +719,56 @@ class Compiler {
       return;
     }
     if (!vers_[v].reachable) return;  // a naming loop, reported already
-    while (vers_[v].child >= 0) v = vers_[v].child;
-    // The final version; when disabled passes pass it through at the end of
-    // the chain, the version they alias is the one actually written.
+    // Exactly the version named: later versions of the resource are not part
+    // of the image (culling drops their writers). When disabled passes pass it
+    // through, the version they alias is the one actually written.
+    outputVer_ = v;
+    for (int c = vers_[v].child; c >= 0; c = vers_[c].child) vers_[c].afterOutput = true;
+    const int e = vers_[v].eff;
     plan_.outputResource = vers_[v].res;
-    plan_.outputVersion = versionName(vers_[v].eff);
-    const int w = vers_[vers_[v].eff].writer;
+    plan_.outputVersion = versionName(e);
+    outputDescriptor();
+    const int w = vers_[e].writer;
     if (enabled(w)) {
       outputWriter_ = w;
       return;
     }
     std::string msg = "output " + q(d_.output);
-    if (versionName(v) != d_.output) msg += " (final version " + q(versionName(v)) + ")";
+    if (e != v) msg += " (the same contents as " + q(versionName(e)) + ", disabled passes pass it through)";
     msg += " is never written by an enabled pass";
     if (w >= 0) msg += ": its only writer, pass " + q(passName(w)) + ", is disabled";
     diag(DiagCode::output_never_written, std::move(msg), w >= 0 ? std::string_view(passName(w)) : "", {}, d_.output,
          d_.outputWhere);
+  }
+
+  // What the output resource must be for the caller to read it back as an image.
+  void outputDescriptor() {
+    const int r = plan_.outputResource;
+    const Res& rs = r_[r];
+    const std::string of = "output " + q(d_.output) +
+                           (d_.output == resName_[r] ? std::string() : " (a version of " + q(resName_[r]) + ")");
+    auto refuse = [&](const std::string& why) {
+      diag(DiagCode::invalid_output, of + why, {}, {}, d_.output, d_.outputWhere);
+    };
+    if (rs.kind == ResourceKind::buffer) return refuse(" is a buffer; the output image must be a texture");
+    if (!rs.valid) return;
+    if (rs.samples > 1)
+      refuse(" is multisampled (" + std::to_string(rs.samples) +
+             " samples) and cannot be read back as an image: resolve it first (a blit pass into a single-sample "
+             "texture) and name that texture as the output");
+    if (isDepthFormat(rs.format))
+      refuse(" has the depth format " + std::string(formatName(rs.format)) +
+             "; the output image must be a colour texture");
+    if (rs.extent != o_.output) {
+      const SizeSpec& size = d_.resources[r].texture.size;
+      const char* why = size.kind == SizeSpec::Kind::absolute ? " (its fixed size)" : " (scaled from the output size)";
+      Diagnostic& dg = diag(DiagCode::output_size,
+                            of + " is " + extentString(rs.extent) + why + ", not the requested output size " +
+                                extentString(o_.output) + ": the image is " + extentString(rs.extent) +
+                                " (resources sized \"output\" are " + extentString(o_.output) + ")",
+                            {}, {}, d_.output, d_.resources[r].where);
+      dg.severity = Severity::warning;
+    }
   }
 
   void order() {
@@ -894,6 +864,19 @@ class Compiler {
     plan_.order.reserve(topo_.size());
     for (uint32_t p : topo_)
       if (needed_[p]) plan_.order.push_back(p);
+    // A pass kept for its side effect that writes a later version of the
+    // output's resource would overwrite the image before the frame ends.
+    if (outputVer_ < 0) return;
+    for (int c = vers_[outputVer_].child; c >= 0; c = vers_[c].child) {
+      const int w = vers_[c].writer;
+      if (!enabled(w) || !needed_[w]) continue;
+      diag(DiagCode::invalid_output,
+           "output " + q(d_.output) + " is overwritten by pass " + q(passName(w)) +
+               ", which writes the later version " + q(versionName(c)) + " and runs for its side effect; name " +
+               q(versionName(c)) + " as the output, or write the side effect's result to another resource",
+           passName(w), {}, d_.output, d_.outputWhere);
+      break;
+    }
   }
 
   // Buffers are pooled like textures: two buffers share one physical buffer when
@@ -974,17 +957,23 @@ class Compiler {
         pp.reason = "disabled";
       } else if (!cyclic_ && !needed_[p]) {
         pp.culled = true;
-        std::string outs;
+        std::string outs, later;
         for (uint32_t f = useBegin_[p]; f < useBegin_[p + 1]; ++f) {
           if (!u_[f].write) continue;
-          const std::string_view out =
-              u_[f].writeVer >= 0 ? versionName(u_[f].writeVer) : std::string_view(u_[f].ru->output);
+          const int wv = u_[f].writeVer;
+          const std::string_view out = wv >= 0 ? versionName(wv) : std::string_view(u_[f].ru->output);
           if (out.empty()) continue;
           if (!outs.empty()) outs += ", ";
           outs += out;
+          if (wv >= 0 && vers_[wv].afterOutput) later = out;
         }
-        pp.reason = outs.empty() ? "it writes nothing and has no side effect"
-                                 : "its outputs (" + outs + ") are never read by a pass that reaches the output";
+        if (!later.empty())
+          pp.reason = "it writes " + q(later) + ", a later version of " + q(resName_[plan_.outputResource]) +
+                      " than the output " + q(d_.output) + ", and nothing that reaches the output reads its outputs (" +
+                      outs + ")";
+        else
+          pp.reason = outs.empty() ? "it writes nothing and has no side effect"
+                                   : "its outputs (" + outs + ") are never read by a pass that reaches the output";
       }
     }
     plan_.resources.resize(nRes_);
@@ -1024,7 +1013,9 @@ class Compiler {
   std::vector<uint32_t> topo_;
   std::vector<char> needed_;
   std::vector<std::string> candidates_;
+  size_t suggestionWork_ = 0;  // names compared by suggestion() so far
   int outputWriter_ = -1;
+  int outputVer_ = -1;  // the version "output" names
   bool cyclic_ = false;
 };
 

@@ -2,12 +2,15 @@
 // calling anything else, and registers their pass types all or nothing.
 #include <dlfcn.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <spdlog/spdlog.h>
 
 #include "rgraph/plugin.h"
+#include "rgraph/plugin_file_check.h"
 #include "rgraph/registry.h"
+#include "rgraph/shader_check.h"
 
 #ifndef RGRAPH_PLUGIN_BUILD_DIR
 #define RGRAPH_PLUGIN_BUILD_DIR ""
@@ -145,6 +148,31 @@ class Host final : public PluginHost {
   std::vector<std::string> errors_;
 };
 
+// A name as it can be shown on one line: control characters (a NUL from a
+// config's "\u0000") written the way JSON writes them.
+std::string shown(const std::string& s) {
+  std::string out;
+  for (unsigned char c : s) {
+    if (c >= 0x20 && c != 0x7f) {
+      out += char(c);
+      continue;
+    }
+    char buf[8];
+    std::snprintf(buf, sizeof buf, "\\u%04x", c);
+    out += buf;
+  }
+  return out;
+}
+
+// The C library stops at a NUL: "bloom\0x" would look up "librgraph_bloom"
+// and report a file that exists as missing. Refuse such a name outright.
+std::string nulByteError(const std::string& nameOrPath) {
+  const size_t at = nameOrPath.find('\0');
+  if (at == std::string::npos) return {};
+  return "plugin '" + shown(nameOrPath) + "': the name contains a NUL byte (character " + std::to_string(at + 1) +
+         "); a plugin name or path cannot contain one";
+}
+
 std::string joined(const std::vector<std::string>& v, const char* sep) {
   std::string out;
   for (const auto& s : v) out += (out.empty() ? "" : sep) + s;
@@ -202,6 +230,7 @@ const LoadedPlugin* PluginLoader::load(const std::string& nameOrPath, const std:
     error = "plugin '': empty plugin name";
     return nullptr;
   }
+  if (error = nulByteError(nameOrPath); !error.empty()) return nullptr;
   const std::string file = find(nameOrPath, baseDir);
   if (file.empty()) {
     if (isPathLike(nameOrPath)) {
@@ -218,7 +247,7 @@ const LoadedPlugin* PluginLoader::load(const std::string& nameOrPath, const std:
 }
 
 const LoadedPlugin* PluginLoader::loadFile(const std::string& pathIn, std::string& error, const std::string& displayName) {
-  error.clear();
+  if (error = nulByteError(pathIn); !error.empty()) return nullptr;
   const std::string path = normal(pathIn);
   const std::string label =
       "plugin '" + (displayName.empty() ? nameFromFile(path) : displayName) + "' (" + path + ")";
@@ -226,6 +255,13 @@ const LoadedPlugin* PluginLoader::loadFile(const std::string& pathIn, std::strin
     if (p.path == path) return &p;
   if (!isFile(path)) {
     error = label + ": file not found";
+    return nullptr;
+  }
+
+  // dlopen maps the file and reads it through the mapping: a file cut short
+  // inside a segment kills the process with SIGBUS there. Check it first.
+  if (std::string why = checkPluginFile(path); !why.empty()) {
+    error = label + ": not a loadable plugin: " + why;
     return nullptr;
   }
 
@@ -281,6 +317,8 @@ const LoadedPlugin* PluginLoader::loadFile(const std::string& pathIn, std::strin
     loaded.passTypes.push_back(std::move(name));
   }
   spdlog::debug("loaded plugin '{}' from {} ({} pass types)", loaded.name, path, loaded.passTypes.size());
+  // Its shaders are read from its own folder: make that a shader folder.
+  addPluginShaderDirectory(host.shaderDirectory());
   loaded_.push_back(std::move(loaded));
   return &loaded_.back();
 }

@@ -11,6 +11,7 @@ std::string_view paramTypeName(ParamType t) {
     case ParamType::enumeration: return "enum";
     case ParamType::vec3: return "vec3";
     case ParamType::vec4: return "vec4";
+    case ParamType::shader: return "shader";
   }
   return "unknown";
 }

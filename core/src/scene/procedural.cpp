@@ -164,7 +164,8 @@ Scene makeLearnOpenGLScene() {
 // ---------------------------------------------------------------- many lights
 
 Scene makeManyLightsScene(int n, uint32_t seed) {
-  if (n < 0 || n > 100000) throw RuntimeError("many-lights: light count must be in 0..100000, got " + std::to_string(n));
+  if (n < 0 || size_t(n) > kMaxSceneLights)
+    throw RuntimeError("many-lights: light count must be in 0.." + std::to_string(kMaxSceneLights) + ", got " + std::to_string(n));
   Scene s;
   s.source = "many-lights:" + std::to_string(n);
   GlibcRandom rng(seed);

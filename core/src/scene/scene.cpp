@@ -113,13 +113,15 @@ glm::vec3 Camera::forward() const {
   return len > 0.0f ? d / len : glm::vec3(0.0f, 0.0f, -1.0f);
 }
 
-glm::mat4 Camera::view() const {
-  glm::vec3 f = forward();
-  glm::vec3 u = up;
-  // lookAt degenerates when up is parallel to the view direction.
-  if (glm::length(glm::cross(f, u)) < 1e-6f) u = std::abs(f.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, -1);
-  return glm::lookAt(position, position + f, u);
+glm::vec3 Camera::validUp() const {
+  const glm::vec3 f = forward();
+  // lookAt degenerates when up is parallel to the view direction (or zero).
+  const float len = glm::length(up);
+  if (len > 0.0f && glm::length(glm::cross(f, up)) >= 1e-6f * len) return up;
+  return std::abs(f.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, -1);
 }
+
+glm::mat4 Camera::view() const { return glm::lookAt(position, position + forward(), validUp()); }
 
 glm::mat4 Camera::projection(float aspect) const {
   float a = aspect > 0.0f ? aspect : 1.0f;

@@ -5,12 +5,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <optional>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
+#include "../config/json_text.h"
 #include "rgraph/error.h"
 #include "rgraph/scene.h"
 
@@ -18,26 +19,26 @@ namespace rgraph {
 
 namespace {
 
-using json = nlohmann::json;
+// ordered: members in file order, so messages come out in the order a reader meets them.
+using json = nlohmann::ordered_json;
+namespace cd = config_detail;
 
 class SceneFileParser {
  public:
   SceneFileParser(std::string file, std::string baseDir) : file_(std::move(file)), baseDir_(std::move(baseDir)) {}
 
   Scene parse(const std::string& text) {
+    locator_.emplace(text);
+    // Before the parser sees the text: the nesting bound (as for pipelines),
+    // and the light cap, since a million lights cost tens of seconds and
+    // gigabytes of parsing before any check on the document could run.
+    if (size_t deep = cd::findNestingTooDeep(text); deep != cd::SourceMap::npos) failAtOffset(deep, cd::nestingTooDeepMessage());
+    if (size_t extra = cd::findTopLevelArrayElement(text, "lights", kMaxSceneLights); extra != cd::SourceMap::npos)
+      failAtOffset(extra, "/lights/" + std::to_string(kMaxSceneLights) + ": " + tooManyLights("more than " + std::to_string(kMaxSceneLights)));
     json doc;
-    try {
-      doc = json::parse(text);
-    } catch (const json::parse_error& e) {
-      auto [line, col] = lineCol(text, e.byte);
-      throw RuntimeError(file_ + ":" + std::to_string(line) + ":" + std::to_string(col) + ": invalid JSON: " + stripPrefix(e.what()));
-    }
+    if (auto error = cd::parseJsonText(text, doc)) failAtOffset(error->offset, "invalid JSON: " + error->message);
     if (!doc.is_object()) fail("", "the scene file must be a JSON object");
-    for (auto it = doc.begin(); it != doc.end(); ++it) {
-      static const char* known[] = {"models", "lights", "ambient", "camera", "name", "description", "$schema"};
-      if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return it.key() == k; }) == std::end(known))
-        spdlog::warn("{}: /{}: unknown key ignored", file_, it.key());
-    }
+    unknownKeys(doc, "", {"models", "lights", "ambient", "camera", "name", "description", "$schema"});
 
     Scene scene;
     scene.source = file_;
@@ -50,6 +51,8 @@ class SceneFileParser {
     if (hasLightsKey) {
       const json& lights = doc["lights"];
       if (!lights.is_array()) fail("/lights", "expected an array");
+      // (The text check above does not see a key spelled with escapes.)
+      if (lights.size() > kMaxSceneLights) fail("/lights", tooManyLights(std::to_string(lights.size())));
       for (size_t i = 0; i < lights.size(); ++i) addLight(scene, lights[i], "/lights/" + std::to_string(i));
     }
     if (doc.contains("ambient")) scene.ambient = vec3OrScalar(doc["ambient"], "/ambient", 0.0f);
@@ -63,6 +66,8 @@ class SceneFileParser {
     }
     // Default light only when the file says nothing about lights ("lights": [] means none).
     if (!hasLightsKey) applySceneDefaults(scene);
+    if (const size_t n = scene.pointLights.size() + scene.directionalLights.size(); n > kMaxSceneLights)
+      fail(hasLightsKey ? "/lights" : "/models", tooManyLights(std::to_string(n) + " (the models' lights included)"));
     // Lights without falloff (linear = quadratic = 0) have an infinite radius: cap it to reach the whole scene.
     const Bounds b = scene.bounds();
     for (size_t i = 0; i < scene.pointLights.size(); ++i) {
@@ -73,7 +78,7 @@ class SceneFileParser {
         for (int c = 0; c < 8; ++c)
           reach = std::max(reach, glm::distance(l.position, glm::vec3((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y,
                                                                        (c & 4) ? b.max.z : b.min.z)));
-      spdlog::warn("{}: /lights/{}: no falloff (linear and quadratic are 0): radius capped to {}", file_, i, reach);
+      spdlog::warn("{}: no falloff (linear and quadratic are 0): radius capped to {}", where("/lights/" + std::to_string(i)), reach);
       l.radius = reach;
     }
     scene.validate();
@@ -81,34 +86,28 @@ class SceneFileParser {
   }
 
  private:
-  [[noreturn]] void fail(const std::string& ptr, const std::string& msg) const {
-    throw RuntimeError(file_ + ": " + (ptr.empty() ? std::string("/") : ptr) + ": " + msg);
+  // "file:line:col: /pointer" (the position of the value, or of its nearest
+  // ancestor the scanner found; just "file: /pointer" if none).
+  std::string where(const std::string& ptr, bool atKey = false) const {
+    const std::optional<cd::LineColumn> lc = atKey ? locator_->key(ptr) : locator_->value(ptr);
+    std::string at = file_;
+    if (lc) at += ":" + std::to_string(lc->line) + ":" + std::to_string(lc->column);
+    return at + ": " + (ptr.empty() ? std::string("/") : ptr);
   }
 
-  static std::pair<size_t, size_t> lineCol(const std::string& text, size_t byte) {
-    // nlohmann reports the byte count read so far (1-based position of the offending byte).
-    size_t end = std::min(byte > 0 ? byte - 1 : 0, text.size());
-    size_t line = 1, col = 1;
-    for (size_t i = 0; i < end; ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        col = 1;
-      } else {
-        ++col;
-      }
-    }
-    return {line, col};
+  [[noreturn]] void fail(const std::string& ptr, const std::string& msg) const { throw RuntimeError(where(ptr) + ": " + msg); }
+
+  void warn(const std::string& ptr, const std::string& msg, bool atKey = false) const {
+    spdlog::warn("{}: {}", where(ptr, atKey), msg);
   }
 
-  static std::string stripPrefix(const std::string& what) {
-    // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error ..." -> "syntax error ..."
-    const std::string key = ": ";
-    size_t p = what.find("parse error");
-    if (p != std::string::npos) {
-      size_t q = what.find(key, p);
-      if (q != std::string::npos) return what.substr(q + key.size());
-    }
-    return what;
+  [[noreturn]] void failAtOffset(size_t offset, const std::string& msg) const {
+    const cd::LineColumn lc = locator_->position(offset);
+    throw RuntimeError(file_ + ":" + std::to_string(lc.line) + ":" + std::to_string(lc.column) + ": " + msg);
+  }
+
+  static std::string tooManyLights(const std::string& count) {
+    return count + " lights; a scene may have at most " + std::to_string(kMaxSceneLights) + " (the many-lights:N limit)";
   }
 
   float number(const json& j, const std::string& ptr) const {
@@ -154,7 +153,7 @@ class SceneFileParser {
   void unknownKeys(const json& obj, const std::string& ptr, std::initializer_list<const char*> known) const {
     for (auto it = obj.begin(); it != obj.end(); ++it)
       if (std::find_if(known.begin(), known.end(), [&](const char* k) { return it.key() == k; }) == known.end())
-        spdlog::warn("{}: {}/{}: unknown key ignored", file_, ptr, it.key());
+        warn(ptr + "/" + cd::escapePointerToken(it.key()), "unknown key ignored", true);
   }
 
   // translation * Rz * Ry * Rx * scale: rotation_euler_deg rotates about X, then Y, then Z (fixed axes).
@@ -177,6 +176,7 @@ class SceneFileParser {
     return m;
   }
 
+  // A shape's material: the values `j` gives over the scene-file defaults.
   Material material(const json& j, const std::string& ptr) const {
     object(j, ptr);
     unknownKeys(j, ptr, {"name", "baseColor", "metallic", "roughness", "emissive", "specular", "alphaMode", "alphaCutoff", "doubleSided"});
@@ -184,11 +184,31 @@ class SceneFileParser {
     m.name = j.contains("name") ? string(j["name"], ptr + "/name") : std::string("material");
     m.metallicFactor = 0.0f;
     m.roughnessFactor = 0.5f;
+    materialValues(j, ptr, m);
+    return m;
+  }
+
+  // A file model's "material": the values it gives replace those of every
+  // material of the model (glTF has no Blinn-Phong specular, for one).
+  void overrideMaterials(Scene& model, const json& j, const std::string& ptr) const {
+    object(j, ptr);
+    unknownKeys(j, ptr, {"baseColor", "metallic", "roughness", "emissive", "specular", "alphaMode", "alphaCutoff", "doubleSided"});
+    for (Material& m : model.materials) materialValues(j, ptr, m);
+  }
+
+  // Applies the material values present in `j` to `m` (absent keys keep m's).
+  // Ranges are the glTF schema's (scenes/README.md), which glTF files are held to as well.
+  void materialValues(const json& j, const std::string& ptr, Material& m) const {
+    auto unitNumber = [&](const json& v, const std::string& p) {
+      const float x = number(v, p);
+      if (x < 0.0f || x > 1.0f) fail(p, "must be in [0, 1]");
+      return x;
+    };
     if (j.contains("baseColor")) {
       const json& c = j["baseColor"];
       const std::string cp = ptr + "/baseColor";
       if (!c.is_array() || (c.size() != 3 && c.size() != 4)) fail(cp, "expected an array of 3 or 4 numbers");
-      for (size_t i = 0; i < c.size(); ++i) m.baseColorFactor[int(i)] = number(c[i], cp + "/" + std::to_string(i));
+      for (size_t i = 0; i < c.size(); ++i) m.baseColorFactor[int(i)] = unitNumber(c[i], cp + "/" + std::to_string(i));
     }
     auto unit = [&](const char* key, float fallback) {
       const float v = numberOr(j, key, ptr, fallback);
@@ -211,7 +231,6 @@ class SceneFileParser {
       if (!j["doubleSided"].is_boolean()) fail(ptr + "/doubleSided", "expected true or false");
       m.doubleSided = j["doubleSided"].get<bool>();
     }
-    return m;
   }
 
   void addModel(Scene& scene, const json& j, const std::string& ptr) const {
@@ -234,6 +253,7 @@ class SceneFileParser {
       } catch (const RuntimeError& e) {
         fail(ptr + "/file", e.what());
       }
+      if (j.contains("material")) overrideMaterials(model, j["material"], ptr + "/material");
       appendScene(scene, std::move(model), xf);
       return;
     }
@@ -330,6 +350,12 @@ class SceneFileParser {
       if (glm::length(c.up) == 0.0f) fail(ptr + "/up", "must not be the zero vector");
       c.up = glm::normalize(c.up);
     }
+    // Looking straight along up (e.g. straight down with the default up) leaves the view without an orientation.
+    if (const glm::vec3 valid = c.validUp(); valid != c.up) {
+      warn(j.contains("up") ? ptr + "/up" : ptr, "the up vector is parallel to the view direction; using up = [" + std::to_string(valid.x) +
+                                                     ", " + std::to_string(valid.y) + ", " + std::to_string(valid.z) + "]");
+      c.up = valid;
+    }
     c.fovY = numberOr(j, "fov", ptr, 45.0f);
     if (!(c.fovY > 0.0f && c.fovY < 180.0f)) fail(ptr + "/fov", "must be in (0, 180) degrees");
     c.near = numberOr(j, "near", ptr, 0.1f);
@@ -341,6 +367,7 @@ class SceneFileParser {
 
   std::string file_;
   std::string baseDir_;
+  mutable std::optional<cd::JsonLocator> locator_;  // positions in the text, scanned when a message needs one
 };
 
 std::string lowerExtension(const std::string& spec) {
@@ -363,13 +390,19 @@ Scene parseSceneText(const std::string& text, const std::string& file, const std
 
 Scene loadSceneFile(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw RuntimeError(path + ": scene file not found");
+  const std::filesystem::file_status st = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(st)) throw RuntimeError(path + ": is a folder, not a scene file");
+  if (!std::filesystem::is_regular_file(st)) throw RuntimeError(path + ": scene file not found");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw RuntimeError(path + ": cannot open the scene file");
-  std::stringstream ss;
-  ss << in.rdbuf();
+  // One copy of the text in memory (a stringstream would hold two).
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw RuntimeError(path + ": cannot read the scene file size (" + ec.message() + ")");
+  std::string text(size_t(size), '\0');
+  in.read(text.data(), std::streamsize(text.size()));
+  if (in.gcount() != std::streamsize(text.size())) throw RuntimeError(path + ": cannot read the scene file");
   const std::string base = std::filesystem::absolute(std::filesystem::path(path), ec).parent_path().string();
-  return parseSceneText(ss.str(), path, base);
+  return parseSceneText(text, path, base);
 }
 
 Scene loadSceneAny(const std::string& spec) {
@@ -393,8 +426,8 @@ Scene loadSceneAny(const std::string& spec) {
       seedText = rest.substr(colon + 1);
     }
     uint64_t count = 0, seed = 1;
-    if (!parseUint(countText, count) || count > 100000)
-      throw RuntimeError("scene '" + spec + "': expected many-lights:N[:seed] with N in 0..100000");
+    if (!parseUint(countText, count) || count > kMaxSceneLights)
+      throw RuntimeError("scene '" + spec + "': expected many-lights:N[:seed] with N in 0.." + std::to_string(kMaxSceneLights));
     if (!seedText.empty() && (!parseUint(seedText, seed) || seed > UINT32_MAX))
       throw RuntimeError("scene '" + spec + "': the seed must be an unsigned 32-bit integer");
     return makeManyLightsScene(int(count), uint32_t(seed));

@@ -1,8 +1,10 @@
 // Shader sources without a GL context: search directories, #include
 // expansion, defines, the line table, and compiler-log mapping. Shared by
 // ShaderLibrary (core/src/gl) and the glslang checker (shader_check.cpp).
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <mutex>
 #include <fstream>
 #include <sstream>
 #include <string_view>
@@ -93,8 +95,82 @@ ShaderSourceError::ShaderSourceError(std::string file, int line, std::string mes
       line_(line),
       message_(std::move(message)) {}
 
+namespace {
+// Folders added for the whole process: --shader-path (searched first) and the
+// shader folders of loaded plugins (searched last: they never shadow a
+// built-in name; plugins name their own files by absolute path).
+struct ProcessShaderDirs {
+  std::mutex mutex;
+  std::vector<std::string> first, last;
+};
+ProcessShaderDirs& processShaderDirs() {
+  static ProcessShaderDirs dirs;
+  return dirs;
+}
+
+void addUnique(std::vector<std::string>& dirs, const std::string& dir) {
+  if (!dir.empty() && std::find(dirs.begin(), dirs.end(), dir) == dirs.end()) dirs.push_back(dir);
+}
+
+// Whether `path` (symbolic links resolved) lies inside one of `dirs` (theirs resolved too).
+bool insideAny(const fs::path& path, const std::vector<std::string>& dirs) {
+  std::error_code ec;
+  const fs::path real = fs::weakly_canonical(path, ec);
+  if (ec) return false;
+  for (const auto& dir : dirs) {
+    const fs::path root = fs::weakly_canonical(dir, ec);
+    if (ec || root.empty()) continue;
+    const fs::path rel = real.lexically_relative(root);
+    if (!rel.empty() && *rel.begin() != ".." && !rel.is_absolute()) return true;
+  }
+  return false;
+}
+
+std::string folderList(const std::vector<std::string>& dirs) {
+  std::string list;
+  for (const auto& d : dirs) list += (list.empty() ? "" : ", ") + d;
+  return list;
+}
+
+// A file found where a name points, but outside every shader folder (a `..`,
+// an absolute path or a symbolic link leading out): the reason, or "".
+std::string escapeOf(const std::string& file, const std::vector<std::string>& dirs) {
+  std::error_code ec;
+  const fs::path p(file);
+  std::vector<fs::path> candidates;
+  if (p.is_absolute())
+    candidates.push_back(p);
+  else
+    for (const auto& dir : dirs) candidates.push_back(fs::path(dir) / p);
+  for (const auto& c : candidates) {
+    if (!fs::exists(c, ec) || insideAny(c, dirs)) continue;
+    return "shader file '" + file + "' resolves to " + fs::weakly_canonical(c, ec).string() +
+           ", outside the shader folders (" + folderList(dirs) +
+           "); shaders are read only from inside them (add a folder with --shader-path)";
+  }
+  return {};
+}
+}  // namespace
+
+void addShaderSearchDirectory(const std::string& dir) {
+  ProcessShaderDirs& d = processShaderDirs();
+  std::lock_guard<std::mutex> lock(d.mutex);
+  addUnique(d.first, dir);
+}
+
+void addPluginShaderDirectory(const std::string& dir) {
+  ProcessShaderDirs& d = processShaderDirs();
+  std::lock_guard<std::mutex> lock(d.mutex);
+  addUnique(d.last, dir);
+}
+
 std::vector<std::string> defaultShaderSearchDirectories() {
   std::vector<std::string> dirs;
+  {
+    ProcessShaderDirs& d = processShaderDirs();
+    std::lock_guard<std::mutex> lock(d.mutex);
+    dirs = d.first;
+  }
   if (const char* env = std::getenv("RGRAPH_SHADER_DIR")) {
     std::string s = env;
     size_t start = 0;
@@ -110,16 +186,20 @@ std::vector<std::string> defaultShaderSearchDirectories() {
   if (!ec) dirs.push_back((exe.parent_path() / ".." / "share" / "rgraph" / "shaders").lexically_normal().string());
   if (std::string(RGRAPH_SHADER_INSTALL_DIR).size()) dirs.push_back(RGRAPH_SHADER_INSTALL_DIR);
   if (std::string(RGRAPH_SHADER_SOURCE_DIR).size()) dirs.push_back(RGRAPH_SHADER_SOURCE_DIR);
+  ProcessShaderDirs& d = processShaderDirs();
+  std::lock_guard<std::mutex> lock(d.mutex);
+  for (const auto& dir : d.last) addUnique(dirs, dir);
   return dirs;
 }
 
 std::string findShaderFile(const std::string& file, const std::vector<std::string>& dirs) {
   std::error_code ec;
   fs::path p(file);
-  if (p.is_absolute()) return fs::is_regular_file(p, ec) ? p.string() : std::string();
+  if (file.find('\0') != std::string::npos) return {};
+  if (p.is_absolute()) return fs::is_regular_file(p, ec) && insideAny(p, dirs) ? p.string() : std::string();
   for (const auto& dir : dirs) {
     fs::path candidate = fs::path(dir) / p;
-    if (fs::is_regular_file(candidate, ec)) return candidate.lexically_normal().string();
+    if (fs::is_regular_file(candidate, ec) && insideAny(candidate, dirs)) return candidate.lexically_normal().string();
   }
   return {};
 }
@@ -127,9 +207,8 @@ std::string findShaderFile(const std::string& file, const std::vector<std::strin
 std::string resolveShaderFile(const std::string& file, const std::vector<std::string>& dirs) {
   std::string path = findShaderFile(file, dirs);
   if (!path.empty()) return path;
-  std::string list;
-  for (const auto& d : dirs) list += (list.empty() ? "" : ", ") + d;
-  throw RuntimeError("shader file '" + file + "' not found (searched: " + list + ")");
+  if (std::string why = escapeOf(file, dirs); !why.empty()) throw RuntimeError(why);
+  throw RuntimeError("shader file '" + file + "' not found (searched: " + folderList(dirs) + ")");
 }
 
 std::string shaderDisplayPath(const std::string& path) {
@@ -185,8 +264,16 @@ ShaderSource loadShaderSource(const std::string& file, const std::vector<std::st
     if (parseInclude(line, inc)) {
       fs::path local = fs::path(path).parent_path() / inc;
       std::error_code ec;
-      std::string incPath = fs::is_regular_file(local, ec) ? local.lexically_normal().string() : findShaderFile(inc, dirs);
-      if (incPath.empty()) throw ShaderSourceError(src.files[0], lineNo, "included file '" + inc + "' not found");
+      std::string incPath = fs::is_regular_file(local, ec) && insideAny(local, dirs) ? local.lexically_normal().string()
+                                                                                     : findShaderFile(inc, dirs);
+      if (incPath.empty() && fs::exists(local, ec) && !insideAny(local, dirs))
+        throw ShaderSourceError(src.files[0], lineNo,
+                                "included file '" + inc + "' resolves to " + fs::weakly_canonical(local, ec).string() +
+                                    ", outside the shader folders; shaders are read only from inside them");
+      if (incPath.empty()) {
+        std::string why = escapeOf(inc, dirs);
+        throw ShaderSourceError(src.files[0], lineNo, why.empty() ? "included file '" + inc + "' not found" : why);
+      }
       int id = static_cast<int>(src.files.size());
       src.files.push_back(shaderDisplayPath(incPath));
       std::vector<std::string> incLines = splitLines(readFile(incPath));

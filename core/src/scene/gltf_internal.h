@@ -1,0 +1,122 @@
+// Internal to the glTF loader: one GltfLoader per load, its member functions
+// split by subject over three files:
+//   gltf_loader.cpp     bytes -> tinygltf model (nesting bound, file access),
+//                       node traversal, cameras, conversion;
+//   gltf_geometry.cpp   accessors, buffer views, sparse data, meshes;
+//   gltf_materials.cpp  images, textures, materials, lights, value ranges.
+// Every accessor, buffer view, index and texture reference is validated
+// before it is read: tinygltf does not check all of them.
+#pragma once
+
+#include <tiny_gltf.h>
+
+#include <cstddef>
+#include <initializer_list>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "../config/json_text.h"
+#include "rgraph/scene.h"
+
+namespace rgraph::gltf_detail {
+
+inline constexpr size_t kMaxElements = size_t(1) << 26;          // per accessor
+inline constexpr size_t kMaxUnbackedElements = size_t(1) << 24;  // accessors without a buffer view (zeros)
+inline constexpr int kMaxImageSide = 16384;
+
+std::string trimmed(std::string s);
+
+// Decodes any stb_image format to RGBA8 into `image` (gltf_materials.cpp).
+bool decodeImage(tinygltf::Image* image, const unsigned char* bytes, size_t size, std::string* err);
+// tinygltf's image callback: decodes images given by URI; images stored in
+// buffer views are decoded later, after their buffer view has been checked.
+bool imageCallback(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int, int,
+                   const unsigned char* bytes, int size, void*);
+
+struct AccessorInfo {
+  const unsigned char* data = nullptr;  // first element; nullptr: zeros (no buffer view)
+  size_t stride = 0;
+  size_t count = 0;
+  int componentType = 0;
+  int components = 0;
+  bool normalized = false;
+};
+
+class GltfLoader {
+ public:
+  GltfLoader(const unsigned char* data, size_t size, std::string name, std::string baseDir)
+      : data_(data), size_(size), name_(std::move(name)), baseDir_(std::move(baseDir)) {}
+
+  Scene load();
+
+ private:
+  // ------------------------------------------------ gltf_loader.cpp
+  [[noreturn]] void fail(const std::string& msg) const;
+  void warn(const std::string& msg) const;
+  // A value at a JSON pointer of the document: "name:line:col: /pointer: msg"
+  // (line and column within the JSON of a .glb are not given: a binary file).
+  [[noreturn]] void failAt(const std::string& pointer, const std::string& msg);
+  void warnAt(const std::string& pointer, const std::string& msg);
+  std::string where(const std::string& pointer);
+
+  void parse();
+  void checkAsset();
+  void convert();
+  glm::mat4 localMatrix(const tinygltf::Node& node, const std::string& what) const;
+  void traverse(const std::vector<int>& roots);
+  void visitNode(int nodeIndex, const glm::mat4& world);
+  void addCamera(int index, const glm::mat4& world, const std::string& what);
+
+  // ------------------------------------------------ gltf_geometry.cpp
+  AccessorInfo checkAccessor(int index, const std::string& what, std::initializer_list<int> types,
+                             std::initializer_list<int> componentTypes) const;
+  std::string checkBufferView(int index, const std::string& what) const;
+  std::vector<float> readFloats(int index, const std::string& what, std::initializer_list<int> types,
+                                std::initializer_list<int> componentTypes) const;
+  void applySparse(const tinygltf::Accessor& acc, const std::string& name, const AccessorInfo& info,
+                   std::vector<float>& out) const;
+  std::vector<uint32_t> readIndices(int index, const std::string& what, size_t vertexCount) const;
+  int sceneMesh(int mi, size_t pi);
+  MeshData buildMesh(const tinygltf::Primitive& prim, const std::string& what);
+
+  // ------------------------------------------------ gltf_materials.cpp
+  const std::vector<uint8_t>& decodedPixels(int gltfImage, const std::string& what);
+  int sceneImage(int gltfImage, bool srgb, const std::string& what);
+  TextureRef textureRef(int gltfTexture, int texCoord, bool srgb, const std::string& what);
+  Material convertMaterial(size_t index);
+  int defaultMaterial();
+  void addLight(int index, const glm::mat4& world, const std::string& what);
+  // Range checks (refusals name the JSON pointer): a number in [lo, hi]; an
+  // array of N numbers each in [lo, hi].
+  float checkedNumber(double v, float lo, float hi, const std::string& pointer);
+  template <size_t N>
+  glm::vec<N, float> checkedFactor(const std::vector<double>& v, float lo, float hi, const std::string& pointer);
+  float specularFromExtension(const tinygltf::Value& ext, const std::string& pointer);
+
+  // ------------------------------------------------ state
+  const unsigned char* data_;
+  size_t size_;
+  std::string name_;
+  std::string baseDir_;
+  bool binary_ = false;
+  std::string_view json_;                               // the JSON text (.gltf) or chunk (.glb)
+  std::optional<config_detail::JsonLocator> locator_;  // positions in json_, on first use
+  tinygltf::Model model_;
+  std::string tinyWarn_;
+  Scene scene_;
+  std::map<std::pair<int, bool>, int> imageMap_;
+  std::map<std::pair<int, bool>, int> textureMap_;
+  std::map<std::pair<int, size_t>, int> meshMap_;
+  std::vector<int> primMaterial_;  // per scene mesh: its material
+  int resolvedMaterial_ = -1;
+  int defaultMaterial_ = -1;
+  bool cameraHasFar_ = false;
+};
+
+}  // namespace rgraph::gltf_detail

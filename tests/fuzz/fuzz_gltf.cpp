@@ -1,0 +1,52 @@
+// Fuzz target: glTF bytes (.gltf JSON or .glb binary) -> a Scene or a
+// RuntimeError naming the file (rgraph::loadGltfFromMemory, what loadGltf
+// runs on a file's contents). External URIs resolve against an empty
+// directory, so only data: URIs and the GLB chunk provide buffers and images.
+//
+// Beyond "no crash, no sanitizer report": only RuntimeError may leave the
+// loader, its message names the file, and a loaded scene passes validate().
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "fuzz_util.h"
+#include "rgraph/error.h"
+#include "rgraph/pass.h"
+#include "rgraph/scene.h"
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  rgraph::fuzz::quietLogs();
+  (void)rgraph::fuzz::privateBaseDir();
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  // The name only labels messages; the loader tells the formats apart by content.
+  const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
+  const std::string name = binary ? "fuzz-model.glb" : "fuzz-model.gltf";
+  rgraph::Scene scene;
+  try {
+    scene = rgraph::loadGltfFromMemory(data, size, name, rgraph::fuzz::privateBaseDir());
+  } catch (const rgraph::RuntimeError& e) {
+    if (rgraph::fuzz::verbose()) std::fprintf(stderr, "refused: %s\n", e.what());
+    if (std::string(e.what()).find(name) == std::string::npos)
+      rgraph::fuzz::fail(std::string("error message does not name the file: ") + e.what());
+    return 0;
+  }
+  try {
+    scene.validate();
+  } catch (const rgraph::RuntimeError& e) {
+    rgraph::fuzz::fail(std::string("a loaded scene does not validate: ") + e.what());
+  }
+  if (rgraph::fuzz::verbose())
+    std::fprintf(stderr, "loaded: %zu primitives, %zu materials, %zu images, %zu point and %zu directional lights\n",
+                 scene.primitives.size(), scene.materials.size(), scene.images.size(), scene.pointLights.size(),
+                 scene.directionalLights.size());
+  // What loadSceneAny and the renderer do next with a model.
+  rgraph::applySceneDefaults(scene);
+  (void)rgraph::sceneFeatures(scene);
+  (void)scene.camera.viewProjection(1.0f);
+  return 0;
+}

@@ -1,0 +1,61 @@
+// Fuzz target: scene file text -> a Scene or a RuntimeError naming the file
+// (rgraph::parseSceneText, what `--scene x.json` runs). Model references
+// resolve against a private directory that holds only two small models,
+// model.glb and model.gltf (tests/fuzz/corpus/gltf/embedded-everything.*), so
+// scenes can place real models without reading anything else from disk.
+//
+// Beyond "no crash, no sanitizer report": only RuntimeError may leave the
+// loader, its message names the file, and a loaded scene passes validate().
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "fuzz_util.h"
+#include "rgraph/error.h"
+#include "rgraph/pass.h"
+#include "rgraph/scene.h"
+
+namespace {
+constexpr const char* kFile = "fuzz-scene.json";
+}
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  rgraph::fuzz::quietLogs();
+  const std::filesystem::path dir = rgraph::fuzz::privateBaseDir();
+  const std::filesystem::path models = RGRAPH_FUZZ_SCENE_MODELS;
+  for (const char* ext : {".glb", ".gltf"}) {
+    std::error_code ec;
+    std::filesystem::copy_file(models / (std::string("embedded-everything") + ext), dir / (std::string("model") + ext),
+                               ec);
+    if (ec) rgraph::fuzz::fail("cannot copy the scene target's model" + std::string(ext) + ": " + ec.message());
+  }
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  rgraph::Scene scene;
+  try {
+    scene = rgraph::parseSceneText(text, kFile, rgraph::fuzz::privateBaseDir());
+  } catch (const rgraph::RuntimeError& e) {
+    if (rgraph::fuzz::verbose()) std::fprintf(stderr, "refused: %s\n", e.what());
+    if (std::string(e.what()).find(kFile) == std::string::npos)
+      rgraph::fuzz::fail(std::string("error message does not name the file: ") + e.what());
+    return 0;
+  }
+  try {
+    scene.validate();
+  } catch (const rgraph::RuntimeError& e) {
+    rgraph::fuzz::fail(std::string("a loaded scene does not validate: ") + e.what());
+  }
+  if (rgraph::fuzz::verbose())
+    std::fprintf(stderr, "loaded: %zu primitives, %zu point and %zu directional lights\n", scene.primitives.size(),
+                 scene.pointLights.size(), scene.directionalLights.size());
+  // What the renderer asks of every scene before drawing it.
+  (void)rgraph::sceneFeatures(scene);
+  (void)scene.bounds();
+  (void)scene.camera.viewProjection(1.0f);
+  return 0;
+}
