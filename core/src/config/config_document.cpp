@@ -1,6 +1,6 @@
 // ConfigDocument: reading and parsing a pipeline config, and mapping JSON
 // pointers back to file positions. The checks against the pass registry live
-// in config_build.cpp.
+// in config_build*.cpp (see config_builder.h).
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>

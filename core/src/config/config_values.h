@@ -2,7 +2,7 @@
 // messages show them. Integers are read exactly (2^64-1 stays 2^64-1, never
 // 1.84467e+19), and every limit a value breaks is named in the message. The
 // document's structure (keys, resources, passes, bindings) is checked in
-// config_build.cpp; this file knows only values and their declarations.
+// config_build*.cpp; this file knows only values and their declarations.
 #pragma once
 
 #include <cstdint>

@@ -1,0 +1,122 @@
+// The graph compiler, steps 5 and 6: the execution order (Kahn with a
+// min-heap on declaration index), cycles, and culling. See compile.cpp for
+// the outline.
+#include <algorithm>
+#include <functional>
+#include <queue>
+#include <string>
+#include <vector>
+
+#include "compile_internal.h"
+
+namespace rgraph::graph_detail {
+
+void Compiler::order() {
+  std::vector<uint32_t> adjBegin(nPass_ + 1, 0), indeg(nPass_, 0);
+  for (const auto& [a, b] : edges_) {
+    ++adjBegin[a + 1];
+    ++indeg[b];
+  }
+  for (uint32_t p = 0; p < nPass_; ++p) adjBegin[p + 1] += adjBegin[p];
+  std::vector<uint32_t> adj(edges_.size());
+  {
+    std::vector<uint32_t> cursor(adjBegin.begin(), adjBegin.end() - 1);
+    for (const auto& [a, b] : edges_) adj[cursor[a]++] = static_cast<uint32_t>(b);
+  }
+  std::vector<uint32_t> heapStore;
+  heapStore.reserve(nPass_);
+  std::priority_queue<uint32_t, std::vector<uint32_t>, std::greater<uint32_t>> ready(std::greater<uint32_t>(),
+                                                                                   std::move(heapStore));
+  uint32_t enabledCount = 0;
+  for (uint32_t p = 0; p < nPass_; ++p)
+    if (passFlags_[p] & kEnabled) {
+      ++enabledCount;
+      if (indeg[p] == 0) ready.push(p);
+    }
+  topo_.reserve(enabledCount);
+  while (!ready.empty()) {
+    const uint32_t p = ready.top();
+    ready.pop();
+    topo_.push_back(p);
+    for (uint32_t i = adjBegin[p]; i < adjBegin[p + 1]; ++i)
+      if (--indeg[adj[i]] == 0) ready.push(adj[i]);
+  }
+  if (topo_.size() < enabledCount) {
+    cyclic_ = true;
+    reportCycles(indeg);
+  }
+}
+
+void Compiler::reportCycles(const std::vector<uint32_t>& indeg) {
+  // Every pass left over has a predecessor that is left over too: walking
+  // backwards along the lowest-index such predecessor must close a cycle.
+  std::vector<char> left(nPass_, 0);
+  for (uint32_t p = 0; p < nPass_; ++p) left[p] = (passFlags_[p] & kEnabled) && indeg[p] > 0;
+  std::vector<int> pred(nPass_, -1);
+  for (const auto& [a, b] : edges_)
+    if (left[a] && left[b] && (pred[b] < 0 || a < pred[b])) pred[b] = a;
+  std::vector<int> walk(nPass_, 0), pos(nPass_, -1);
+  std::vector<int> path;
+  int walkId = 0;
+  for (uint32_t s = 0; s < nPass_; ++s) {
+    if (!left[s] || walk[s]) continue;
+    ++walkId;
+    path.clear();
+    int cur = static_cast<int>(s);
+    while (cur >= 0 && walk[cur] == 0) {
+      walk[cur] = walkId;
+      pos[cur] = static_cast<int>(path.size());
+      path.push_back(cur);
+      cur = pred[cur];
+    }
+    if (cur < 0 || walk[cur] != walkId) continue;  // joined an earlier walk: nothing new
+    // path[pos[cur]..] walks backwards along the cycle; reverse it to run forwards.
+    std::vector<int> cyc(path.begin() + pos[cur], path.end());
+    std::reverse(cyc.begin(), cyc.end());
+    std::rotate(cyc.begin(), std::min_element(cyc.begin(), cyc.end()), cyc.end());
+    std::string msg = "cycle: ";
+    for (int p : cyc) msg += passName(p) + " -> ";
+    msg += passName(cyc.front());
+    msg += " (each pass must run after the one before it: it reads a version that pass writes, or that pass "
+           "overwrites a version it reads)";
+    diag(DiagCode::cycle, std::move(msg), passName(cyc.front()), {}, {}, d_.passes[cyc.front()].where);
+  }
+}
+
+void Compiler::cull() {
+  needed_.assign(nPass_, 0);
+  std::vector<uint32_t> stack;
+  stack.reserve(nPass_);
+  auto mark = [&](int p) {
+    if (enabled(p) && !needed_[p]) {
+      needed_[p] = 1;
+      stack.push_back(static_cast<uint32_t>(p));
+    }
+  };
+  mark(outputWriter_);
+  for (uint32_t p = 0; p < nPass_; ++p)
+    if (passFlags_[p] & kSideEffect) mark(static_cast<int>(p));
+  while (!stack.empty()) {
+    const uint32_t p = stack.back();
+    stack.pop_back();
+    for (uint32_t f = useBegin_[p]; f < useBegin_[p + 1]; ++f) mark(u_[f].rawFrom);
+  }
+  plan_.order.reserve(topo_.size());
+  for (uint32_t p : topo_)
+    if (needed_[p]) plan_.order.push_back(p);
+  // A pass kept for its side effect that writes a later version of the
+  // output's resource would overwrite the image before the frame ends.
+  if (outputVer_ < 0) return;
+  for (int c = vers_[outputVer_].child; c >= 0; c = vers_[c].child) {
+    const int w = vers_[c].writer;
+    if (!enabled(w) || !needed_[w]) continue;
+    diag(DiagCode::invalid_output,
+         "output " + q(d_.output) + " is overwritten by pass " + q(passName(w)) +
+             ", which writes the later version " + q(versionName(c)) + " and runs for its side effect; name " +
+             q(versionName(c)) + " as the output, or write the side effect's result to another resource",
+         passName(w), {}, d_.output, d_.outputWhere);
+    break;
+  }
+}
+
+}  // namespace rgraph::graph_detail
