@@ -4,7 +4,8 @@
 // directory, so only data: URIs and the GLB chunk provide buffers and images.
 //
 // Beyond "no crash, no sanitizer report": only RuntimeError may leave the
-// loader, its message names the file, and a loaded scene passes validate().
+// loader, its message names the file, a loaded scene passes validate(), and
+// every number the renderer reads is finite (scene_checks.h).
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include <string>
 
 #include "fuzz_util.h"
+#include "scene_checks.h"
 #include "rgraph/error.h"
 #include "rgraph/pass.h"
 #include "rgraph/scene.h"
@@ -44,8 +46,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::fprintf(stderr, "loaded: %zu primitives, %zu materials, %zu images, %zu point and %zu directional lights\n",
                  scene.primitives.size(), scene.materials.size(), scene.images.size(), scene.pointLights.size(),
                  scene.directionalLights.size());
-  // What loadSceneAny and the renderer do next with a model.
+  // What loadSceneAny does next with a model (a camera framing it, a light).
   rgraph::applySceneDefaults(scene);
+  if (const std::string why = rgraph::fuzz::nonFiniteValue(scene); !why.empty())
+    rgraph::fuzz::fail("a loaded scene holds a number the renderer cannot use: " + why);
   (void)rgraph::sceneFeatures(scene);
   (void)scene.camera.viewProjection(1.0f);
   return 0;

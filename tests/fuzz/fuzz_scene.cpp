@@ -5,7 +5,8 @@
 // scenes can place real models without reading anything else from disk.
 //
 // Beyond "no crash, no sanitizer report": only RuntimeError may leave the
-// loader, its message names the file, and a loaded scene passes validate().
+// loader, its message names the file, a loaded scene passes validate(), and
+// every number the renderer reads is finite (scene_checks.h).
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include <string>
 
 #include "fuzz_util.h"
+#include "scene_checks.h"
 #include "rgraph/error.h"
 #include "rgraph/pass.h"
 #include "rgraph/scene.h"
@@ -50,6 +52,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   } catch (const rgraph::RuntimeError& e) {
     rgraph::fuzz::fail(std::string("a loaded scene does not validate: ") + e.what());
   }
+  if (const std::string why = rgraph::fuzz::nonFiniteValue(scene); !why.empty())
+    rgraph::fuzz::fail("a loaded scene holds a number the renderer cannot use: " + why);
   if (rgraph::fuzz::verbose())
     std::fprintf(stderr, "loaded: %zu primitives, %zu point and %zu directional lights\n", scene.primitives.size(),
                  scene.pointLights.size(), scene.directionalLights.size());

@@ -1,6 +1,6 @@
 # A short, reproducible fuzz run for ctest: RUNS executions starting from the
 # seed corpus, fixed random seed, new inputs kept apart from the seeds.
-# cmake -DFUZZER=exe -DSEEDS=dir -DWORK=dir -DRUNS=n -DMAX_LEN=bytes [-DDICT=file] -P smoke.cmake
+# cmake -DFUZZER=exe -DSEEDS=dir -DWORK=dir -DRUNS=n -DMAX_LEN=bytes [-DDICT=file] [-DOPTION=-flag=value] -P smoke.cmake
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK}/corpus ${WORK}/artifacts)
 file(GLOB seeds ${SEEDS}/*)
@@ -11,6 +11,9 @@ set(args -runs=${RUNS} -seed=1 -max_len=${MAX_LEN} -timeout=10 -rss_limit_mb=204
     -artifact_prefix=${WORK}/artifacts/ -print_final_stats=1)
 if(DICT)
   list(APPEND args -dict=${DICT})
+endif()
+if(OPTION)
+  list(APPEND args ${OPTION})
 endif()
 execute_process(COMMAND ${FUZZER} ${args} ${WORK}/corpus ${SEEDS} RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)

@@ -42,6 +42,12 @@ struct Bounds {
   Bounds transformed(const glm::mat4& m) const;
 };
 
+// Largest world-space coordinate a scene may use. Rendering is float math:
+// beyond this the camera framing a scene (its distance times its near and far
+// planes) overflows to infinity and the frame comes out empty, with no error.
+// Float precision gave out long before: 1e15 units is far beyond any real scene.
+inline constexpr float kMaxWorldCoordinate = 1e15f;
+
 // ---------------------------------------------------------------- geometry
 
 // One vertex of the interleaved layout (48 bytes): position, normal, uv0, tangent.
@@ -263,7 +269,10 @@ struct Scene {
   size_t triangleCount() const;  // over primitives (a shared mesh counts per draw)
   size_t vertexCount() const;    // over primitives
   Bounds bounds() const;         // world space, over primitives
-  // Throws RuntimeError when an index is out of range or a mesh breaks its invariants.
+  // Throws RuntimeError when an index is out of range, a mesh breaks its
+  // invariants, or a number the renderer reads is unusable: world-space
+  // geometry or a point light beyond kMaxWorldCoordinate, a non-finite light
+  // value (an infinite radius aside), a camera whose view-projection is not finite.
   void validate() const;
 };
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 #include <utility>
 
@@ -121,7 +122,12 @@ glm::vec3 Camera::validUp() const {
   return std::abs(f.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, -1);
 }
 
-glm::mat4 Camera::view() const { return glm::lookAt(position, position + forward(), validUp()); }
+// The rotation from the direction alone, then the translation: lookAt(position,
+// position + forward()) loses the direction once a unit step vanishes in the
+// position's float precision (beyond ~1e7 units the view came out NaN).
+glm::mat4 Camera::view() const {
+  return glm::lookAt(glm::vec3(0.0f), forward(), validUp()) * glm::translate(glm::mat4(1.0f), -position);
+}
 
 glm::mat4 Camera::projection(float aspect) const {
   float a = aspect > 0.0f ? aspect : 1.0f;
@@ -216,6 +222,66 @@ Bounds Scene::bounds() const {
   return b;
 }
 
+namespace {
+bool finiteVec(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+// False for NaN and infinity too.
+bool inWorld(const glm::vec3& v) {
+  return std::abs(v.x) <= kMaxWorldCoordinate && std::abs(v.y) <= kMaxWorldCoordinate &&
+         std::abs(v.z) <= kMaxWorldCoordinate;
+}
+std::string vecText(const glm::vec3& v) {
+  char b[96];
+  std::snprintf(b, sizeof b, "(%g, %g, %g)", double(v.x), double(v.y), double(v.z));
+  return b;
+}
+
+// Finite inputs can still overflow on the way (a large vertex under a large
+// scale): checked on the results, which is what the renderer reads.
+void validateNumbers(const Scene& s) {
+  const std::string where = s.source.empty() ? std::string("scene") : s.source;
+  auto fail = [&](const std::string& msg) { throw RuntimeError(where + ": " + msg); };
+  char limit[32];
+  std::snprintf(limit, sizeof limit, "%g", double(kMaxWorldCoordinate));
+  const Bounds none;
+  for (size_t i = 0; i < s.primitives.size(); ++i) {
+    const glm::mat4& m = s.primitives[i].transform;
+    for (int c = 0; c < 4; ++c)
+      if (!finiteVec(glm::vec3(m[c])) || !std::isfinite(m[c].w))
+        fail("primitive " + std::to_string(i) + " ('" + s.primitives[i].name +
+             "'): its world transform is not finite (node transforms that overflow together?)");
+    const Bounds& b = s.primitives[i].bounds;
+    if (b.min == none.min && b.max == none.max) continue;  // no vertices
+    if (!inWorld(b.min) || !inWorld(b.max))
+      fail("primitive " + std::to_string(i) + " ('" + s.primitives[i].name + "'): world-space bounds " + vecText(b.min) +
+           " to " + vecText(b.max) + " exceed +-" + limit +
+           " units (the most supported; a huge vertex position or transform?)");
+  }
+  for (size_t i = 0; i < s.pointLights.size(); ++i) {
+    const PointLight& l = s.pointLights[i];
+    if (!inWorld(l.position))
+      fail("point light " + std::to_string(i) + ": position " + vecText(l.position) + " exceeds +-" + limit + " units");
+    // (An infinite radius is a light without falloff: callers cap it, see lightRadius.)
+    if (!finiteVec(l.color) || !std::isfinite(l.intensity) || !std::isfinite(l.constant) || !std::isfinite(l.linear) ||
+        !std::isfinite(l.quadratic) || std::isnan(l.radius))
+      fail("point light " + std::to_string(i) + ": colour, intensity or attenuation is not finite");
+  }
+  for (size_t i = 0; i < s.directionalLights.size(); ++i) {
+    const DirectionalLight& l = s.directionalLights[i];
+    if (!finiteVec(l.direction) || !finiteVec(l.color) || !std::isfinite(l.intensity))
+      fail("directional light " + std::to_string(i) + ": direction, colour or intensity is not finite");
+  }
+  if (!finiteVec(s.ambient)) fail("the ambient light is not finite");
+  if (!s.hasCamera) return;  // the caller frames the scene: finite within the bounds above
+  if (!inWorld(s.camera.position) || !inWorld(s.camera.target))
+    fail("camera position or target exceeds +-" + std::string(limit) + " units");
+  const glm::mat4 vp = s.camera.viewProjection(1.0f);
+  for (int c = 0; c < 4; ++c)
+    if (!finiteVec(glm::vec3(vp[c])) || !std::isfinite(vp[c].w))
+      fail("camera: its view and projection are not finite (near " + std::to_string(s.camera.near) + ", far " +
+           std::to_string(s.camera.far) + ", fov " + std::to_string(s.camera.fovY) + ")");
+}
+}  // namespace
+
 void Scene::validate() const {
   const std::string where = source.empty() ? std::string("scene") : source;
   auto fail = [&](const std::string& msg) { throw RuntimeError(where + ": " + msg); };
@@ -251,6 +317,7 @@ void Scene::validate() const {
     if (im.width <= 0 || im.height <= 0 || im.rgba.size() != size_t(im.width) * size_t(im.height) * 4)
       fail("image " + std::to_string(i) + " ('" + im.name + "'): pixel data does not match its size");
   }
+  validateNumbers(*this);
 }
 
 // ---------------------------------------------------------------- merging and defaults
