@@ -39,19 +39,10 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   rgraph::Scene scene;
-  try {
-    scene = rgraph::parseSceneText(text, kFile, rgraph::fuzz::privateBaseDir());
-  } catch (const rgraph::RuntimeError& e) {
-    if (rgraph::fuzz::verbose()) std::fprintf(stderr, "refused: %s\n", e.what());
-    if (std::string(e.what()).find(kFile) == std::string::npos)
-      rgraph::fuzz::fail(std::string("error message does not name the file: ") + e.what());
+  if (!rgraph::fuzz::loadNamingTheFile(kFile, scene, [&] {
+        return rgraph::parseSceneText(text, kFile, rgraph::fuzz::privateBaseDir());
+      }))
     return 0;
-  }
-  try {
-    scene.validate();
-  } catch (const rgraph::RuntimeError& e) {
-    rgraph::fuzz::fail(std::string("a loaded scene does not validate: ") + e.what());
-  }
   if (const std::string why = rgraph::fuzz::nonFiniteValue(scene); !why.empty())
     rgraph::fuzz::fail("a loaded scene holds a number the renderer cannot use: " + why);
   if (rgraph::fuzz::verbose())

@@ -4,10 +4,13 @@
 #pragma once
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include <glm/glm.hpp>
 
+#include "fuzz_util.h"
+#include "rgraph/error.h"
 #include "rgraph/scene.h"
 
 namespace rgraph::fuzz {
@@ -50,6 +53,26 @@ inline std::string nonFiniteValue(const Scene& s) {
     return "camera: a value is not finite";
   if (s.hasCamera && !finite(c.viewProjection(1.0f))) return "camera: the view-projection matrix is not finite";
   return "";
+}
+
+// Runs a loader into `scene`. A refusal must be a RuntimeError naming `file`
+// (returns false); a scene it loads must pass validate() (returns true).
+template <class Load>
+bool loadNamingTheFile(const std::string& file, Scene& scene, Load&& load) {
+  try {
+    scene = load();
+  } catch (const RuntimeError& e) {
+    if (verbose()) std::fprintf(stderr, "refused: %s\n", e.what());
+    if (std::string(e.what()).find(file) == std::string::npos)
+      fail(std::string("error message does not name the file: ") + e.what());
+    return false;
+  }
+  try {
+    scene.validate();
+  } catch (const RuntimeError& e) {
+    fail(std::string("a loaded scene does not validate: ") + e.what());
+  }
+  return true;
 }
 
 }  // namespace rgraph::fuzz
