@@ -154,7 +154,7 @@ TEST(ShaderCheck, ThreeAttachmentsForFourOutputsFailsNamingPassShaderAndMismatch
 
 TEST(ShaderCheck, CliValidateFailsOnThreeAttachmentsForFourOutputs) {
   const std::string cli = rgraphCli();
-  if (cli.empty()) GTEST_SKIP() << "rgraph executable not built beside the tests";
+  if (cli.empty()) GTEST_FAIL() << "rgraph executable not found beside the tests (build the rgraph_cli target)";
   RunResult r = run("RGRAPH_SHADER_DIR='" + kTestShaders + "' '" + cli + "' validate '" + kConfigs +
                     "/four_outputs_three_attachments.json'");
   EXPECT_EQ(r.exitCode, 1) << r.out;
@@ -188,7 +188,7 @@ TEST(ShaderCheck, SyntaxErrorGivesShaderFileLineAndPass) {
 
 TEST(ShaderCheck, CliValidateReportsSyntaxErrorAtShaderLine) {
   const std::string cli = rgraphCli();
-  if (cli.empty()) GTEST_SKIP() << "rgraph executable not built beside the tests";
+  if (cli.empty()) GTEST_FAIL() << "rgraph executable not found beside the tests (build the rgraph_cli target)";
   RunResult r = run("RGRAPH_SHADER_DIR='" + kTestShaders + "' '" + cli + "' validate '" + kConfigs + "/syntax_error.json'");
   EXPECT_EQ(r.exitCode, 1) << r.out;
   EXPECT_NE(r.out.find("syntax_error.frag:7: error: pass 'broken': "), std::string::npos) << r.out;
@@ -286,7 +286,7 @@ TEST(ShaderCheck, EveryShippedPipelineHasNoShaderDiagnostics) {
 
 TEST(ShaderCheck, CliValidatesEveryShippedPipelineWithoutShaderDiagnostics) {
   const std::string cli = rgraphCli();
-  if (cli.empty()) GTEST_SKIP() << "rgraph executable not built beside the tests";
+  if (cli.empty()) GTEST_FAIL() << "rgraph executable not found beside the tests (build the rgraph_cli target)";
   for (const auto& file : shippedPipelines()) {
     RunResult r = run("'" + cli + "' validate --json '" + file + "'");
     EXPECT_EQ(r.out.find("shader_error"), std::string::npos) << file << "\n" << r.out;
