@@ -34,12 +34,13 @@ int runRender(const RenderOptions& options);
 
 // `rgraph bench`: sweeps lighting methods, light counts, G-buffer layouts,
 // cut-off thresholds and resolutions; writes results.csv, results.json and
-// charts (SVG + PNG) under `out` (cmd_bench.cpp).
+// figures.md and charts (SVG + PNG) under `out` (cmd_bench.cpp, bench.h).
 struct BenchOptions {
   std::string out;     // output folder (created)
   std::string scene;   // empty: many-lights (the light-count axis varies N)
   bool quick = false;  // fewer points and frames: within 5 minutes on 2 cores with llvmpipe
   bool smoke = false;  // hidden: 2 points at 64x64, 1 frame each (tests)
+  bool figuresOnly = false;  // one untimed frame per point: the deterministic figures only, no charts
   std::string replot;  // a previous run's results.json: redraw its charts under `out`, render nothing
 };
 int runBench(const BenchOptions& options);

@@ -1,7 +1,8 @@
 // The rgraph command line: validate, plan, dot, passes, render.
+#include <spdlog/spdlog.h>
+
 #include <CLI/CLI.hpp>
 #include <iostream>
-#include <spdlog/spdlog.h>
 
 #include "cli_common.h"
 #include "commands.h"
@@ -58,8 +59,9 @@ int main(int argc, char** argv) {
   plan->add_option("pipeline", pipeline, "pipeline config (JSON)")->required();
   plan->add_flag("--json", json, "print the plan as JSON");
   std::string planScene;
-  plan->add_option("--scene", planScene,
-                   "adapt the pipeline to this scene first (drops what it does not need): file, glTF or procedural name");
+  plan->add_option(
+      "--scene", planScene,
+      "adapt the pipeline to this scene first (drops what it does not need): file, glTF or procedural name");
   addSize(plan);
   addPluginPath(plan);
 
@@ -80,8 +82,11 @@ int main(int argc, char** argv) {
   auto* renderCmd = app.add_subcommand("render", "run a pipeline headless and write the output image");
   renderCmd->add_option("pipeline", render.pipeline, "pipeline config (default: pipelines/default.json)");
   renderCmd->add_option("--out,-o", render.out, "output PNG")->required();
-  renderCmd->add_option("--scene", render.scene, "scene file (.json), glTF (.gltf/.glb), learnopengl, learnopengl:overview (default) or many-lights:N");
-  renderCmd->add_option("--frames", render.frames, "frames to render (timings are medians)")->check(CLI::Range(1u, 100000u));
+  renderCmd->add_option(
+      "--scene", render.scene,
+      "scene file (.json), glTF (.gltf/.glb), learnopengl, learnopengl:overview (default) or many-lights:N");
+  renderCmd->add_option("--frames", render.frames, "frames to render (timings are medians)")
+      ->check(CLI::Range(1u, 100000u));
   renderCmd->add_option("--stats", render.stats, "write frame and pass timings and memory as JSON");
   renderCmd->add_flag("--window", render.window, "render in a GLFW window instead of headless EGL");
   addPluginPath(renderCmd);
@@ -91,13 +96,18 @@ int main(int argc, char** argv) {
   addShaderPath(renderCmd);
 
   BenchOptions bench;
-  auto* benchCmd = app.add_subcommand("bench", "sweep lighting methods, light counts, G-buffer layouts, cut-offs and "
-                                               "resolutions; write results.csv, results.json and charts");
+  auto* benchCmd = app.add_subcommand("bench",
+                                      "sweep lighting methods, light counts, G-buffer layouts, cut-offs and "
+                                      "resolutions; write results.csv, results.json, figures.md and charts");
   benchCmd->add_option("--out,-o", bench.out, "output folder")->required();
   benchCmd->add_flag("--quick", bench.quick, "fewer points and frames (light counts up to 1,024, 640x360 mostly)");
   benchCmd->add_option("--scene", bench.scene, "scene (default: many-lights, N swept); a file's first N lights");
+  benchCmd->add_flag("--figures-only", bench.figuresOnly,
+                     "render each point once, untimed: errors and bytes only (the figures docs quote), no charts");
   benchCmd->add_flag("--smoke", bench.smoke, "tiny sweep for tests (2 points, 64x64, 1 frame)")->group("");
-  benchCmd->add_option("--replot", bench.replot, "redraw the charts of a previous run's results.json (no rendering)")
+  benchCmd
+      ->add_option("--replot", bench.replot,
+                   "redraw the charts and figures.md of a previous run's results.json (no rendering)")
       ->type_name("JSON");
 
   CLI11_PARSE(app, argc, argv);

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "oracle/lighting_oracle.h"
-#include "render/render_util.h"
+#include "support/render_util.h"
 #include "render/test_scenes.h"
 
 using namespace rgraph;

@@ -4,7 +4,7 @@
 // onto the cube; checked through every shipped pipeline that draws markers.
 #include <cstdio>
 
-#include "render_util.h"
+#include "support/render_util.h"
 #include "rgraph/scene.h"
 #include "test_scenes.h"
 

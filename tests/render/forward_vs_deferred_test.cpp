@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "render_util.h"
+#include "support/render_util.h"
 #include "rgraph/scene.h"
 #include "test_scenes.h"
 
@@ -48,6 +48,8 @@ class ForwardVsDeferred : public RenderTest {
     const double lit = coverage(a, {0, 0, 0});
     EXPECT_GT(lit, 0.1) << name << ": the deferred image is mostly background (" << saveImage(a, name + "-deferred")
                         << ")";
+    // And against two frames that both lost their lights.
+    expectLightsShow(a, deferred, scene, *shaders, 0.05, name + "-deferred");
     const ImageDiff d = compareImages(a, b, kTolerance);
     std::printf("[ measure  ] %s: deferred fp32 vs forward_lit: %s (%.0f%% of pixels lit)\n", name.c_str(),
                 d.describe().c_str(), lit * 100.0);

@@ -4,7 +4,7 @@
 // position rebuilt from depth, octahedral rg16f normals), bounded here.
 #include <cstdio>
 
-#include "render_util.h"
+#include "support/render_util.h"
 #include "rgraph/scene.h"
 #include "test_scenes.h"
 
@@ -26,6 +26,7 @@ class GBufferLayouts : public RenderTest {
     const Image a = render(ref, scene, kSize, *shaders);
     const Image b = render(cand, scene, kSize, *shaders);
     EXPECT_GT(coverage(a, {0, 0, 0}), 0.2);
+    expectLightsShow(a, ref, scene, *shaders, 0.05, name + "-fp32");
     const ImageDiff d = compareImages(a, b, tolerance);
     std::printf("[ measure  ] %s: %s vs fp32 G-buffer: %s\n", name.c_str(), pipeline.c_str(), d.describe().c_str());
     RecordProperty("max_abs_diff_" + name, d.maxDiff);

@@ -14,7 +14,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "render_util.h"
+#include "support/render_util.h"
 #include "rgraph/scene.h"
 #include "test_scenes.h"
 

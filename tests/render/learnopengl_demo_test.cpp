@@ -9,7 +9,7 @@
 #include <set>
 #include <tuple>
 
-#include "render_util.h"
+#include "support/render_util.h"
 #include "rgraph/scene.h"
 
 #if __has_include("rgraph/adapt.h")

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "render_util.h"
+#include "support/render_util.h"
 #include "rgraph/scene.h"
 #include "support/test_support.h"
 
@@ -66,6 +66,7 @@ TEST_F(OutputVersionImage, IntermediateVersionRendersLikeTheGraphWithoutTheLater
   const Image c = render(build(finalVersion, "final.json"), scene, kSize, *shaders);
 
   EXPECT_GT(coverage(a, {0, 0, 0}), 0.2) << saveImage(a, "output-version-intermediate");
+  expectLightsShow(a, build(intermediate, "intermediate.json"), scene, *shaders, 0.05, "output-version-intermediate");
   const ImageDiff same = compareImages(a, b, 0);
   EXPECT_EQ(same.maxDiff, 0) << same.describe() << "; " << saveImage(a, "output-version-intermediate");
   EXPECT_EQ(same.over, 0u) << same.describe();

@@ -4,10 +4,11 @@
 // the LearnOpenGL scene alike, whatever their method (fullscreen loop, light
 // volumes, forward) or G-buffer layout, within what their formats allow.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
-#include "render_util.h"
+#include "support/render_util.h"
 #include "rgraph/error.h"
 #include "rgraph/scene.h"
 
@@ -29,8 +30,10 @@ class ShippedPipelines : public RenderTest {};
 
 TEST_F(ShippedPipelines, LearnOpenGLFamilyAgreesWithForward) {
   const Scene scene = makeLearnOpenGLScene();
-  const Image reference = render(loadPipeline(repoPath("pipelines/forward.json")), scene, kSize, *shaders);
+  const PipelineConfig forward = loadPipeline(repoPath("pipelines/forward.json"));
+  const Image reference = render(forward, scene, kSize, *shaders);
   EXPECT_GT(coverage(reference, {0, 0, 0}), 0.2);
+  expectLightsShow(reference, forward, scene, *shaders, 0.05, "shipped-forward");
   // Each light is cut off at its 5/256 radius: a pixel on that boundary
   // flips between "lit by 5/256 of the light" and "not lit" when its
   // position moves by a hair, a jump of up to ~5/255. The half-float
@@ -60,6 +63,7 @@ TEST_F(ShippedPipelines, BlinnPhongPipelineShadesEveryLightEverywhereLikeChapter
   setParam(forward, "forward_lit", "threshold", 0.0);
   const Image reference = render(forward, scene, kSize, *shaders);
   EXPECT_GT(coverage(reference, {0, 0, 0}), 0.2);
+  expectLightsShow(reference, forward, scene, *shaders, 0.05, "shipped-forward-no-cutoff");
 
   const PipelineConfig shipped = loadPipeline(repoPath("pipelines/deferred-blinn-phong.json"));
   const Image img = render(shipped, scene, kSize, *shaders);
@@ -80,7 +84,37 @@ TEST_F(ShippedPipelines, BlinnPhongPipelineShadesEveryLightEverywhereLikeChapter
 // Every shipped pipeline (built-in pass types only) renders the procedural
 // scene and glTF models of every kind (one material, MASK and BLEND, normal
 // maps, metallic/roughness variation) without GL errors and not empty,
-// adapted to each scene as `rgraph render` does.
+// adapted to each scene as `rgraph render` does. Each frame is checked
+// against a reference a wrong image fails: a lit pipeline's frame against the
+// ambient-only frame of the same pipeline and scene (lights removed), which
+// it must exceed by kMinLightGain on a stated share of pixels (a black frame and
+// an ambient-only one fail); the G-buffer debug view (normals shown as
+// n * 0.5 + 0.5) must not change with the lights and must decode to unit
+// normals on the pixels it covers (black decodes to length 1.73).
+namespace {
+// Share of the 64x64 pixels that must gain kMinLightGain from the lights, for
+// every lit pipeline and scene: measured 12.3% (deferred-pbr.json with
+// NormalTangentMirrorTest) to 41.5% (printed as "[ measure  ]"); a black or
+// ambient-only frame gains 0%.
+constexpr double kMinLitShare = 0.09;
+
+bool showsGBuffer(const PipelineConfig& cfg) {
+  return std::any_of(cfg.graph.passes.begin(), cfg.graph.passes.end(),
+                     [](const auto& p) { return p.type == "gbuffer_view"; });
+}
+
+// Share of pixels whose colour decodes (c / 255 * 2 - 1) to a unit normal
+// within what 8 bits allow (one level is 2/255 in n: |n| within 0.03 of 1).
+double unitNormalShare(const Image& img) {
+  size_t unit = 0;
+  for (size_t i = 0; i + 3 < img.rgba.size(); i += 4) {
+    const glm::dvec3 n = glm::dvec3(img.rgba[i], img.rgba[i + 1], img.rgba[i + 2]) / 255.0 * 2.0 - 1.0;
+    unit += std::abs(glm::length(n) - 1.0) <= 0.03;
+  }
+  return static_cast<double>(unit) / static_cast<double>(img.rgba.size() / 4);
+}
+}  // namespace
+
 TEST_F(ShippedPipelines, EveryPipelineRendersEveryKindOfScene) {
   std::vector<std::string> files;
   for (const auto& e : std::filesystem::directory_iterator(repoPath("pipelines")))
@@ -119,6 +153,27 @@ TEST_F(ShippedPipelines, EveryPipelineRendersEveryKindOfScene) {
       }
       EXPECT_EQ(glContext().debugErrorCount(), errors) << glContext().lastDebugError();
       EXPECT_GT(coverage(img, img.rgb(0, 0)), 0.05) << "empty image " << saveImage(img, "shipped-empty");
+      const Scene unlit = ambientOnly(scene);
+      PipelineConfig unlitCfg = base;
+#ifdef RGRAPH_HAVE_ADAPT
+      adaptToScene(unlitCfg, PassRegistry::builtins(), sceneFeatures(unlit));
+#endif
+      const Image ambient = render(unlitCfg, unlit, {64, 64}, *shaders);
+      const std::string stem = "shipped-" + std::filesystem::path(file).stem().string();
+      if (showsGBuffer(cfg)) {
+        const ImageDiff same = compareImages(img, ambient, 0);
+        EXPECT_EQ(same.maxDiff, 0) << "a G-buffer view changed with the lights: " << same.describe();
+        const double unit = unitNormalShare(img);
+        std::printf("[ measure  ] %s with %s: %.1f%% of pixels decode to unit normals\n", file.c_str(), name.c_str(),
+                    unit * 100.0);
+        EXPECT_GE(unit, 0.05) << saveImage(img, stem + "-normals");
+        continue;
+      }
+      const LightGain gain = lightGain(img, ambient, kMinLightGain);
+      std::printf("[ measure  ] %s with %s: %s\n", file.c_str(), name.c_str(), gain.describe().c_str());
+      EXPECT_GE(gain.share(), kMinLitShare) << "the lights do not show: " << gain.describe() << "; images "
+                                            << saveImage(img, stem + "-lit") << ", "
+                                            << saveImage(ambient, stem + "-ambient");
     }
   }
 }

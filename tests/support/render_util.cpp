@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -108,6 +109,43 @@ double coverage(const Image& img, glm::ivec3 background, int tolerance) {
       if (std::max({d.r, d.g, d.b}) > tolerance) ++n;
     }
   return total ? static_cast<double>(n) / static_cast<double>(total) : 0.0;
+}
+
+Scene ambientOnly(const Scene& scene) {
+  Scene s = scene;
+  s.pointLights.clear();
+  s.directionalLights.clear();
+  return s;
+}
+
+std::string LightGain::describe() const {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%zu of %zu pixels (%.1f%%) brighter than the ambient-only frame, largest gain %d/255",
+                brighter, pixels, share() * 100.0, maxGain);
+  return buf;
+}
+
+LightGain lightGain(const std::vector<uint8_t>& lit, const std::vector<uint8_t>& ambient, int minGain) {
+  LightGain g;
+  if (lit.size() != ambient.size()) return g;  // nothing brighter: the caller's expectation fails
+  g.pixels = lit.size() / 4;
+  for (size_t i = 0; i + 3 < lit.size(); i += 4) {
+    int gain = 0;
+    for (size_t c = 0; c < 3; ++c) gain = std::max(gain, int(lit[i + c]) - int(ambient[i + c]));
+    g.maxGain = std::max(g.maxGain, gain);
+    g.brighter += gain >= minGain;
+  }
+  return g;
+}
+
+LightGain expectLightsShow(const Image& lit, const PipelineConfig& cfg, const Scene& scene, ShaderLibrary& shaders,
+                           double minShare, const std::string& name) {
+  const Image ambient = render(cfg, ambientOnly(scene), lit.extent, shaders);
+  const LightGain g = lightGain(lit, ambient, kMinLightGain);
+  std::printf("[ measure  ] %s: %s\n", name.c_str(), g.describe().c_str());
+  EXPECT_GE(g.share(), minShare) << name << ": the lights do not show: " << g.describe() << "; images "
+                                 << saveImage(lit, name + "-lit") << ", " << saveImage(ambient, name + "-ambient");
+  return g;
 }
 
 std::string saveImage(const Image& img, const std::string& name) {

@@ -79,6 +79,42 @@ ImageDiff compareImages(const Image& a, const Image& b, int tolerance);
 // Share of pixels whose RGB differs from `background` by more than `tolerance`.
 double coverage(const Image& img, glm::ivec3 background, int tolerance = 2);
 
+// ---------------------------------------------------------------- lit against ambient-only
+
+// The same scene lit by ambient light only: every point and directional light
+// removed (camera, geometry, materials and ambient unchanged). A renderer that
+// drops its lights produces this frame; a lit frame must exceed it where the
+// lights reach.
+Scene ambientOnly(const Scene& scene);
+
+// How far a lit frame rises above the ambient-only frame of the same scene
+// through the same pipeline: pixels whose brightest channel gained at least
+// `minGain`/255 (a black frame gains nothing and loses the ambient; an
+// ambient-only frame gains nothing).
+struct LightGain {
+  size_t brighter = 0;  // pixels with some channel at least minGain above the ambient frame
+  size_t pixels = 0;
+  int maxGain = 0;      // largest per-channel gain over all pixels
+  double share() const { return pixels ? static_cast<double>(brighter) / static_cast<double>(pixels) : 0.0; }
+  std::string describe() const;
+};
+LightGain lightGain(const std::vector<uint8_t>& litRgba, const std::vector<uint8_t>& ambientRgba, int minGain);
+inline LightGain lightGain(const Image& lit, const Image& ambient, int minGain) {
+  return lightGain(lit.rgba, ambient.rgba, minGain);
+}
+// 8/255: the lit and ambient-only frames differ only by their lights, so a
+// pixel no light reaches differs by 0 (same pipeline, same rasterisation); a
+// light reaching a surface adds tens of levels.
+constexpr int kMinLightGain = 8;
+// The guard of a comparison test: renders `cfg` with ambientOnly(scene) at
+// `lit`'s size and expects `lit` kMinLightGain brighter on at least
+// `minShare` of the pixels (prints the measure, saves both images when not).
+// A black or ambient-only frame gains on 0% of its pixels; the comparison
+// tests pass 0.05 where they measure 8.8% (the LearnOpenGL scene's dim lights
+// under Cook-Torrance) to 75%.
+LightGain expectLightsShow(const Image& lit, const PipelineConfig& cfg, const Scene& scene, ShaderLibrary& shaders,
+                           double minShare, const std::string& name);
+
 // Writes a PNG under $RGRAPH_TEST_OUTPUT (default: <build dir>/render-test-output
 // via the working directory) for looking at failures; returns the path.
 std::string saveImage(const Image& img, const std::string& name);

@@ -1,0 +1,177 @@
+// Internal to `rgraph bench` (cmd_bench.cpp runs it): what a sweep point is
+// (bench_sweep.cpp: configurations, their pipelines, the scenes), how one is
+// rendered and measured (bench_measure.cpp), and how results are written
+// (bench_report.cpp: CSV, JSON, checks, the figure tables the docs quote;
+// bench_plots.cpp: the charts).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "rgraph/config.h"
+#include "rgraph/graph.h"
+#include "rgraph/scene.h"
+
+namespace rgraph {
+class GlContext;
+class ShaderLibrary;
+}  // namespace rgraph
+
+namespace rgraph::cli::bench {
+
+// ---------------------------------------------------------------- what is swept
+
+extern const std::vector<std::string> kMethods;  // forward_lit, fullscreen, fullscreen_radius, light_volumes, tiled
+extern const std::vector<std::string> kLayouts;  // pbr, learnopengl, compact, fp32
+constexpr double kDefaultThreshold = 5.0 / 256.0;
+
+struct Config {
+  std::string method = "light_volumes";
+  std::string layout = "pbr";  // unused by forward_lit
+  double threshold = kDefaultThreshold;
+  int lights = 256;
+  Extent size{640, 360};
+
+  bool deferred() const { return method != "forward_lit"; }
+  std::string key() const;  // equal keys: the same configuration
+};
+
+std::string methodTitle(const std::string& method);
+std::string thresholdText(double threshold);  // "5/256", "none"
+std::string sizeText(Extent e);               // "640x360"
+std::string describe(const Config& c);        // one line for progress and messages
+
+// The pipeline of a point as config JSON. reference: forward_lit with no
+// cut-off into an rgba32f HDR target (no G-buffer quantisation at all).
+std::string pipelineJson(const Config& c, bool reference);
+// Parses and builds a generated pipeline; errors throw (they are bugs here).
+PipelineConfig buildPipeline(const std::string& text, const std::string& name);
+
+// The scenes of a sweep: the procedural many-lights scene at each light
+// count, or a scene file with its first N point lights.
+class Scenes {
+ public:
+  explicit Scenes(const std::string& spec);
+  ~Scenes();
+  bool procedural() const { return procedural_; }
+  int defaultLights() const { return defaultLights_; }
+  const std::string& spec() const { return spec_; }
+  std::vector<int> lightCounts(bool quick) const;
+  const Scene& get(int lights);  // built once per count
+
+ private:
+  std::string spec_;
+  bool procedural_ = false;
+  int defaultLights_ = 256;
+  uint32_t seed_ = 1;
+  std::unique_ptr<Scene> base_;
+  std::map<int, std::unique_ptr<Scene>> cache_;
+};
+
+// ---------------------------------------------------------------- measuring one point
+
+struct FrameBudget {
+  int warm = 2;            // untimed frames first
+  int minFrames = 3;       // timed frames, at least
+  int maxFrames = 5;       // and at most
+  double budgetMs = 1500;  // timed frames are cut to fit this
+};
+
+struct Measured {
+  std::vector<uint8_t> image;
+  std::vector<double> frameMs;
+  std::vector<std::string> passOrder;
+  std::map<std::string, std::vector<double>> passMs;
+  uint32_t gbufferBytes = 0, gbufferBytesAdapted = 0;
+  uint64_t allocatedBytes = 0, naiveBytes = 0;
+  uint64_t glErrors = 0;
+  double wallMs = 0;  // everything: build, compile, warm-up, frames, read-back
+};
+
+struct ImageError {
+  double psnr = 0;   // dB over RGB, capped at kPsnrCap (identical or nearly)
+  int maxAbs = 0;    // 8-bit
+  double over1 = 0;  // share of pixels with a channel off by more than 1/255
+  double over2 = 0;  // and by more than 2/255
+};
+constexpr double kPsnrCap = 100.0;
+
+double median(std::vector<double> v);
+// Builds the pipeline, adapts it to the scene as `rgraph render` does, renders
+// warm-up and timed frames within the budget, reads the output back.
+Measured measure(const std::string& pipelineText, const std::string& name, const Scene& scene, Extent size,
+                 ShaderLibrary& shaders, GlContext& context, const FrameBudget& budget);
+Measured measure(PipelineConfig pipeline, const Scene& scene, Extent size, ShaderLibrary& shaders, GlContext& context,
+                 const FrameBudget& budget);
+ImageError compareImages(const std::vector<uint8_t>& a, const std::vector<uint8_t>& ref);
+// A rough cost model (ms at 640x360 on llvmpipe), for the ETA only.
+double estimateFrameMs(const Config& c);
+
+// ---------------------------------------------------------------- shipped pipelines
+
+// The shipped LearnOpenGL-family pipelines, each against pipelines/forward.json
+// on the bench's default scene and size: how far the methods agree as shipped
+// (bench/render_methods.cpp times the same pipelines side by side).
+struct ShippedMethod {
+  const char* name;
+  const char* file;  // under pipelines/ The shipped deferred pipelines keep LearnOpenGL's rgba16f position
+  // target; the variant stores position in rgba32f, so that only the
+  // lighting method differs from forward shading.
+  bool fp32Position = false;
+  // deferred-blinn-phong.json ships with no cut-off (LearnOpenGL 8.1): this
+  // pass gets the others' 5/256 so that only the method differs.
+  const char* cutOffPass = nullptr;
+};
+extern const std::vector<ShippedMethod> kShippedMethods;
+void applyShippedVariant(const ShippedMethod& m, PipelineConfig& cfg);
+
+struct ShippedResult {
+  ShippedMethod method;
+  ImageError err;     // against forward.json
+  std::string error;  // non-empty: it failed to run
+};
+std::vector<ShippedResult> measureShipped(const std::string& pipelineDir, const Scene& scene, Extent size,
+                                          ShaderLibrary& shaders, GlContext& context);
+
+// ---------------------------------------------------------------- the sweep
+
+struct Point {
+  Config cfg;
+  std::vector<std::string> axes;
+  Measured m;
+  ImageError err;
+  std::string error;  // non-empty: the point failed (message)
+  bool ok() const { return error.empty(); }
+};
+
+// One axis at a time around `def`, plus the method x light-count grid; each
+// configuration once, with every axis it belongs to; cheap points first.
+std::vector<Point> planSweep(const Config& def, const Scenes& scenes, bool quick, bool smoke);
+
+// ---------------------------------------------------------------- results
+
+void writeCsv(const std::string& path, const std::vector<Point>& points);
+nlohmann::json pointJson(const Point& p);
+Point pointFromJson(const nlohmann::json& j, const Config& def);
+Config defaultPointFromJson(const nlohmann::json& results);
+nlohmann::json shippedJson(const ShippedResult& r);
+ShippedResult shippedFromJson(const nlohmann::json& j);  // name and figures (enough for the tables)
+
+// The headline comparisons (results.json "checks") and one summary line each.
+nlohmann::json headlineChecks(const std::vector<Point>& points, const Config& def, std::vector<std::string>& summary);
+
+// Markdown tables of the deterministic figures (PSNR, max error, share off,
+// bytes per pixel, allocated/naive texture bytes), the blocks docs quote
+// between `<!-- bench-figures:NAME -->` markers. name -> table text.
+std::map<std::string, std::string> figureTables(const std::vector<Point>& points, const Config& def,
+                                                const std::vector<ShippedResult>& shipped);
+
+void drawCharts(const std::string& dir, const std::vector<Point>& points, const Config& def, const std::string& machine,
+                const std::string& sceneText);
+std::string sceneNote(const std::string& spec, bool procedural);
+
+}  // namespace rgraph::cli::bench

@@ -1,0 +1,167 @@
+// `rgraph bench`, measuring one point: build its pipeline, adapt it to the
+// scene as `rgraph render` does, time frames, read the image back, and
+// compare images.
+//
+// Timing: wall clock around Executor::renderFrame() + glFinish(), after
+// warm-up frames (shader compiles, first-touch allocations). On llvmpipe GL
+// timer queries are wrong (see PLATFORM notes), so this is the only clock.
+#include <GL/glcorearb.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "bench.h"
+#include "rgraph/adapt.h"
+#include "rgraph/error.h"
+#include "rgraph/gl/context.h"
+#include "rgraph/gl/executor.h"
+#include "rgraph/gl/shader_library.h"
+#include "rgraph/registry.h"
+
+namespace rgraph::cli::bench {
+
+using Clock = std::chrono::steady_clock;
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+Measured measure(const std::string& pipelineText, const std::string& name, const Scene& scene, Extent size,
+                 ShaderLibrary& shaders, GlContext& context, const FrameBudget& budget) {
+  return measure(buildPipeline(pipelineText, name), scene, size, shaders, context, budget);
+}
+
+Measured measure(PipelineConfig cfg, const Scene& scene, Extent size, ShaderLibrary& shaders, GlContext& context,
+                 const FrameBudget& budget) {
+  const auto start = Clock::now();
+  Measured m;
+  {
+    CompileOptions opts;
+    opts.output = size;
+    const Plan declared = compile(cfg.graph, opts);
+    m.gbufferBytes = gbufferBytesPerPixel(cfg, declared);
+  }
+  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));  // as `rgraph render` does
+  const uint64_t errorsBefore = context.debugErrorCount();
+  Executor exec(cfg, PassRegistry::builtins(), shaders, &scene);
+  exec.resize(size);
+  m.gbufferBytesAdapted = gbufferBytesPerPixel(cfg, exec.plan());
+  m.allocatedBytes = exec.plan().allocatedBytes;
+  m.naiveBytes = exec.plan().naiveBytes;
+
+  auto frame = [&]() {
+    const auto t0 = Clock::now();
+    exec.renderFrame();
+    glFinish();
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  };
+  for (int i = 0; i < budget.warm; ++i) {
+    // The first frame compiles shaders; a dear point needs no second warm-up.
+    if (frame() > budget.budgetMs / 3) break;
+  }
+  int target = budget.maxFrames;
+  for (int i = 0; i < target; ++i) {
+    const double ms = frame();
+    m.frameMs.push_back(ms);
+    for (const auto& t : exec.timings()) {
+      if (!m.passMs.count(t.name)) m.passOrder.push_back(t.name);
+      m.passMs[t.name].push_back(t.ms);
+    }
+    if (i == 0) {  // the first timed frame sets how many fit the budget
+      const int fit = static_cast<int>(budget.budgetMs / std::max(ms, 1e-3));
+      target = std::clamp(fit, budget.minFrames, budget.maxFrames);
+    }
+  }
+  m.image = exec.readOutputRGBA8();
+  m.glErrors = context.debugErrorCount() - errorsBefore;
+  m.wallMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  return m;
+}
+
+ImageError compareImages(const std::vector<uint8_t>& a, const std::vector<uint8_t>& ref) {
+  ImageError e;
+  if (a.size() != ref.size() || a.empty()) return {0.0, 255, 1.0, 1.0};
+  double sq = 0;
+  size_t over = 0, over2 = 0;
+  const size_t pixels = a.size() / 4;
+  for (size_t p = 0; p < pixels; ++p) {
+    int worst = 0;
+    for (int c = 0; c < 3; ++c) {
+      const int d = std::abs(int(a[p * 4 + c]) - int(ref[p * 4 + c]));
+      worst = std::max(worst, d);
+      sq += double(d) * d;
+    }
+    e.maxAbs = std::max(e.maxAbs, worst);
+    over += worst > 1;
+    over2 += worst > 2;
+  }
+  e.over1 = double(over) / double(pixels);
+  e.over2 = double(over2) / double(pixels);
+  const double mse = sq / double(pixels * 3);
+  e.psnr = mse > 0 ? std::min(kPsnrCap, 10.0 * std::log10(255.0 * 255.0 / mse)) : kPsnrCap;
+  return e;
+}
+
+// A rough model of a point's cost (ms, 640x360 on llvmpipe with 2 threads),
+// for the ETA only: the sweep grows from cheap to dear points.
+double estimateFrameMs(const Config& c) {
+  const double px = double(c.size.width) * c.size.height / (640.0 * 360.0);
+  const double n = c.lights;
+  double ms = 0;
+  if (c.method == "forward_lit")
+    ms = 10 + 0.5 * n;
+  else if (c.method == "fullscreen")
+    ms = 15 + 0.38 * n;
+  else if (c.method == "fullscreen_radius")
+    ms = 15 + 0.3 * n;
+  else if (c.method == "light_volumes")
+    ms = 20 + 0.06 * n;
+  else
+    ms = 20 + 0.05 * n;
+  return ms * px;
+}
+
+// ---------------------------------------------------------------- shipped pipelines
+
+namespace {
+
+PipelineConfig loadShipped(const std::string& path) {
+  Diagnostics diags;
+  ConfigDocument doc = ConfigDocument::parseFile(path, diags);
+  PipelineConfig cfg;
+  if (doc.ok()) cfg = doc.build(PassRegistry::builtins(), diags);
+  if (!doc.ok() || hasErrors(diags)) {
+    std::string msg = path + " has errors:";
+    for (const auto& d : diags) msg += "\n  " + formatDiagnostic(d);
+    throw RuntimeError(msg);
+  }
+  return cfg;
+}
+
+}  // namespace
+
+std::vector<ShippedResult> measureShipped(const std::string& pipelineDir, const Scene& scene, Extent size,
+                                          ShaderLibrary& shaders, GlContext& context) {
+  const FrameBudget once{0, 1, 1, 0};
+  const std::vector<uint8_t> forward =
+      measure(loadShipped(pipelineDir + "/forward.json"), scene, size, shaders, context, once).image;
+  std::vector<ShippedResult> out;
+  for (const ShippedMethod& m : kShippedMethods) {
+    ShippedResult r{m, {}, {}};
+    try {
+      PipelineConfig cfg = loadShipped(pipelineDir + "/" + m.file);
+      applyShippedVariant(m, cfg);
+      r.err = compareImages(measure(std::move(cfg), scene, size, shaders, context, once).image, forward);
+    } catch (const RuntimeError& e) {
+      r.error = e.what();
+    }
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+}  // namespace rgraph::cli::bench

@@ -1,0 +1,55 @@
+#!/usr/bin/env python3
+"""Regenerates the bench run docs/performance.md shows, and the figure tables it quotes.
+
+    scripts/update-bench-figures.py build            # timed `rgraph bench --quick` into docs/images/bench
+    scripts/update-bench-figures.py build --replot   # no rendering: tables and charts from the committed run
+
+The timed run writes docs/images/bench/{results.csv,results.json,figures.md}
+and the charts; then every `<!-- bench-figures:NAME -->` ...
+`<!-- /bench-figures:NAME -->` block of docs/performance.md is replaced by the
+table of the same name from figures.md. Review the diff before committing:
+the prose around the tables quotes some of these numbers and speed ratios
+(those are measured, not generated: give them as ranges over several runs).
+tests/bench_cli/doc_figures_test.cpp fails while a block or the committed run
+differs from what the code produces.
+"""
+import argparse
+import pathlib
+import re
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+BENCH_DIR = ROOT / "docs" / "images" / "bench"
+PAGE = ROOT / "docs" / "performance.md"
+BLOCK = re.compile(r"(<!-- bench-figures:(?P<name>[a-z_]+) -->\n)(?P<body>.*?)(<!-- /bench-figures:(?P=name) -->)", re.S)
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("build_dir", help="CMake build folder holding bin/rgraph")
+    ap.add_argument("--replot", action="store_true", help="redraw from the committed results.json, render nothing")
+    args = ap.parse_args()
+    rgraph = pathlib.Path(args.build_dir) / "bin" / "rgraph"
+    if not rgraph.exists():
+        print(f"error: {rgraph} not found (build first)", file=sys.stderr)
+        return 1
+    cmd = [str(rgraph), "bench", "--out", str(BENCH_DIR)]
+    cmd += ["--replot", str(BENCH_DIR / "results.json")] if args.replot else ["--quick"]
+    if subprocess.call(cmd) != 0:
+        return 1
+    tables = {m["name"]: m["body"] for m in BLOCK.finditer((BENCH_DIR / "figures.md").read_text())}
+    page = PAGE.read_text()
+    quoted = {m["name"] for m in BLOCK.finditer(page)}
+    for name in sorted(set(tables) - quoted):
+        print(f"note: docs/performance.md does not quote table '{name}' (add its markers)", file=sys.stderr)
+    for name in sorted(quoted - set(tables)):
+        print(f"error: docs/performance.md quotes '{name}', which bench no longer writes", file=sys.stderr)
+    page = BLOCK.sub(lambda m: m.group(1) + tables.get(m["name"], m["body"]) + m.group(4), page)
+    PAGE.write_text(page)
+    print(f"updated {PAGE.relative_to(ROOT)} from {(BENCH_DIR / 'figures.md').relative_to(ROOT)}")
+    return 0 if quoted <= set(tables) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
