@@ -64,21 +64,18 @@ std::string pointKey(const json& p) {
   return buf;
 }
 
-class DocFigures : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / ("rgraph-doc-figures-" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    exit_ = runCli("bench --quick --figures-only --out " + dir_.string(), out_);
+// One bench run for both checks (ctest runs each test in its own process).
+struct FreshRun {
+  fs::path dir;
+  std::string out;
+  int exit = -1;
+  FreshRun() {
+    dir = fs::temp_directory_path() / ("rgraph-doc-figures-" + std::to_string(getpid()));
+    fs::remove_all(dir);
+    exit = runCli("bench --quick --figures-only --out " + dir.string(), out);
   }
-  static void TearDownTestSuite() { fs::remove_all(dir_); }
-  static fs::path dir_;
-  static std::string out_;
-  static int exit_;
+  ~FreshRun() { fs::remove_all(dir); }
 };
-fs::path DocFigures::dir_;
-std::string DocFigures::out_;
-int DocFigures::exit_ = -1;
 
 const fs::path kSource = RGRAPH_SOURCE_DIR;
 
@@ -86,9 +83,8 @@ const fs::path kSource = RGRAPH_SOURCE_DIR;
 // 0.005 dB (it prints to 0.001; renders are deterministic, the margin only
 // absorbs the summation order of the squared errors), maximum error and bytes
 // exactly, the share of pixels off to a millionth.
-TEST_F(DocFigures, CommittedBenchRunMatchesTheCode) {
-  ASSERT_EQ(exit_, 0) << out_;
-  const json fresh = json::parse(slurp(dir_ / "results.json"));
+void expectCommittedRunMatches(const FreshRun& run) {
+  const json fresh = json::parse(slurp(run.dir / "results.json"));
   const json committed = json::parse(slurp(kSource / "docs/images/bench/results.json"));
   std::map<std::string, json> byKey;
   for (const json& p : fresh.at("points")) byKey[pointKey(p)] = p;
@@ -108,17 +104,44 @@ TEST_F(DocFigures, CommittedBenchRunMatchesTheCode) {
 
 // Every figures block the page quotes is what bench generates now, and the
 // page quotes every table bench generates.
-TEST_F(DocFigures, PerformancePageQuotesTheGeneratedTables) {
-  ASSERT_EQ(exit_, 0) << out_;
-  const auto generated = blocks(slurp(dir_ / "figures.md"));
+// The shipped pipelines against forward.json, in the same order.
+void expectCommittedShippedMatches(const FreshRun& run) {
+  const json fresh = json::parse(slurp(run.dir / "results.json")).at("shipped");
+  const json committed = json::parse(slurp(kSource / "docs/images/bench/results.json")).at("shipped");
+  ASSERT_EQ(committed.size(), fresh.size());
+  for (size_t i = 0; i < fresh.size(); ++i) {
+    SCOPED_TRACE(fresh[i].at("name").get<std::string>());
+    EXPECT_EQ(committed[i].at("file"), fresh[i].at("file"));
+    EXPECT_EQ(committed[i].at("max_abs_error"), fresh[i].at("max_abs_error"));
+    EXPECT_NEAR(committed[i].at("psnr_db").get<double>(), fresh[i].at("psnr_db").get<double>(), 0.005);
+    EXPECT_NEAR(committed[i].at("share_over_2").get<double>(), fresh[i].at("share_over_2").get<double>(), 1e-6);
+  }
+}
+
+void expectPageQuotesTheTables(const FreshRun& run) {
+  const auto generated = blocks(slurp(run.dir / "figures.md"));
   const auto page = blocks(slurp(kSource / "docs/performance.md"));
-  ASSERT_GE(generated.size(), 4u) << slurp(dir_ / "figures.md");
+  ASSERT_GE(generated.size(), 4u) << slurp(run.dir / "figures.md");
   for (const auto& [name, table] : generated) {
     SCOPED_TRACE(name);
     ASSERT_TRUE(page.count(name)) << "docs/performance.md lacks the block <!-- bench-figures:" << name << " -->";
     EXPECT_EQ(page.at(name), table) << "docs/performance.md's block '" << name << "' is stale; expected:\n" << table;
   }
   for (const auto& [name, table] : page) EXPECT_TRUE(generated.count(name)) << "bench no longer generates " << name;
+}
+
+TEST(DocFigures, CommittedRunAndPerformancePageMatchTheCode) {
+  const FreshRun run;
+  ASSERT_EQ(run.exit, 0) << run.out;
+  {
+    SCOPED_TRACE("docs/images/bench/results.json against a fresh run");
+    expectCommittedRunMatches(run);
+    expectCommittedShippedMatches(run);
+  }
+  {
+    SCOPED_TRACE("docs/performance.md's generated tables against a fresh run");
+    expectPageQuotesTheTables(run);
+  }
 }
 
 }  // namespace
