@@ -37,6 +37,7 @@
 #include "rgraph/gl/context.h"
 #include "rgraph/gl/executor.h"
 #include "rgraph/gl/shader_library.h"
+#include "rgraph/image.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
 
@@ -69,33 +70,13 @@ constexpr Method kMethods[] = {
 struct ImageStats {
   int maxDiff = 0;
   double over2 = 0.0;  // share of pixels with a channel off by more than 2/255
-  double psnr = 0.0;   // dB over RGB; +inf when identical (reported as 99)
+  double psnr = 0.0;   // dB over RGB, capped at 99 (identical or nearly)
 };
 
 ImageStats compare(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
-  ImageStats s;
-  if (a.size() != b.size() || a.empty()) {
-    s.maxDiff = 255;
-    s.over2 = 1.0;
-    return s;
-  }
-  double sq = 0.0;
-  size_t over = 0;
-  const size_t pixels = a.size() / 4;
-  for (size_t p = 0; p < pixels; ++p) {
-    int m = 0;
-    for (int c = 0; c < 3; ++c) {
-      const int d = std::abs(int(a[p * 4 + c]) - int(b[p * 4 + c]));
-      m = std::max(m, d);
-      sq += double(d) * d;
-    }
-    s.maxDiff = std::max(s.maxDiff, m);
-    over += m > 2;
-  }
-  s.over2 = double(over) / double(pixels);
-  const double mse = sq / double(pixels * 3);
-  s.psnr = mse > 0.0 ? 10.0 * std::log10(255.0 * 255.0 / mse) : 99.0;
-  return s;
+  if (a.size() != b.size() || a.empty()) return {255, 1.0, 0.0};
+  const ImageDifference d = compareRGBA8(a, b);
+  return {d.maxAbs, d.shareOver(2), d.psnr(99.0)};
 }
 
 double median(std::vector<double> v) {

@@ -17,6 +17,7 @@
 #include "rgraph/gl/context.h"
 #include "rgraph/gl/executor.h"
 #include "rgraph/gl/shader_library.h"
+#include "rgraph/image.h"
 #include "rgraph/registry.h"
 
 namespace rgraph::cli::bench {
@@ -83,27 +84,9 @@ Measured measure(PipelineConfig cfg, const Scene& scene, Extent size, ShaderLibr
 }
 
 ImageError compareImages(const std::vector<uint8_t>& a, const std::vector<uint8_t>& ref) {
-  ImageError e;
   if (a.size() != ref.size() || a.empty()) return {0.0, 255, 1.0, 1.0};
-  double sq = 0;
-  size_t over = 0, over2 = 0;
-  const size_t pixels = a.size() / 4;
-  for (size_t p = 0; p < pixels; ++p) {
-    int worst = 0;
-    for (int c = 0; c < 3; ++c) {
-      const int d = std::abs(int(a[p * 4 + c]) - int(ref[p * 4 + c]));
-      worst = std::max(worst, d);
-      sq += double(d) * d;
-    }
-    e.maxAbs = std::max(e.maxAbs, worst);
-    over += worst > 1;
-    over2 += worst > 2;
-  }
-  e.over1 = double(over) / double(pixels);
-  e.over2 = double(over2) / double(pixels);
-  const double mse = sq / double(pixels * 3);
-  e.psnr = mse > 0 ? std::min(kPsnrCap, 10.0 * std::log10(255.0 * 255.0 / mse)) : kPsnrCap;
-  return e;
+  const ImageDifference d = compareRGBA8(a, ref);
+  return {d.psnr(kPsnrCap), d.maxAbs, d.shareOver(1), d.shareOver(2)};
 }
 
 // A rough model of a point's cost (ms, 640x360 on llvmpipe with 2 threads),

@@ -82,20 +82,14 @@ ImageDiff compareImages(const Image& a, const Image& b, int tolerance) {
     d.over = static_cast<size_t>(-1);
     return d;
   }
-  for (int row = 0; row < static_cast<int>(a.extent.height); ++row) {
-    for (int x = 0; x < static_cast<int>(a.extent.width); ++x) {
-      const glm::ivec3 ca = a.rgb(x, row), cb = b.rgb(x, row);
-      const glm::ivec3 delta = glm::abs(ca - cb);
-      const int m = std::max({delta.r, delta.g, delta.b});
-      if (m > tolerance) ++d.over;
-      if (m > d.maxDiff) {
-        d.maxDiff = m;
-        d.worstX = x;
-        d.worstRow = row;
-        d.worstA = ca;
-        d.worstB = cb;
-      }
-    }
+  const ImageDifference diff = compareRGBA8(a.rgba, b.rgba);
+  d.maxDiff = diff.maxAbs;
+  d.over = diff.pixelsOver(tolerance);
+  if (diff.maxAbs > 0) {
+    d.worstX = static_cast<int>(diff.worstPixel % a.extent.width);
+    d.worstRow = static_cast<int>(diff.worstPixel / a.extent.width);
+    d.worstA = a.rgb(d.worstX, d.worstRow);
+    d.worstB = b.rgb(d.worstX, d.worstRow);
   }
   return d;
 }

@@ -1,6 +1,9 @@
 #include "rgraph/image.h"
 
+#include <algorithm>
 #include <climits>
+#include <cmath>
+#include <cstdlib>
 
 #include "rgraph/error.h"
 
@@ -28,6 +31,37 @@ void writePng(const std::string& path, uint32_t w, uint32_t h, const std::vector
                        " bytes of RGBA8 pixels, got " + std::to_string(rgba.size()));
   if (!stbi_write_png(path.c_str(), static_cast<int>(w), static_cast<int>(h), 4, rgba.data(), static_cast<int>(w * 4)))
     throw RuntimeError("cannot write PNG file " + path);
+}
+
+size_t ImageDifference::pixelsOver(int tolerance) const {
+  size_t n = 0;
+  for (size_t d = static_cast<size_t>(std::max(tolerance + 1, 0)); d < pixelsByWorst.size(); ++d) n += pixelsByWorst[d];
+  return n;
+}
+
+double ImageDifference::psnr(double cap) const {
+  return mse > 0.0 ? std::min(cap, 10.0 * std::log10(255.0 * 255.0 / mse)) : cap;
+}
+
+ImageDifference compareRGBA8(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+  if (a.size() != b.size() || a.size() % 4 != 0)
+    throw RuntimeError("cannot compare images of " + std::to_string(a.size()) + " and " + std::to_string(b.size()) +
+                       " bytes (RGBA8 images of one size expected)");
+  ImageDifference d;
+  d.pixels = a.size() / 4;
+  double sq = 0.0;
+  for (size_t p = 0; p < d.pixels; ++p) {
+    int worst = 0;
+    for (size_t c = 0; c < 3; ++c) {
+      const int diff = std::abs(int(a[p * 4 + c]) - int(b[p * 4 + c]));
+      worst = std::max(worst, diff);
+      sq += double(diff) * diff;
+    }
+    ++d.pixelsByWorst[static_cast<size_t>(worst)];
+    if (worst > d.maxAbs) d.maxAbs = worst, d.worstPixel = p;
+  }
+  d.mse = d.pixels ? sq / double(d.pixels * 3) : 0.0;
+  return d;
 }
 
 }  // namespace rgraph
