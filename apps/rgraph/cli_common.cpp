@@ -9,6 +9,7 @@
 #include "rgraph/plugin.h"
 #include "rgraph/registry.h"
 #include "rgraph/shader_check.h"
+#include "rgraph/shader_check_cache.h"
 
 namespace rgraph::cli {
 
@@ -84,6 +85,26 @@ CompileOptions compileOptions(uint32_t width, uint32_t height, uint32_t maxTextu
         "the GL_MAX_TEXTURE_SIZE every OpenGL 4.5 device reaches (--max-texture-size N sets another limit)";
   }
   return o;
+}
+
+Plan checkPipeline(const PipelineConfig& pipeline, const CompileOptions& options, ShaderChecks shaders,
+                   Diagnostics& diags, std::optional<bool> scenePresent) {
+  Plan plan = compile(pipeline.graph, options);
+  diags.insert(diags.end(), plan.diagnostics.begin(), plan.diagnostics.end());
+  PassCheckOptions checkOptions;
+  checkOptions.scenePresent = scenePresent;
+  Diagnostics passDiags = runPassChecks(pipeline, plan, PassRegistry::builtins(), checkOptions);
+  diags.insert(diags.end(), passDiags.begin(), passDiags.end());
+  // Shader checks need no GL context: glslang compiles and reflects what each
+  // enabled pass would build. They run even when the graph has errors (those
+  // are already listed; bindings it could not resolve only skip the format checks).
+  if (shaders != ShaderChecks::skip) {
+    ShaderChecker checker(defaultShaderSearchDirectories());
+    const std::string cacheDir = shaders == ShaderChecks::cached ? defaultShaderCheckCacheDir() : std::string();
+    CachedShaderCheck checked = checkPipelineCached(checker, pipeline, plan, PassRegistry::builtins(), cacheDir);
+    diags.insert(diags.end(), checked.diagnostics.begin(), checked.diagnostics.end());
+  }
+  return plan;
 }
 
 void printDiagnostics(const Diagnostics& diags) {

@@ -43,6 +43,16 @@ std::string diagnosticsJson(const Diagnostics& diags);
 // OpenGL 4.5 minimum, when not given), with the limit's origin for messages.
 CompileOptions compileOptions(uint32_t width, uint32_t height, uint32_t maxTextureSize);
 
+// What `validate` checks once a pipeline is loaded, and `render` before any
+// GL work (so that render refuses what validate refuses): the graph compiled
+// with these options, the pass types' check hooks (rgraph/pass_check.h) and,
+// unless skipped, the glslang shader checks (rgraph/shader_check.h; `cached`
+// remembers their results on disk, rgraph/shader_check_cache.h). Appends every
+// diagnostic to diags and returns the plan.
+enum class ShaderChecks { skip, run, cached };
+Plan checkPipeline(const PipelineConfig& pipeline, const CompileOptions& options, ShaderChecks shaders,
+                   Diagnostics& diags, std::optional<bool> scenePresent = std::nullopt);
+
 // The pipeline used when `rgraph render` names none.
 std::string defaultPipelinePath();
 

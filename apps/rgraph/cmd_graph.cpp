@@ -16,14 +16,14 @@
 namespace rgraph::cli {
 namespace {
 
-// Loads and compiles; prints nothing. Returns nullopt only when the config
-// itself could not be built (the plan's own diagnostics stay in the plan).
+// Loads, compiles and checks (checkPipeline); prints nothing. Returns nullopt
+// only when the config itself could not be built.
 std::optional<std::pair<PipelineConfig, Plan>> loadAndCompile(const std::string& path, const SizeOptions& size,
-                                                              Diagnostics& diags) {
+                                                              Diagnostics& diags,
+                                                              ShaderChecks shaders = ShaderChecks::skip) {
   auto pipeline = loadPipeline(path, diags);
   if (!pipeline) return std::nullopt;
-  Plan plan = compile(pipeline->graph, compileOptions(size.width, size.height, size.maxTextureSize));
-  diags.insert(diags.end(), plan.diagnostics.begin(), plan.diagnostics.end());
+  Plan plan = checkPipeline(*pipeline, compileOptions(size.width, size.height, size.maxTextureSize), shaders, diags);
   return std::make_pair(std::move(*pipeline), std::move(plan));
 }
 
@@ -111,16 +111,7 @@ void printPlanText(const Plan& plan) {
 
 int runValidate(const std::string& path, const SizeOptions& size, bool json, bool checkShaders) {
   Diagnostics diags;
-  auto result = loadAndCompile(path, size, diags);
-  // Shader checks need no GL context: glslang compiles and reflects what each
-  // enabled pass would build. They run once the config is built (the graph's
-  // own errors, if any, are already listed; bindings it could not resolve
-  // only skip the format checks).
-  if (result && checkShaders) {
-    ShaderChecker checker(defaultShaderSearchDirectories());
-    Diagnostics shaderDiags = checker.checkPipeline(result->first, result->second, PassRegistry::builtins());
-    diags.insert(diags.end(), shaderDiags.begin(), shaderDiags.end());
-  }
+  loadAndCompile(path, size, diags, checkShaders ? ShaderChecks::run : ShaderChecks::skip);
   if (json)
     std::cout << diagnosticsJson(diags) << "\n";
   else
@@ -152,9 +143,11 @@ int runPlan(const std::string& path, const SizeOptions& size, bool json, const s
   }
   PipelineConfig adapted = result->first;
   const AdaptReport report = adaptToScene(adapted, PassRegistry::builtins(), sceneFeatures(scene));
-  Plan plan = compile(adapted.graph, compileOptions(size.width, size.height, size.maxTextureSize));
-  printDiagnostics(plan.diagnostics);
-  if (!plan.ok()) return kExitFailure;
+  Diagnostics adaptedDiags;
+  Plan plan = checkPipeline(adapted, compileOptions(size.width, size.height, size.maxTextureSize), ShaderChecks::skip,
+                            adaptedDiags, /*scenePresent=*/true);
+  printDiagnostics(adaptedDiags);
+  if (hasErrors(adaptedDiags)) return kExitFailure;
   const uint32_t before = gbufferBytesPerPixel(result->first, result->second);
   const uint32_t after = gbufferBytesPerPixel(adapted, plan);
   if (json) {
@@ -230,7 +223,7 @@ int runPasses(bool json) {
                    {"description", t->description},
                    {"origin", t->origin},
                    {"side_effect", t->sideEffect},
-                   {"shaders", t->shaders},
+                   {"shaders", t->shaderFiles()},
                    {"slots", slots},
                    {"params", params}});
   }

@@ -53,14 +53,20 @@ int runRender(const RenderOptions& options) {
   auto pipeline = loadPipeline(pipelinePath, diags);
   printDiagnostics(diags);
   if (!pipeline) return kExitFailure;
-  // An explicit --max-texture-size is checked before any GL work, as validate
-  // does; the device's own limit is checked when the executor compiles.
-  if (options.size.maxTextureSize > 0) {
-    const Plan plan =
-        compile(pipeline->graph, compileOptions(options.size.width, options.size.height, options.size.maxTextureSize));
-    if (!plan.ok()) {
-      for (const auto& d : plan.diagnostics)
-        if (d.severity == Severity::error) std::cerr << formatDiagnostic(d) << "\n";
+  // Render refuses what validate refuses, before any GL work: the graph at
+  // this size (an explicit --max-texture-size included; the device's own
+  // limit is checked when the executor compiles), the pass types' checks on
+  // the config as written, and the shader checks (cached on disk). With a
+  // config validate accepts, this prints nothing.
+  if (options.checks) {
+    CompileOptions compile = compileOptions(options.size.width, options.size.height, options.size.maxTextureSize);
+    // Without --max-texture-size the device's own limit decides (the executor
+    // checks it), not the OpenGL 4.5 minimum validate assumes.
+    if (options.size.maxTextureSize == 0) compile.maxTextureSize = 0;
+    Diagnostics checks;
+    checkPipeline(*pipeline, compile, ShaderChecks::cached, checks, /*scenePresent=*/true);
+    if (hasErrors(checks)) {
+      printDiagnostics(checks);
       return kExitFailure;
     }
   }

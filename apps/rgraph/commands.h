@@ -29,6 +29,9 @@ struct RenderOptions {
   SizeOptions size;
   uint32_t frames = 1;
   bool window = false;
+  // false (--no-checks): skip the checks validate runs (graph, pass checks,
+  // glslang shader checks, cached on disk) before any GL work.
+  bool checks = true;
 };
 int runRender(const RenderOptions& options);
 

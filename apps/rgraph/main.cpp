@@ -89,6 +89,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1u, 100000u));
   renderCmd->add_option("--stats", render.stats, "write frame and pass timings and memory as JSON");
   renderCmd->add_flag("--window", render.window, "render in a GLFW window instead of headless EGL");
+  renderCmd->add_flag("!--no-checks", render.checks,
+                      "skip what validate checks before rendering (graph, pass checks, glslang shader checks; "
+                      "their results are cached under $XDG_CACHE_HOME/rgraph)");
   addPluginPath(renderCmd);
   renderCmd->add_option("--width", render.size.width, "output width in pixels")->check(CLI::Range(1u, 16384u));
   renderCmd->add_option("--height", render.size.height, "output height in pixels")->check(CLI::Range(1u, 16384u));

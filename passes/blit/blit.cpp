@@ -18,16 +18,7 @@ class BlitPass final : public PassInstance {
     Format sf = ctx.format("src"), df = ctx.format("dst");
     srcExtent_ = ctx.extent("src");
     dstExtent_ = ctx.extent("dst");
-    bool sd = gl::isDepth(sf), dd = gl::isDepth(df);
-    if (sd != dd)
-      throw RuntimeError("blit pass '" + ctx.passName() + "': cannot blit " + std::string(formatName(sf)) + " into " +
-                         std::string(formatName(df)) + " (depth and colour do not mix)");
-    if (ctx.samples("dst") > 1)
-      throw RuntimeError("blit pass '" + ctx.passName() + "': the destination may not be multisampled");
-    if (ctx.samples("src") > 1 && srcExtent_ != dstExtent_)
-      throw RuntimeError("blit pass '" + ctx.passName() + "': resolving a multisampled image needs equal sizes (" +
-                         std::to_string(srcExtent_.width) + "x" + std::to_string(srcExtent_.height) + " vs " +
-                         std::to_string(dstExtent_.width) + "x" + std::to_string(dstExtent_.height) + ")");
+    const bool sd = gl::isDepth(sf);
     read_ = gl::createFramebuffer();
     draw_ = gl::createFramebuffer();
     if (sd) {
@@ -76,6 +67,16 @@ class BlitPass final : public PassInstance {
   bool rawCopy_ = true;
 };
 
+// What glBlitFramebuffer refuses, refused before the GPU (the graph itself
+// refuses depth and colour mixed: depth_blit_format_mismatch).
+void checkBlit(const PassCheckContext& ctx, PassChecks& checks) {
+  if (ctx.samples("dst") > 1) checks.slotError("dst", "the destination may not be multisampled");
+  const Extent se = ctx.extent("src"), de = ctx.extent("dst");
+  if (ctx.samples("src") > 1 && se.width > 0 && de.width > 0 && se != de)
+    checks.slotError("dst", "resolving a multisampled image needs equal sizes (src " + extentText(se) + ", dst " +
+                                extentText(de) + ")");
+}
+
 PassTypeDesc makeBlitPass() {
   PassTypeDesc d;
   d.name = "blit";
@@ -88,6 +89,7 @@ PassTypeDesc makeBlitPass() {
   };
   d.params = {decl::param("filter", ParamType::enumeration, std::string("linear"),
                         "filter when sizes differ (depth always uses nearest)", {"nearest", "linear"})};
+  d.check = checkBlit;
   d.create = [] { return std::make_unique<BlitPass>(); };
   return d;
 }

@@ -8,7 +8,6 @@
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/lighting_options.h"
-#include "rgraph/gl/shader_library.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/registry.h"
 
@@ -18,11 +17,14 @@ using namespace rgraph;
 class ForwardPass final : public PassInstance {
  public:
   void setup(PassContext& ctx) override {
-    if (!ctx.gpuScene()) throw RuntimeError("forward pass '" + ctx.passName() + "' needs a scene");
     markers_ = ctx.params().getBool("markers", true);
     blend_ = ctx.params().getBool("blend", true);
-    if (markers_) markerProgram_ = ctx.shaders().program("light_marker.vert", "light_marker.frag");
-    if (blend_) blendProgram_ = forward::program(ctx);
+    // Programs in the order of the type's programs(): the markers' first when drawn.
+    if (markers_) {
+      markerProgram_ = ctx.program(0);
+      markerSize_ = gl::Uniform(markerProgram_, "u_markerSize");
+    }
+    if (blend_) surfaces_ = forward::SurfaceDrawer(ctx.program((markers_ ? 1 : 0) + lighting::normalMapVariant(ctx)));
   }
 
   void execute(PassContext& ctx) override {
@@ -32,8 +34,7 @@ class ForwardPass final : public PassInstance {
       scene.bindFrame();
       scene.bindPointLights(lighting::threshold(ctx.params()));
       glUseProgram(markerProgram_);
-      glProgramUniform1f(markerProgram_, glGetUniformLocation(markerProgram_, "u_markerSize"),
-                         static_cast<float>(ctx.params().getNumber("marker_size", 0.125)));
+      markerSize_.set(static_cast<float>(ctx.params().getNumber("marker_size", 0.125)));
       glEnable(GL_DEPTH_TEST);
       glDepthFunc(GL_LESS);
       glDepthMask(GL_TRUE);
@@ -43,12 +44,14 @@ class ForwardPass final : public PassInstance {
       glDisable(GL_CULL_FACE);
       glDisable(GL_DEPTH_TEST);
     }
-    if (blend_) forward::drawSurfaces(ctx, blendProgram_, /*blended=*/true);
+    if (blend_) surfaces_.draw(ctx, /*blended=*/true);
   }
 
  private:
   bool markers_ = true, blend_ = true;
-  uint32_t markerProgram_ = 0, blendProgram_ = 0;
+  uint32_t markerProgram_ = 0;
+  gl::Uniform markerSize_;
+  forward::SurfaceDrawer surfaces_;
 };
 
 PassTypeDesc makeForwardPass() {
@@ -58,7 +61,7 @@ PassTypeDesc makeForwardPass() {
   d.description = "Forward-rendered light markers and BLEND materials over the deferred image, depth-tested";
   d.slots = {
       slot("color", Access::color_attachment, true, SlotDecl::Load::required, "HDR lighting target to draw over",
-           {Format::rgba16f, Format::rgba32f, Format::r11g11b10f}),
+           lighting::hdrFormats()),
       slot("depth", Access::depth_attachment, true, SlotDecl::Load::required,
            "the scene depth (a blit of the G-buffer depth); markers write it, blended surfaces only test it",
            {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}),
@@ -83,26 +86,12 @@ PassTypeDesc makeForwardPass() {
   };
   d.programs = [](const ParamSet& p) {
     std::vector<ShaderProgramSpec> v;
-    if (p.getBool("markers", true)) {
-      ShaderProgramSpec s;
-      s.vert = "light_marker.vert";
-      s.frag = "light_marker.frag";
-      v.push_back(std::move(s));
-    }
+    if (p.getBool("markers", true)) v.push_back(programSpec("light_marker.vert", "light_marker.frag"));
     if (p.getBool("blend", true))
-      for (bool normalMaps : {false, true}) {  // forward::program: HAS_NORMAL_MAPS follows the scene
-        ShaderProgramSpec s;
-        s.vert = "scene.vert";
-        s.frag = "forward_lit.frag";
-        s.defines = lighting::defines(p);
-        if (normalMaps) s.defines.push_back("HAS_NORMAL_MAPS");
-        s.ownSamplers = lighting::materialSamplers();
-        s.blendsSourceAlpha = true;
-        v.push_back(std::move(s));
-      }
+      for (auto& s : forward::programs(p, /*blendsSourceAlpha=*/true)) v.push_back(std::move(s));
     return v;
   };
-  d.shaders = {"scene.vert", "forward_lit.frag", "light_marker.vert", "light_marker.frag"};
+  d.needsScene = true;
   d.create = [] { return std::make_unique<ForwardPass>(); };
   return d;
 }

@@ -16,8 +16,7 @@ using namespace rgraph;
 class ForwardLitPass final : public PassInstance {
  public:
   void setup(PassContext& ctx) override {
-    if (!ctx.gpuScene()) throw RuntimeError("forward_lit pass '" + ctx.passName() + "' needs a scene");
-    program_ = forward::program(ctx);
+    surfaces_ = forward::SurfaceDrawer(ctx.program(lighting::normalMapVariant(ctx)));
   }
 
   void execute(PassContext& ctx) override {
@@ -25,12 +24,12 @@ class ForwardLitPass final : public PassInstance {
     const float one = 1.0f;
     glDepthMask(GL_TRUE);
     glClearNamedFramebufferfv(ctx.framebuffer(), GL_DEPTH, 0, &one);
-    forward::drawSurfaces(ctx, program_, /*blended=*/false);
-    if (ctx.params().getBool("blend", true)) forward::drawSurfaces(ctx, program_, /*blended=*/true);
+    surfaces_.draw(ctx, /*blended=*/false);
+    if (ctx.params().getBool("blend", true)) surfaces_.draw(ctx, /*blended=*/true);
   }
 
  private:
-  uint32_t program_ = 0;
+  forward::SurfaceDrawer surfaces_;
 };
 
 PassTypeDesc makeForwardLitPass() {
@@ -40,7 +39,7 @@ PassTypeDesc makeForwardLitPass() {
   d.description = "Classic forward renderer: every light per fragment (the reference and the baseline)";
   d.slots = {
       slot("color", Access::color_attachment, true, SlotDecl::Load::optional,
-           "HDR target; background keeps its clear value", {Format::rgba16f, Format::rgba32f, Format::r11g11b10f}),
+           "HDR target; background keeps its clear value", lighting::hdrFormats()),
       slot("depth", Access::depth_attachment, true, SlotDecl::Load::never, "depth buffer (cleared here)",
            {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}),
   };
@@ -52,21 +51,8 @@ PassTypeDesc makeForwardLitPass() {
       a.notes.push_back("no BLEND materials: opaque surfaces only");
     }
   };
-  d.programs = [](const ParamSet& p) {
-    std::vector<ShaderProgramSpec> v;
-    for (bool normalMaps : {false, true}) {  // forward::program: HAS_NORMAL_MAPS follows the scene
-      ShaderProgramSpec s;
-      s.vert = "scene.vert";
-      s.frag = "forward_lit.frag";
-      s.defines = lighting::defines(p);
-      if (normalMaps) s.defines.push_back("HAS_NORMAL_MAPS");
-      s.ownSamplers = lighting::materialSamplers();
-      s.blendsSourceAlpha = p.getBool("blend", true);
-      v.push_back(std::move(s));
-    }
-    return v;
-  };
-  d.shaders = {"scene.vert", "forward_lit.frag"};
+  d.programs = [](const ParamSet& p) { return forward::programs(p, p.getBool("blend", true)); };
+  d.needsScene = true;
   d.create = [] { return std::make_unique<ForwardLitPass>(); };
   return d;
 }

@@ -6,7 +6,6 @@
 
 #include "rgraph/error.h"
 #include "rgraph/gl/fullscreen.h"
-#include "rgraph/gl/shader_library.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/registry.h"
 
@@ -28,20 +27,8 @@ constexpr std::array<DepthFunc, 8> kDepthFuncs = {{{"always", GL_ALWAYS},
                                                   {"never", GL_NEVER},
                                                   {"off", 0}}};
 
-class FullscreenPass final : public PassInstance {
- public:
-  void setup(PassContext& ctx) override {
-    std::string shader = ctx.params().getString("shader");
-    if (shader.empty()) throw RuntimeError("fullscreen pass '" + ctx.passName() + "': parameter 'shader' is empty");
-    program_ = ctx.shaders().program("fullscreen.vert", shader);
-    triangle_ = std::make_unique<gl::FullscreenTriangle>();
-    locResolution_ = glGetUniformLocation(program_, "u_resolution");
-    locColor_ = glGetUniformLocation(program_, "u_color");
-    locValue_ = glGetUniformLocation(program_, "u_value");
-    for (size_t i = 0; i < kInputs.size(); ++i) {
-      locInputs_[i] = glGetUniformLocation(program_, kInputs[i]);
-      if (locInputs_[i] >= 0) glProgramUniform1i(program_, locInputs_[i], static_cast<GLint>(i));
-    }
+class FullscreenShaderPass final : public gl::FullscreenPass {
+  void prepare(PassContext& ctx) override {
     std::string df = ctx.params().getString("depth_func", "always");
     depthFunc_ = GL_ALWAYS;
     for (const auto& f : kDepthFuncs)
@@ -50,27 +37,16 @@ class FullscreenPass final : public PassInstance {
     blend_ = blend == "alpha" ? 1 : blend == "additive" ? 2 : 0;
   }
 
-  void execute(PassContext& ctx) override {
-    gl::bindPassFramebuffer(ctx);
-    glUseProgram(program_);
+  void update(PassContext& ctx) override {
     Extent e = ctx.framebufferExtent();
-    if (locResolution_ >= 0)
-      glProgramUniform2f(program_, locResolution_, static_cast<float>(e.width), static_cast<float>(e.height));
-    if (locColor_ >= 0) {
-      std::vector<double> c = ctx.params().getVector("color", {1, 1, 1, 1});
-      c.resize(4, 1.0);
-      glProgramUniform4f(program_, locColor_, static_cast<float>(c[0]), static_cast<float>(c[1]),
-                         static_cast<float>(c[2]), static_cast<float>(c[3]));
-    }
-    if (locValue_ >= 0) glProgramUniform1f(program_, locValue_, static_cast<float>(ctx.params().getNumber("value")));
-    for (size_t i = 0; i < kInputs.size(); ++i)
-      if (locInputs_[i] >= 0) glBindTextureUnit(static_cast<GLuint>(i), ctx.texture(kInputs[i]));
-
+    resolution_.set(static_cast<float>(e.width), static_cast<float>(e.height));
+    std::vector<double> c = ctx.params().getVector("color", {1, 1, 1, 1});
+    c.resize(4, 1.0);
+    color_.set(static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]), static_cast<float>(c[3]));
+    value_.set(static_cast<float>(ctx.params().getNumber("value")));
     if (ctx.bound("depth") && depthFunc_ != 0) {
       glEnable(GL_DEPTH_TEST);
       glDepthFunc(depthFunc_);
-    } else {
-      glDisable(GL_DEPTH_TEST);
     }
     if (blend_ != 0) {
       glEnable(GL_BLEND);
@@ -80,16 +56,9 @@ class FullscreenPass final : public PassInstance {
       else
         glBlendFunc(GL_ONE, GL_ONE);
     }
-    triangle_->draw();
-    for (size_t i = 0; i < kInputs.size(); ++i)
-      if (locInputs_[i] >= 0) glBindTextureUnit(static_cast<GLuint>(i), 0);
   }
 
- private:
-  uint32_t program_ = 0;
-  std::unique_ptr<gl::FullscreenTriangle> triangle_;
-  GLint locResolution_ = -1, locColor_ = -1, locValue_ = -1;
-  std::array<GLint, 4> locInputs_{-1, -1, -1, -1};
+  ProgramUniform resolution_{this, "u_resolution"}, color_{this, "u_color"}, value_{this, "u_value"};
   GLenum depthFunc_ = GL_ALWAYS;
   int blend_ = 0;
 };
@@ -121,16 +90,13 @@ PassTypeDesc makeFullscreenPass() {
                 {"none", "alpha", "additive"}),
   };
   d.programs = [](const ParamSet& p) {
-    ShaderProgramSpec s;
-    s.vert = "fullscreen.vert";
-    s.frag = p.getString("shader");
+    ShaderProgramSpec s = gl::fullscreenProgram(p.getString("shader"));
     if (s.frag.empty()) throw RuntimeError("parameter 'shader' is empty: name a fragment shader");
-    for (size_t i = 0; i < kInputs.size(); ++i) s.samplers.push_back({kInputs[i], kInputs[i], -1});  // set by setup()
+    for (size_t i = 0; i < kInputs.size(); ++i) s.samplers.push_back({kInputs[i], kInputs[i], static_cast<int>(i)});
     s.blendsSourceAlpha = p.getString("blend", "none") == "alpha";
     return std::vector<ShaderProgramSpec>{std::move(s)};
   };
-  d.shaders = {"fullscreen.vert"};
-  d.create = [] { return std::make_unique<FullscreenPass>(); };
+  d.create = [] { return std::make_unique<FullscreenShaderPass>(); };
   return d;
 }
 

@@ -7,7 +7,6 @@
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/lighting_options.h"
-#include "rgraph/gl/shader_library.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
@@ -36,30 +35,9 @@ const Layout& findLayout(const std::string& name) {
 
 class GeometryPass final : public PassInstance {
  public:
-  void setup(PassContext& ctx) override {
-    if (!ctx.gpuScene())
-      throw RuntimeError("geometry pass '" + ctx.passName() + "' needs a scene (rgraph render --scene ...)");
-    const Layout& layout = findLayout(ctx.params().getString("layout", "pbr"));
-    auto require = [&](const char* slot, bool wanted) {
-      if (ctx.bound(slot) != wanted)
-        throw RuntimeError("geometry pass '" + ctx.passName() + "': layout '" + layout.name + "' " +
-                           (wanted ? "writes" : "does not write") + " a '" + slot + "' target; " +
-                           (wanted ? "bind it in outputs" : "remove it from outputs"));
-    };
-    require("position", layout.position);
-    const bool constantMaterial = ctx.params().getBool("constant_material", false);
-    require("material", layout.material && !constantMaterial);
-    if (formatInfo(ctx.format("normal")).components < layout.normalComponents)
-      throw RuntimeError("geometry pass '" + ctx.passName() + "': layout '" + layout.name + "' needs " +
-                         std::to_string(layout.normalComponents) + " components in 'normal', got " +
-                         std::string(formatName(ctx.format("normal"))));
-
-    std::vector<std::string> defines = lighting::gbufferDefines(ctx.params());
-    // Model no more than the scene needs: without normal maps no tangent is
-    // read and no normal map sampled.
-    if (ctx.scene()->hasNormalMaps()) defines.push_back("HAS_NORMAL_MAPS");
-    program_ = ctx.shaders().program("scene.vert", "gbuffer.frag", defines);
-  }
+  // Model no more than the scene needs: without normal maps no tangent is
+  // read and no normal map sampled.
+  void setup(PassContext& ctx) override { program_ = ctx.program(lighting::normalMapVariant(ctx)); }
 
   void execute(PassContext& ctx) override {
     gl::bindPassFramebuffer(ctx);
@@ -85,6 +63,23 @@ class GeometryPass final : public PassInstance {
   uint32_t program_ = 0;
 };
 
+// The targets the layout writes are exactly the bound ones.
+void checkGeometry(const PassCheckContext& ctx, PassChecks& checks) {
+  const Layout& layout = findLayout(ctx.params().getString("layout", "pbr"));
+  auto require = [&](const char* slot, bool wanted) {
+    if (ctx.bound(slot) != wanted)
+      checks.slotError(slot, std::string("layout '") + layout.name + "' " + (wanted ? "writes" : "does not write") +
+                                 " a '" + slot + "' target; " +
+                                 (wanted ? "bind it in outputs" : "remove it from outputs"));
+  };
+  require("position", layout.position);
+  require("material", layout.material && !ctx.params().getBool("constant_material", false));
+  if (auto normal = ctx.format("normal"); normal && formatInfo(*normal).components < layout.normalComponents)
+    checks.slotError("normal", std::string("layout '") + layout.name + "' needs " +
+                                   std::to_string(layout.normalComponents) + " components in 'normal', got " +
+                                   std::string(formatName(*normal)));
+}
+
 PassTypeDesc makeGeometryPass() {
   using namespace rgraph::decl;
   const std::vector<Format> color = {Format::rgba8,  Format::srgb8_alpha8, Format::rgba16f, Format::rgba32f,
@@ -108,20 +103,13 @@ PassTypeDesc makeGeometryPass() {
                     {"learnopengl", "pbr", "compact", "fp32"})};
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
   d.adapt = lighting::adaptGBuffer;
-  d.programs = [](const ParamSet& p) {
-    std::vector<ShaderProgramSpec> v;
-    for (bool normalMaps : {false, true}) {  // HAS_NORMAL_MAPS follows the scene: check both
-      ShaderProgramSpec s;
-      s.vert = "scene.vert";
-      s.frag = "gbuffer.frag";
-      s.defines = lighting::gbufferDefines(p);
-      if (normalMaps) s.defines.push_back("HAS_NORMAL_MAPS");
-      s.ownSamplers = lighting::materialSamplers();
-      v.push_back(std::move(s));
-    }
-    return v;
+  d.programs = [](const ParamSet& p) {  // HAS_NORMAL_MAPS follows the scene: both variants
+    ShaderProgramSpec s = programSpec("scene.vert", "gbuffer.frag", lighting::gbufferDefines(p));
+    s.ownSamplers = lighting::materialSamplers();
+    return lighting::normalMapVariants(s);
   };
-  d.shaders = {"scene.vert", "gbuffer.frag"};
+  d.check = checkGeometry;
+  d.needsScene = true;
   d.create = [] { return std::make_unique<GeometryPass>(); };
   return d;
 }

@@ -9,7 +9,6 @@
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/lighting_options.h"
-#include "rgraph/gl/shader_library.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/registry.h"
 
@@ -19,21 +18,17 @@ using namespace rgraph;
 class LightVolumesPass final : public PassInstance {
  public:
   void setup(PassContext& ctx) override {
-    if (!ctx.gpuScene()) throw RuntimeError("light_volumes pass '" + ctx.passName() + "' needs a scene");
-    lighting::requireGBuffer(ctx, "light_volumes");
-    std::vector<std::string> defines = lighting::defines(ctx.params());
-    for (auto& def : lighting::gbufferDefines(ctx.params())) defines.push_back(std::move(def));
-    program_ = ctx.shaders().program("light_volume.vert", "light_volume.frag", defines);
+    program_ = ctx.program(0);
+    volumeScale_ = gl::Uniform(program_, "u_volumeScale");
   }
 
   void execute(PassContext& ctx) override {
     GpuScene& scene = *ctx.gpuScene();
     gl::bindPassFramebuffer(ctx);
     glUseProgram(program_);
-    glProgramUniform1f(program_, glGetUniformLocation(program_, "u_volumeScale"), scene.icosphereScale());
+    volumeScale_.set(scene.icosphereScale());
     scene.bindFrame();
     scene.bindPointLights(lighting::threshold(ctx.params()));
-    lighting::bindGBuffer(ctx);
 
     const std::string cull = ctx.params().getString("cull", "front");
     glEnable(GL_CULL_FACE);
@@ -63,20 +58,18 @@ class LightVolumesPass final : public PassInstance {
 
  private:
   uint32_t program_ = 0;
+  gl::Uniform volumeScale_;
 };
 
 PassTypeDesc makeLightVolumesPass() {
   using namespace rgraph::decl;
-  PassTypeDesc d;
-  d.name = "light_volumes";
-  d.description = "Point lights as instanced spheres scaled to their radius, added into the lighting target";
-  d.slots = lighting::gbufferSlots();
+  PassTypeDesc d = lighting::gbufferReader(
+      "light_volumes", "Point lights as instanced spheres scaled to their radius, added into the lighting target");
   d.slots.push_back(slot("depth_test", Access::depth_attachment_read, false, SlotDecl::Load::never,
                          "scene depth to test volumes against (read-only; a copy when the layout samples depth)",
                          {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}));
   d.slots.push_back(slot("color", Access::color_attachment, true, SlotDecl::Load::required,
-                         "HDR lighting target the lights are added to", {Format::rgba16f, Format::rgba32f,
-                                                                        Format::r11g11b10f}));
+                         "HDR lighting target the lights are added to", lighting::hdrFormats()));
   d.params = lighting::params(5.0 / 256.0, /*allowNoCutoff=*/false);
   d.params.push_back(lighting::layoutParam());
   d.params.push_back(param("cull", ParamType::enumeration, std::string("front"),
@@ -93,15 +86,9 @@ PassTypeDesc makeLightVolumesPass() {
     lighting::adaptGBuffer(f, a);
   };
   d.programs = [](const ParamSet& p) {
-    ShaderProgramSpec s;
-    s.vert = "light_volume.vert";
-    s.frag = "light_volume.frag";
-    s.defines = lighting::defines(p);
-    for (auto& def : lighting::gbufferDefines(p)) s.defines.push_back(std::move(def));
-    s.samplers = lighting::gbufferSamplers();
-    return std::vector<ShaderProgramSpec>{std::move(s)};
+    return std::vector{programSpec("light_volume.vert", "light_volume.frag", lighting::shadingDefines(p),
+                                   lighting::gbufferSamplers())};
   };
-  d.shaders = {"light_volume.vert", "light_volume.frag"};
   d.create = [] { return std::make_unique<LightVolumesPass>(); };
   return d;
 }

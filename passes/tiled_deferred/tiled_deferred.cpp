@@ -12,7 +12,7 @@
 #include "rgraph/error.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/lighting_options.h"
-#include "rgraph/gl/shader_library.h"
+#include "rgraph/gl/uniform.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/registry.h"
 
@@ -27,17 +27,19 @@ const char* imageFormatQualifier(Format f) {
   }
 }
 
-// Shared memory: the list (4 bytes a light) plus three counters.
-int maxTileLights(int requested, GLint sharedBytes) {
-  const int fit = std::max(0, (static_cast<int>(sharedBytes) - 64) / 4);
-  return std::clamp(std::min(requested, fit), 1, 65536);
+// Shared memory: the list (4 bytes a light) plus three counters, within the
+// 32 KiB every GL 4.5 device has (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE's
+// minimum), so that the program does not depend on the device and validate
+// checks the one that runs.
+int maxTileLights(const ParamSet& p) {
+  constexpr int64_t kFit = (32768 - 64) / 4;
+  return static_cast<int>(std::clamp<int64_t>(std::min(p.getInt("max_tile_lights", 1024), kFit), 1, 65536));
 }
 
-std::vector<std::string> programDefines(const ParamSet& p, Format target, int tileLights) {
-  std::vector<std::string> defines = lighting::defines(p);
-  for (auto& def : lighting::gbufferDefines(p)) defines.push_back(std::move(def));
+std::vector<std::string> programDefines(const ParamSet& p, Format target) {
+  std::vector<std::string> defines = lighting::shadingDefines(p);
   defines.push_back("TILE_SIZE=" + std::to_string(p.getInt("tile_size", 16)));
-  defines.push_back("MAX_TILE_LIGHTS=" + std::to_string(tileLights));
+  defines.push_back("MAX_TILE_LIGHTS=" + std::to_string(maxTileLights(p)));
   defines.push_back(std::string("TARGET_FORMAT=") + imageFormatQualifier(target));
   return defines;
 }
@@ -45,24 +47,22 @@ std::vector<std::string> programDefines(const ParamSet& p, Format target, int ti
 class TiledDeferredPass final : public PassInstance {
  public:
   void setup(PassContext& ctx) override {
-    if (!ctx.gpuScene()) throw RuntimeError("tiled_deferred pass '" + ctx.passName() + "' needs a scene");
-    lighting::requireGBuffer(ctx, "tiled_deferred");
     tile_ = static_cast<int>(ctx.params().getInt("tile_size", 16));
-    GLint invocations = 0, sharedBytes = 0, groupX = 0, groupY = 0;
+    GLint invocations = 0, groupX = 0, groupY = 0;
     glGetIntegerv(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS, &invocations);
-    glGetIntegerv(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, &sharedBytes);
     glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 0, &groupX);
     glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 1, &groupY);
     if (tile_ * tile_ > invocations || tile_ > groupX || tile_ > groupY)
       throw RuntimeError("tiled_deferred pass '" + ctx.passName() + "': tile_size " + std::to_string(tile_) +
                          " needs " + std::to_string(tile_ * tile_) + " invocations per work group; this GL allows " +
                          std::to_string(invocations));
-    const int tileLights = maxTileLights(static_cast<int>(ctx.params().getInt("max_tile_lights", 1024)), sharedBytes);
-    program_ = ctx.shaders().computeProgram("tiled_deferred.comp",
-                                            programDefines(ctx.params(), ctx.format("color"), tileLights));
-    countLoc_ = glGetUniformLocation(program_, "u_pointLightCount");
-    ambientLoc_ = glGetUniformLocation(program_, "u_ambientAndSun");
-    loadLoc_ = glGetUniformLocation(program_, "u_load");
+    // programs() has one program per target format (the image format
+    // qualifier is a define), in the order of hdrFormats().
+    const auto& formats = lighting::hdrFormats();
+    program_ = ctx.program(std::find(formats.begin(), formats.end(), ctx.format("color")) - formats.begin());
+    pointLightCount_ = gl::Uniform(program_, "u_pointLightCount");
+    ambientAndSun_ = gl::Uniform(program_, "u_ambientAndSun");
+    load_ = gl::Uniform(program_, "u_load");
   }
 
   void execute(PassContext& ctx) override {
@@ -70,41 +70,38 @@ class TiledDeferredPass final : public PassInstance {
     const Extent size = ctx.extent("color");
     glUseProgram(program_);
     const bool points = ctx.params().getBool("point_lights", true);
-    glProgramUniform1i(program_, countLoc_, points ? static_cast<int>(scene.pointLightCount()) : 0);
-    glProgramUniform1i(program_, ambientLoc_, ctx.params().getBool("ambient_and_sun", true) ? 1 : 0);
-    glProgramUniform1i(program_, loadLoc_, ctx.loads("color") ? 1 : 0);
+    pointLightCount_.set(points ? static_cast<int>(scene.pointLightCount()) : 0);
+    ambientAndSun_.set(ctx.params().getBool("ambient_and_sun", true));
+    load_.set(ctx.loads("color"));
     scene.bindFrame();
     scene.bindPointLights(lighting::threshold(ctx.params()));
-    lighting::bindGBuffer(ctx);
     const GLenum format = ctx.format("color") == Format::rgba32f     ? GL_RGBA32F
                           : ctx.format("color") == Format::r11g11b10f ? GL_R11F_G11F_B10F
                                                                       : GL_RGBA16F;
     glBindImageTexture(0, ctx.texture("color"), 0, GL_FALSE, 0, GL_READ_WRITE, format);
     const GLuint groupsX = (size.width + tile_ - 1) / tile_, groupsY = (size.height + tile_ - 1) / tile_;
     glDispatchCompute(groupsX, groupsY, 1);
-    // Whoever reads the target next samples it, blits it, reads it back or draws into it.
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
-                    GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
+    // No memory barrier here: the executor issues the bits whoever touches
+    // the target next needs, from the slot's declared access (storage_write).
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
   }
 
  private:
   uint32_t program_ = 0;
   int tile_ = 16;
-  int countLoc_ = -1, ambientLoc_ = -1, loadLoc_ = -1;
+  gl::Uniform pointLightCount_, ambientAndSun_, load_;
 };
 
 PassTypeDesc makeTiledDeferredPass() {
   using namespace rgraph::decl;
-  PassTypeDesc d;
-  d.name = "tiled_deferred";
-  d.description = "Tiled deferred lighting (compute): lights culled per 16x16 tile against its depth bounds, "
-                  "each pixel shaded with its tile's list";
-  d.slots = lighting::gbufferSlots();
+  PassTypeDesc d = lighting::gbufferReader(
+      "tiled_deferred",
+      "Tiled deferred lighting (compute): lights culled per 16x16 tile against its depth bounds, "
+      "each pixel shaded with its tile's list");
   d.slots.push_back(slot("color", Access::storage_write, true, SlotDecl::Load::optional,
                          "HDR lighting target written with image stores; when loaded, the lights are added to it; "
                          "background pixels keep its clear value",
-                         {Format::rgba16f, Format::rgba32f, Format::r11g11b10f}));
+                         lighting::hdrFormats()));
   d.params = lighting::params();
   d.params.push_back(lighting::layoutParam());
   d.params.push_back(param("point_lights", ParamType::boolean, true, "shade the point lights"));
@@ -118,15 +115,17 @@ PassTypeDesc makeTiledDeferredPass() {
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
   d.adapt = lighting::adaptPointLightShading;
   d.programs = [](const ParamSet& p) {
-    ShaderProgramSpec s;
-    s.comp = "tiled_deferred.comp";
-    s.defines = programDefines(p, Format::rgba16f, static_cast<int>(std::min<int64_t>(p.getInt("max_tile_lights", 1024),
-                                                                                     (32768 - 64) / 4)));
-    s.samplers = lighting::gbufferSamplers();
-    s.drawsToAttachments = false;
-    return std::vector<ShaderProgramSpec>{std::move(s)};
+    std::vector<ShaderProgramSpec> v;
+    for (Format target : lighting::hdrFormats()) {  // setup() takes the one of the bound target's format
+      ShaderProgramSpec s;
+      s.comp = "tiled_deferred.comp";
+      s.defines = programDefines(p, target);
+      s.samplers = lighting::gbufferSamplers();
+      s.drawsToAttachments = false;
+      v.push_back(std::move(s));
+    }
+    return v;
   };
-  d.shaders = {"tiled_deferred.comp"};
   d.create = [] { return std::make_unique<TiledDeferredPass>(); };
   return d;
 }

@@ -17,7 +17,6 @@
 #include "rgraph/error.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/objects.h"
-#include "rgraph/gl/shader_library.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/plugin.h"
 
@@ -25,8 +24,6 @@ namespace {
 using namespace rgraph;
 
 const std::vector<Format> kHdrFormats = {Format::rgba16f, Format::rgba32f, Format::r11g11b10f};
-
-GLint loc(uint32_t program, const char* name) { return glGetUniformLocation(program, name); }
 
 // A framebuffer with one colour attachment, for passes that draw into
 // several targets in turn.
@@ -42,63 +39,40 @@ gl::Framebuffer singleTargetFbo(uint32_t texture, const std::string& what) {
 
 // ------------------------------------------------------------ bloom_bright
 
-class BrightPass final : public PassInstance {
- public:
-  explicit BrightPass(std::string frag) : frag_(std::move(frag)) {}
-  void setup(PassContext& ctx) override {
-    program_ = ctx.shaders().program("fullscreen.vert", frag_);
-    triangle_ = std::make_unique<gl::FullscreenTriangle>();
-  }
-  void execute(PassContext& ctx) override {
+class BrightPass final : public gl::FullscreenPass {
+  void update(PassContext& ctx) override {
     const ParamSet& p = ctx.params();
-    gl::bindPassFramebuffer(ctx);
-    glUseProgram(program_);
-    glProgramUniform1f(program_, loc(program_, "u_threshold"), static_cast<float>(p.getNumber("threshold", 1.0)));
-    glProgramUniform1f(program_, loc(program_, "u_knee"), static_cast<float>(p.getNumber("knee", 0.5)));
-    glProgramUniform1f(program_, loc(program_, "u_clamp"), static_cast<float>(p.getNumber("clamp", 64.0)));
-    glBindTextureUnit(0, ctx.texture("hdr"));
-    triangle_->draw();
+    threshold_.set(static_cast<float>(p.getNumber("threshold", 1.0)));
+    knee_.set(static_cast<float>(p.getNumber("knee", 0.5)));
+    clamp_.set(static_cast<float>(p.getNumber("clamp", 64.0)));
   }
-
- private:
-  std::string frag_;
-  uint32_t program_ = 0;
-  std::unique_ptr<gl::FullscreenTriangle> triangle_;
+  ProgramUniform threshold_{this, "u_threshold"}, knee_{this, "u_knee"}, clamp_{this, "u_clamp"};
 };
 
 // ------------------------------------------------------------ bloom_blur
 
-class BlurPass final : public PassInstance {
- public:
-  explicit BlurPass(std::string frag) : frag_(std::move(frag)) {}
-  void setup(PassContext& ctx) override {
-    if (ctx.extent("dst") != ctx.extent("temp"))
-      throw RuntimeError("bloom_blur pass '" + ctx.passName() + "': 'dst' and 'temp' must have the same size");
-    program_ = ctx.shaders().program("fullscreen.vert", frag_);
-    triangle_ = std::make_unique<gl::FullscreenTriangle>();
+class BlurPass final : public gl::FullscreenPass {
+  void prepare(PassContext& ctx) override {
     dstFbo_ = singleTargetFbo(ctx.texture("dst"), "bloom_blur pass '" + ctx.passName() + "' target 'dst'");
     tempFbo_ = singleTargetFbo(ctx.texture("temp"), "bloom_blur pass '" + ctx.passName() + "' target 'temp'");
   }
 
+  // Draws into its two targets in turn, through framebuffers of its own.
   void execute(PassContext& ctx) override {
     const ParamSet& p = ctx.params();
     const int iterations = static_cast<int>(p.getInt("iterations", 5));
     const float radius = static_cast<float>(p.getNumber("radius", 1.0));
     const Extent size = ctx.extent("dst");
-    glUseProgram(program_);
-    glDisable(GL_BLEND);
-    glDisable(GL_DEPTH_TEST);
+    glUseProgram(program());
     glViewport(0, 0, static_cast<GLsizei>(size.width), static_cast<GLsizei>(size.height));
-    glProgramUniform2f(program_, loc(program_, "u_targetTexel"), 1.0f / static_cast<float>(size.width),
-                       1.0f / static_cast<float>(size.height));
+    targetTexel_.set(1.0f / static_cast<float>(size.width), 1.0f / static_cast<float>(size.height));
     // One blur direction from `source` into `fbo`; taps `radius` source texels apart.
     auto direction = [&](uint32_t source, Extent sourceSize, const gl::Framebuffer& fbo, bool horizontal) {
       glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo.id());
-      glBindTextureUnit(0, source);
-      glProgramUniform2f(program_, loc(program_, "u_step"),
-                         horizontal ? radius / static_cast<float>(sourceSize.width) : 0.0f,
-                         horizontal ? 0.0f : radius / static_cast<float>(sourceSize.height));
-      triangle_->draw();
+      glBindTextureUnit(0, source);  // the ping-pong reads a different target each draw
+      step_.set(horizontal ? radius / static_cast<float>(sourceSize.width) : 0.0f,
+                horizontal ? 0.0f : radius / static_cast<float>(sourceSize.height));
+      drawTriangle();
     };
     // src -> temp -> dst, then dst -> temp -> dst for every further iteration.
     for (int i = 0; i < iterations; ++i) {
@@ -108,69 +82,39 @@ class BlurPass final : public PassInstance {
         direction(ctx.texture("dst"), size, tempFbo_, true);
       direction(ctx.texture("temp"), size, dstFbo_, false);
     }
-    glBindTextureUnit(0, 0);
   }
 
- private:
-  std::string frag_;
-  uint32_t program_ = 0;
-  std::unique_ptr<gl::FullscreenTriangle> triangle_;
   gl::Framebuffer dstFbo_, tempFbo_;
+  ProgramUniform targetTexel_{this, "u_targetTexel"}, step_{this, "u_step"};
 };
 
 // ------------------------------------------------------------ bloom_composite
 
-class CompositePass final : public PassInstance {
- public:
-  explicit CompositePass(std::string frag) : frag_(std::move(frag)) {}
-  void setup(PassContext& ctx) override {
-    const bool loads = ctx.loads("color");
+class CompositePass final : public gl::FullscreenPass {
+  void update(PassContext& ctx) override {
     const bool hasHdr = ctx.bound("hdr");
-    if (loads == hasHdr)
-      throw RuntimeError("bloom_composite pass '" + ctx.passName() +
-                         "': bind either 'hdr' (writes hdr + bloom into 'color') or load 'color' (adds the bloom "
-                         "into it), not " + (loads ? "both" : "neither"));
-    if (hasHdr && ctx.extent("hdr") != ctx.framebufferExtent())
-      throw RuntimeError("bloom_composite pass '" + ctx.passName() + "': 'hdr' and 'color' must have the same size");
-    program_ = ctx.shaders().program("fullscreen.vert", frag_);
-    triangle_ = std::make_unique<gl::FullscreenTriangle>();
-  }
-  void execute(PassContext& ctx) override {
-    const bool hasHdr = ctx.bound("hdr");
-    gl::bindPassFramebuffer(ctx);
-    glDisable(GL_DEPTH_TEST);
-    if (hasHdr) {
-      glDisable(GL_BLEND);
-    } else {
+    if (!hasHdr) {
       glEnable(GL_BLEND);
       glBlendEquation(GL_FUNC_ADD);
       glBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);  // add rgb, keep alpha
     }
-    glUseProgram(program_);
-    glProgramUniform1i(program_, loc(program_, "u_hasHdr"), hasHdr ? 1 : 0);
-    glProgramUniform1f(program_, loc(program_, "u_intensity"),
-                       static_cast<float>(ctx.params().getNumber("intensity", 1.0)));
-    glBindTextureUnit(0, hasHdr ? ctx.texture("hdr") : 0);
-    glBindTextureUnit(1, ctx.texture("bloom"));
-    triangle_->draw();
-    glDisable(GL_BLEND);
+    hasHdr_.set(hasHdr);
+    intensity_.set(static_cast<float>(ctx.params().getNumber("intensity", 1.0)));
   }
-
- private:
-  std::string frag_;
-  uint32_t program_ = 0;
-  std::unique_ptr<gl::FullscreenTriangle> triangle_;
+  ProgramUniform hasHdr_{this, "u_hasHdr"}, intensity_{this, "u_intensity"};
 };
 
 // ------------------------------------------------------------ registration
 
-ShaderProgramSpec fullscreenProgram(const std::string& frag, std::vector<SamplerSlot> samplers, bool attachments) {
-  ShaderProgramSpec s;
-  s.vert = "fullscreen.vert";
-  s.frag = frag;
-  s.samplers = std::move(samplers);
-  s.drawsToAttachments = attachments;
-  return s;
+// Either a separate HDR input or the bloom added into a loaded target.
+void checkComposite(const PassCheckContext& ctx, PassChecks& checks) {
+  const bool loads = ctx.loads("color");
+  if (loads == ctx.bound("hdr"))
+    checks.slotError(loads ? "hdr" : "color",
+                     "bind either 'hdr' (writes hdr + bloom into 'color') or load 'color' (adds the bloom into it), "
+                     "not " + std::string(loads ? "both" : "neither"));
+  else
+    checkSameSize(ctx, checks, "hdr", "color");
 }
 
 void registerBloom(PluginHost& host) {
@@ -190,11 +134,8 @@ void registerBloom(PluginHost& host) {
         ranged("knee", ParamType::number, 0.5, 0.0, 100.0, "soft transition below the threshold (0: hard cut)"),
         ranged("clamp", ParamType::number, 64.0, 0.0, 65504.0, "brightest value kept, against fireflies"),
     };
-    d.shaders = {"fullscreen.vert", frag};
-    d.programs = [frag](const ParamSet&) {
-      return std::vector<ShaderProgramSpec>{fullscreenProgram(frag, {{"hdr", "u_hdr", 0}}, true)};
-    };
-    d.create = [frag] { return std::make_unique<BrightPass>(frag); };
+    d.programs = gl::fullscreenPrograms(frag, {{"hdr", "u_hdr", 0}});
+    d.create = [] { return std::make_unique<BrightPass>(); };
     host.addPassType(std::move(d));
   }
   {
@@ -214,12 +155,10 @@ void registerBloom(PluginHost& host) {
                "horizontal + vertical passes (the blur widens with their square root)"),
         ranged("radius", ParamType::number, 1.0, 0.0, 16.0, "spacing of the 9 taps in source texels"),
     };
-    d.shaders = {"fullscreen.vert", frag};
-    d.programs = [frag](const ParamSet&) {
-      // Draws into dst and temp in turn through framebuffers of its own.
-      return std::vector<ShaderProgramSpec>{fullscreenProgram(frag, {{"src", "u_image", 0}}, false)};
-    };
-    d.create = [frag] { return std::make_unique<BlurPass>(frag); };
+    ShaderProgramSpec blur = gl::fullscreenProgram(frag, {{"src", "u_image", 0}});
+    blur.drawsToAttachments = false;  // draws into dst and temp in turn through framebuffers of its own
+    d.programs = [blur](const ParamSet&) { return std::vector<ShaderProgramSpec>{blur}; };
+    d.create = [] { return std::make_unique<BlurPass>(); };
     host.addPassType(std::move(d));
   }
   {
@@ -235,12 +174,9 @@ void registerBloom(PluginHost& host) {
              kHdrFormats),
     };
     d.params = {ranged("intensity", ParamType::number, 1.0, 0.0, 100.0, "bloom strength")};
-    d.shaders = {"fullscreen.vert", frag};
-    d.programs = [frag](const ParamSet&) {
-      return std::vector<ShaderProgramSpec>{
-          fullscreenProgram(frag, {{"hdr", "u_hdr", 0, true}, {"bloom", "u_bloom", 1}}, true)};
-    };
-    d.create = [frag] { return std::make_unique<CompositePass>(frag); };
+    d.programs = gl::fullscreenPrograms(frag, {{"hdr", "u_hdr", 0, /*optional=*/true}, {"bloom", "u_bloom", 1}});
+    d.check = checkComposite;
+    d.create = [] { return std::make_unique<CompositePass>(); };
     host.addPassType(std::move(d));
   }
 }

@@ -20,7 +20,6 @@
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/lighting_options.h"
 #include "rgraph/gl/objects.h"
-#include "rgraph/gl/shader_library.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/plugin.h"
 
@@ -29,8 +28,6 @@ using namespace rgraph;
 
 constexpr int kMaxKernel = 64;  // ssao.frag's u_kernel size
 const std::vector<Format> kAoFormats = {Format::r8, Format::r16f, Format::r32f};
-
-GLint loc(uint32_t program, const char* name) { return glGetUniformLocation(program, name); }
 
 // Hemisphere samples (z >= 0), scaled so that more fall near the centre.
 // A fixed seed: the same image every run.
@@ -72,84 +69,42 @@ std::vector<std::string> ssaoDefines(const ParamSet& p) { return {lighting::layo
 
 // ------------------------------------------------------------ ssao
 
-class SsaoPass final : public PassInstance {
- public:
-  explicit SsaoPass(std::string frag) : frag_(std::move(frag)) {}
-
-  void setup(PassContext& ctx) override {
-    const std::string kind = "ssao pass '" + ctx.passName() + "'";
-    if (!ctx.gpuScene()) throw RuntimeError(kind + " needs a scene (for the camera)");
-    const std::string layout = ctx.params().getString("layout", "pbr");
-    const char* needed = layout == "compact" ? "depth" : "position";
-    if (!ctx.bound(needed))
-      throw RuntimeError(kind + ": input '" + needed + "' is required by layout '" + layout + "' but not bound");
-    program_ = ctx.shaders().program("fullscreen.vert", frag_, ssaoDefines(ctx.params()));
-    triangle_ = std::make_unique<gl::FullscreenTriangle>();
+class SsaoPass final : public gl::FullscreenPass {
+  void prepare(PassContext& ctx) override {
     noise_ = noiseTexture();
     const int n = static_cast<int>(std::clamp<int64_t>(ctx.params().getInt("kernel_size", 32), 1, kMaxKernel));
     kernel_ = hemisphereKernel(n);
     gbufferSize_ = ctx.extent("normal");
   }
 
-  void execute(PassContext& ctx) override {
+  void update(PassContext& ctx) override {
     const ParamSet& p = ctx.params();
-    gl::bindPassFramebuffer(ctx);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glUseProgram(program_);
     const int n = static_cast<int>(kernel_.size() / 3);
-    glProgramUniform3fv(program_, loc(program_, "u_kernel"), n, kernel_.data());
-    glProgramUniform1i(program_, loc(program_, "u_kernelSize"), n);
-    glProgramUniform1f(program_, loc(program_, "u_radius"), static_cast<float>(p.getNumber("radius", 0.5)));
-    glProgramUniform1f(program_, loc(program_, "u_bias"), static_cast<float>(p.getNumber("bias", 0.025)));
-    glProgramUniform1f(program_, loc(program_, "u_power"), static_cast<float>(p.getNumber("power", 1.0)));
-    glProgramUniform2f(program_, loc(program_, "u_gbufferSize"), static_cast<float>(gbufferSize_.width),
-                       static_cast<float>(gbufferSize_.height));
+    kernelU_.setVec3Array(kernel_.data(), n);
+    kernelSize_.set(n);
+    radius_.set(static_cast<float>(p.getNumber("radius", 0.5)));
+    bias_.set(static_cast<float>(p.getNumber("bias", 0.025)));
+    power_.set(static_cast<float>(p.getNumber("power", 1.0)));
+    gbufferSizeU_.set(static_cast<float>(gbufferSize_.width), static_cast<float>(gbufferSize_.height));
     const Extent target = ctx.framebufferExtent();
-    glProgramUniform2f(program_, loc(program_, "u_targetTexel"), 1.0f / static_cast<float>(target.width),
-                       1.0f / static_cast<float>(target.height));
+    targetTexel_.set(1.0f / static_cast<float>(target.width), 1.0f / static_cast<float>(target.height));
     ctx.gpuScene()->bindFrame();
-    glBindTextureUnit(0, ctx.bound("position") ? ctx.texture("position") : 0);
-    glBindTextureUnit(1, ctx.texture("normal"));
-    glBindTextureUnit(4, ctx.bound("depth") ? ctx.texture("depth") : 0);
-    glBindTextureUnit(5, noise_.id());
-    triangle_->draw();
+    glBindTextureUnit(5, noise_.id());  // the pass's own constant texture (u_noise), not a slot
   }
 
- private:
-  std::string frag_;
-  uint32_t program_ = 0;
-  std::unique_ptr<gl::FullscreenTriangle> triangle_;
   gl::Texture noise_;
   std::vector<float> kernel_;
   Extent gbufferSize_;
+  ProgramUniform kernelU_{this, "u_kernel"}, kernelSize_{this, "u_kernelSize"}, radius_{this, "u_radius"};
+  ProgramUniform bias_{this, "u_bias"}, power_{this, "u_power"}, gbufferSizeU_{this, "u_gbufferSize"};
+  ProgramUniform targetTexel_{this, "u_targetTexel"};
 };
 
 // ------------------------------------------------------------ ssao_blur
 
-class SsaoBlurPass final : public PassInstance {
- public:
-  explicit SsaoBlurPass(std::string frag) : frag_(std::move(frag)) {}
-  void setup(PassContext& ctx) override {
-    if (ctx.extent("src") != ctx.framebufferExtent())
-      throw RuntimeError("ssao_blur pass '" + ctx.passName() + "': 'src' and 'ao' must have the same size");
-    program_ = ctx.shaders().program("fullscreen.vert", frag_);
-    triangle_ = std::make_unique<gl::FullscreenTriangle>();
-  }
-  void execute(PassContext& ctx) override {
-    gl::bindPassFramebuffer(ctx);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glUseProgram(program_);
-    glProgramUniform1i(program_, loc(program_, "u_size"), static_cast<int>(ctx.params().getInt("size", 2)));
-    glBindTextureUnit(0, ctx.texture("src"));
-    triangle_->draw();
-  }
-
- private:
-  std::string frag_;
-  uint32_t program_ = 0;
-  std::unique_ptr<gl::FullscreenTriangle> triangle_;
+class SsaoBlurPass final : public gl::FullscreenPass {
+  void update(PassContext& ctx) override { size_.set(static_cast<int>(ctx.params().getInt("size", 2))); }
+  ProgramUniform size_{this, "u_size"};
 };
 
 // ------------------------------------------------------------ registration
@@ -178,17 +133,20 @@ void registerSsao(PluginHost& host) {
                "samples per pixel"),
         ranged("power", ParamType::number, 1.0, 0.0, 16.0, "visibility = (1 - occlusion)^power: contrast"),
     };
-    d.shaders = {"fullscreen.vert", frag};
     d.programs = [frag](const ParamSet& p) {
-      ShaderProgramSpec s;
-      s.vert = "fullscreen.vert";
-      s.frag = frag;
-      s.defines = ssaoDefines(p);
-      s.samplers = {{"position", "g_position", 0}, {"normal", "g_normal", 1}, {"depth", "g_depth", 4}};
-      s.ownSamplers = {"u_noise"};
+      ShaderProgramSpec s = gl::fullscreenProgram(
+          frag, {{"position", "g_position", 0}, {"normal", "g_normal", 1}, {"depth", "g_depth", 4}}, ssaoDefines(p));
+      s.ownSamplers = {"u_noise"};  // the 4x4 rotation texture the pass binds on unit 5
       return std::vector<ShaderProgramSpec>{s};
     };
-    d.create = [frag] { return std::make_unique<SsaoPass>(frag); };
+    d.check = [](const PassCheckContext& ctx, PassChecks& checks) {
+      const std::string layout = ctx.params().getString("layout", "pbr");
+      const std::string needed = layout == "compact" ? "depth" : "position";
+      if (!ctx.bound(needed))
+        checks.slotError(needed, "input '" + needed + "' is required by layout '" + layout + "' but not bound");
+    };
+    d.needsScene = true;  // for the camera
+    d.create = [] { return std::make_unique<SsaoPass>(); };
     host.addPassType(std::move(d));
   }
   {
@@ -203,15 +161,9 @@ void registerSsao(PluginHost& host) {
     };
     d.params = {ranged("size", ParamType::integer, int64_t{2}, 0.0, 8.0,
                        "half width: averages 2*size x 2*size texels (2 matches the 4x4 noise tile; 0 copies)")};
-    d.shaders = {"fullscreen.vert", frag};
-    d.programs = [frag](const ParamSet&) {
-      ShaderProgramSpec s;
-      s.vert = "fullscreen.vert";
-      s.frag = frag;
-      s.samplers = {{"src", "u_src", 0}};
-      return std::vector<ShaderProgramSpec>{s};
-    };
-    d.create = [frag] { return std::make_unique<SsaoBlurPass>(frag); };
+    d.programs = gl::fullscreenPrograms(frag, {{"src", "u_src", 0}});
+    d.check = [](const PassCheckContext& ctx, PassChecks& checks) { checkSameSize(ctx, checks, "src", "ao"); };
+    d.create = [] { return std::make_unique<SsaoBlurPass>(); };
     host.addPassType(std::move(d));
   }
 }

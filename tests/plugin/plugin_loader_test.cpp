@@ -115,9 +115,10 @@ TEST_F(PluginLoaderTest, PluginShadersResolveToTheirFolder) {
   for (const char* t : {"bloom_bright", "bloom_blur", "bloom_composite", "ssao", "ssao_blur"}) {
     const PassTypeDesc* desc = registry.find(t);
     ASSERT_NE(desc, nullptr);
-    ASSERT_EQ(desc->shaders.size(), 2u) << t;
-    EXPECT_EQ(desc->shaders[0], "fullscreen.vert");
-    const fs::path frag = desc->shaders[1];
+    const std::vector<std::string> files = desc->shaderFiles();
+    ASSERT_EQ(files.size(), 2u) << t;
+    EXPECT_EQ(files[0], "fullscreen.vert");
+    const fs::path frag = files[1];
     EXPECT_TRUE(frag.is_absolute()) << frag;
     EXPECT_TRUE(fs::is_regular_file(frag)) << frag;
     EXPECT_NE(frag.string().find("/share/rgraph/plugins/"), std::string::npos) << frag;
@@ -162,17 +163,25 @@ TEST_F(PluginLoaderTest, MissingPathIsRelativeToTheBaseFolder) {
 }
 
 TEST_F(PluginLoaderTest, WrongAbiIsRefusedBeforeRegistering) {
-  // The fixture's register function aborts: reaching it fails this test.
-  PassRegistry registry;
-  PluginLoader loader(registry);
-  std::string error;
-  EXPECT_EQ(loader.loadFile(fixture("wrong_abi"), error), nullptr);
-  expectOneLine(error);
-  EXPECT_NE(error.find(canonical(fixture("wrong_abi"))), std::string::npos) << error;
-  EXPECT_NE(error.find("ABI version mismatch: expected " + std::to_string(RGRAPH_PLUGIN_ABI_VERSION) + ", found 999"),
-            std::string::npos)
-      << error;
-  EXPECT_TRUE(registry.all().empty());
+  // The fixtures' register functions abort: reaching one fails this test.
+  // wrong_abi: a version from the future; abi_v1: built against ABI 1, before
+  // PassTypeDesc::programs became the program list the executor builds (2).
+  static_assert(RGRAPH_PLUGIN_ABI_VERSION == 2u, "abi_v1 stands for the version before this one");
+  const std::pair<const char*, const char*> cases[] = {{"wrong_abi", "999"}, {"abi_v1", "1"}};
+  for (const auto& [name, found] : cases) {
+    SCOPED_TRACE(name);
+    PassRegistry registry;
+    PluginLoader loader(registry);
+    std::string error;
+    EXPECT_EQ(loader.loadFile(fixture(name), error), nullptr);
+    expectOneLine(error);
+    EXPECT_NE(error.find(canonical(fixture(name))), std::string::npos) << error;
+    EXPECT_NE(error.find("ABI version mismatch: expected " + std::to_string(RGRAPH_PLUGIN_ABI_VERSION) + ", found " +
+                         found),
+              std::string::npos)
+        << error;
+    EXPECT_TRUE(registry.all().empty());
+  }
 }
 
 TEST_F(PluginLoaderTest, LibraryWithoutEntryPointIsRefused) {

@@ -581,17 +581,40 @@ TEST(ShaderCheck, ProgramsAreCompiledOncePerFilesAndDefines) {
   EXPECT_EQ(checker.stats().programsCompiled, 2u);
 }
 
-TEST(ShaderCheck, PassTypesWithoutProgramsCompileTheirShaderFiles) {
-  PassTypeDesc t;
-  t.name = "legacy";
-  t.shaders = {"fullscreen.vert", "syntax_error.frag"};
+TEST(ShaderCheck, EverySamplerOfASpecNamesItsTextureUnit) {
+  // The executor binds each sampled slot to the unit its spec names and sets
+  // the sampler uniform to it: a spec without a unit cannot run.
+  PassTypeDesc t = type("fullscreen");
+  t.name = "no_unit";
+  t.programs = [](const ParamSet&) {
+    return std::vector{programSpec("fullscreen.vert", "invert.frag", {}, {{"input0", "input0", -1}})};
+  };
   ShaderChecker checker(testDirs());
-  Diagnostics d = checker.checkPass("old", t, ParamSet{}, {});
-  ASSERT_EQ(count(d, Severity::error), 1u) << all(d);
-  EXPECT_EQ(d[0].where.line, 7);
-  EXPECT_EQ(d[0].pass, "old");
-  t.shaders = {"fullscreen.vert", "invert.frag"};
-  EXPECT_TRUE(checker.checkPass("ok", t, ParamSet{}, {}).empty());
+  const std::vector<BoundSlot> bound = {slot("input0", Access::sampled, "tex", Format::rgba8),
+                                        slot("color", Access::color_attachment, "out", Format::rgba8)};
+  Diagnostics d = checker.checkPass("p", t, defaultParams(t.params), bound);
+  const Diagnostic* e = findContaining(d, Severity::error, "names no texture unit");
+  ASSERT_NE(e, nullptr) << all(d);
+  EXPECT_EQ(e->slot, "input0");
+  // With a unit, a shader without layout(binding) reads it (the executor sets
+  // the sampler uniform): no finding.
+  t.programs = [](const ParamSet&) {
+    return std::vector{programSpec("fullscreen.vert", "invert.frag", {}, {{"input0", "input0", 2}})};
+  };
+  const Diagnostics withUnit = checker.checkPass("p", t, defaultParams(t.params), bound);
+  EXPECT_TRUE(withUnit.empty()) << all(withUnit);
+}
+
+TEST(ShaderCheck, PassTypesWithoutProgramsUseNoShaders) {
+  PassTypeDesc t;
+  t.name = "no_programs";
+  ShaderChecker checker(testDirs());
+  EXPECT_TRUE(checker.checkPass("p", t, ParamSet{}, {}).empty());
+  EXPECT_TRUE(checker.checkedPrograms().empty());
+  EXPECT_TRUE(t.shaderFiles().empty());
+  // A type's shader files are derived from its programs, each once.
+  EXPECT_EQ(type("forward").shaderFiles(),
+            (std::vector<std::string>{"light_marker.vert", "light_marker.frag", "scene.vert", "forward_lit.frag"}));
 }
 
 TEST(ShaderCheck, PluginShadersByAbsolutePath) {

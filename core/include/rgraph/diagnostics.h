@@ -45,6 +45,8 @@ enum class DiagCode {
   // shaders / runtime
   shader_error,
   plugin_error,
+  pass_check,             // a pass type's check hook refused its bindings or params (rgraph/pass_check.h)
+  needs_scene,            // a pass that draws the scene in a pipeline run without one
 };
 
 std::string_view diagCodeName(DiagCode c);

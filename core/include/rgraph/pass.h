@@ -12,6 +12,7 @@
 #include "rgraph/format.h"
 #include "rgraph/graph.h"
 #include "rgraph/params.h"
+#include "rgraph/pass_check.h"
 
 namespace rgraph {
 
@@ -60,9 +61,10 @@ struct PassAdaptation {
 struct SamplerSlot {
   std::string slot;     // the pass type's sampled slot
   std::string uniform;  // the sampler uniform in the shader
-  // Texture unit the pass binds the slot to and relies on the shader's
-  // layout(binding = unit) for; -1 when the pass sets the sampler uniform
-  // itself (glProgramUniform1i), so any binding is fine.
+  // Texture unit (mandatory, >= 0). The executor sets the sampler uniform to
+  // it once when it builds the program, and binds the slot's texture there
+  // (texture 0 when the slot is unbound) before every execute(). A shader's
+  // layout(binding) must name the same unit, or be left out.
   int unit = -1;
   // true: the pass tells the shader whether the slot is bound (e.g. a
   // u_hasAo flag), so a sampler read with the slot unbound is fine. false:
@@ -71,7 +73,8 @@ struct SamplerSlot {
 };
 
 // One program a pass instance builds: what `rgraph validate` compiles and
-// reflects without a GL context (see rgraph/shader_check.h).
+// reflects without a GL context (see rgraph/shader_check.h), and what the
+// executor builds for it (PassContext::program).
 struct ShaderProgramSpec {
   std::string vert, frag;  // a vertex + fragment program (names as ShaderLibrary::program takes them)
   std::string comp;        // or a compute program
@@ -89,6 +92,10 @@ struct ShaderProgramSpec {
   bool blendsSourceAlpha = false;
 };
 
+// A vertex + fragment program: the common ShaderProgramSpec.
+ShaderProgramSpec programSpec(std::string vert, std::string frag, std::vector<std::string> defines = {},
+                              std::vector<SamplerSlot> samplers = {});
+
 // One pass in a running pipeline. Created per pass per realized plan.
 class PassInstance {
  public:
@@ -96,8 +103,9 @@ class PassInstance {
   // After the plan's textures and framebuffers exist (again after a resize).
   // Throw rgraph::RuntimeError with a clear message on failure.
   virtual void setup(PassContext& /*ctx*/) {}
-  // Record the pass's GL work. The executor has already bound nothing: use
-  // ctx.framebuffer() and ctx.texture(slot).
+  // Record the pass's GL work. The executor has bound the sampled slots its
+  // programs' specs name to their units (and nothing else): use
+  // ctx.program(i), ctx.framebuffer() and ctx.texture(slot).
   virtual void execute(PassContext& ctx) = 0;
 };
 
@@ -107,21 +115,33 @@ struct PassTypeDesc {
   std::vector<SlotDecl> slots;
   std::vector<ParamDecl> params;
   bool sideEffect = false;
-  // Shader files this pass type uses (relative to the shader directory), so
-  // `rgraph validate` can check them without a GL context.
-  std::vector<std::string> shaders;
-  // The programs an instance with these params builds (every variant it may
-  // build, e.g. with and without a scene-dependent define), so validate checks
-  // exactly what would run. May throw RuntimeError when the params name no
-  // usable shader. Unset: each file in `shaders` is compiled on its own.
+  // The one place a pass type names its programs: every variant an instance
+  // with these params may use (e.g. with and without a scene-dependent
+  // define), their defines and which sampled slot each sampler reads on which
+  // unit. `rgraph validate` compiles and reflects exactly these; the executor
+  // builds exactly these before PassInstance::setup (PassContext::program)
+  // and binds the sampled slots to their units before every execute(). May
+  // throw RuntimeError when the params name no usable shader. Unset: the
+  // pass uses no programs.
   std::function<std::vector<ShaderProgramSpec>(const ParamSet&)> programs;
   std::function<std::unique_ptr<PassInstance>()> create;
   // Optional: drops what the scene does not need (see SceneFeatures).
   std::function<void(const SceneFeatures&, PassAdaptation&)> adapt;
+  // Optional, GL-free: what the pass requires of its bindings beyond slot
+  // formats (equal sizes, formats a blit can copy, slots a layout needs),
+  // checked on the compiled plan by validate and before any GL work by render
+  // and the executor, so setup() need not (see rgraph/pass_check.h).
+  std::function<void(const PassCheckContext&, PassChecks&)> check;
+  // The pass draws or shades the scene: refused before any GL work when the
+  // pipeline runs without one.
+  bool needsScene = false;
   std::string origin = "built-in";  // or the plugin file it came from
 
   const SlotDecl* findSlot(std::string_view slot) const;
   const ParamDecl* findParam(std::string_view param) const;
+  // The shader files of programs(default params), each once (for listings);
+  // empty without programs or when the defaults name no usable shader.
+  std::vector<std::string> shaderFiles() const;
 };
 
 // Per-frame data the executor gives to passes.
@@ -147,6 +167,12 @@ class PassContext {
   // 0 when the pass has no attachments. Its size is framebufferExtent().
   virtual uint32_t framebuffer() const = 0;
   virtual Extent framebufferExtent() const = 0;
+
+  // Program `index` of the pass type's programs(params), in their order,
+  // built by the executor before setup(). Throws RuntimeError naming the pass
+  // when there is no such program.
+  virtual uint32_t program(size_t index) const = 0;
+  virtual size_t programCount() const = 0;
 
   virtual ShaderLibrary& shaders() = 0;
   virtual const Scene* scene() const = 0;  // nullptr when the pipeline runs without a scene

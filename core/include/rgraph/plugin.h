@@ -16,14 +16,15 @@
 //
 //   #include "rgraph/plugin.h"
 //   namespace {
-//   class MyPass final : public rgraph::PassInstance { ... };
+//   class MyPass final : public rgraph::gl::FullscreenPass { ... };   // rgraph/gl/fullscreen.h
 //   void registerTypes(rgraph::PluginHost& host) {
 //     rgraph::PassTypeDesc d;
 //     d.name = "my_pass";
 //     ...
-//     std::string frag = host.shaderPath("my_pass.frag");  // absolute path in the plugin's shader folder
-//     d.shaders = {"fullscreen.vert", frag};
-//     d.create = [frag] { return std::make_unique<MyPass>(frag); };
+//     // fullscreen.vert + the plugin's shader (absolute path in its shader
+//     // folder), its sampler u_src reading slot "src" on unit 0
+//     d.programs = rgraph::gl::fullscreenPrograms(host.shaderPath("my_pass.frag"), {{"src", "u_src", 0}});
+//     d.create = [] { return std::make_unique<MyPass>(); };
 //     host.addPassType(std::move(d));
 //   }
 //   }  // namespace
@@ -46,7 +47,10 @@
 // compiles against changes in a way that breaks already-built plugins
 // (PassTypeDesc, SlotDecl, ParamDecl, ParamSet, PassInstance, PassContext,
 // PluginHost, ShaderLibrary, the gl/ helpers) or the entry points change.
-#define RGRAPH_PLUGIN_ABI_VERSION 1u
+// 2: PassTypeDesc::programs is the one program list (the executor builds it,
+// PassContext::program, `shaders` removed, sampler units mandatory),
+// PassTypeDesc::check and needsScene, gl::FullscreenPass and gl::Uniform.
+#define RGRAPH_PLUGIN_ABI_VERSION 2u
 
 #define RGRAPH_PLUGIN_ABI_SYMBOL "rgraph_plugin_abi_version"
 #define RGRAPH_PLUGIN_REGISTER_SYMBOL "rgraph_plugin_register"

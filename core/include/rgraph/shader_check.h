@@ -31,8 +31,10 @@
 //      - a sampler the shader reads (active for the pass's defines) whose
 //        slot the config leaves unbound: it would sample texture 0 (unless
 //        the mapping is SamplerSlot::optional: the pass tells the shader);
+//      - a sampler mapping without a texture unit (SamplerSlot::unit < 0);
 //      - a sampler whose layout(binding) differs from the texture unit the
-//        pass binds its slot to; an integer sampler (isampler/usampler) on a
+//        spec binds its slot to (without layout(binding), the executor sets
+//        the sampler uniform to that unit); an integer sampler (isampler/usampler) on a
 //        float/normalized texture; a multisample sampler on a single-sample
 //        texture or the reverse; a shadow sampler on a colour texture.
 //    Warnings:
@@ -49,9 +51,7 @@
 //      - several fragment outputs without layout(location) (their locations
 //        are the linker's choice and cannot be checked);
 //      - glslang's own warnings.
-//    Pass types without `programs` are checked by compiling each file of
-//    PassTypeDesc::shaders on its own (stage from the extension, no
-//    defines): compile errors only, no reflection.
+//    Pass types without `programs` use no shaders: nothing to check.
 #pragma once
 
 #include <map>
@@ -186,6 +186,11 @@ struct BoundSlot {
   SourceLocation where;           // the binding in the config
 };
 
+struct CheckedProgram {
+  std::string pass;
+  ShaderProgramSpec spec;
+};
+
 struct ShaderCheckStats {
   size_t programsCompiled = 0;  // distinct (files, defines) compiled with glslang
   size_t cacheHits = 0;
@@ -221,10 +226,14 @@ class ShaderChecker {
   const ProgramCheck& program(const ShaderProgramSpec& spec);
 
   const ShaderCheckStats& stats() const { return stats_; }
+  // Every program checkPass checked, per pass, in order (a program two passes
+  // share is listed for each): what the executor builds for the same passes
+  // (Executor::builtPrograms).
+  const std::vector<CheckedProgram>& checkedPrograms() const { return checked_; }
 
  private:
-  const ProgramCheck& compileOnly(const std::string& file);
   std::vector<std::string> dirs_;
+  std::vector<CheckedProgram> checked_;
   std::map<std::string, std::unique_ptr<ProgramCheck>> cache_;
   ShaderCheckStats stats_;
 };

@@ -9,6 +9,8 @@
 #include <cstring>
 #include <map>
 
+#include "memory_barriers.h"
+#include "pass_programs.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/format.h"
 #include "rgraph/gl/gpu_scene.h"
@@ -97,6 +99,9 @@ class PassRun final : public PassContext {
   GpuScene* gpuScenePtr = nullptr;
   Extent output;
   bool readOnlyDepth = false;
+  uint32_t memoryBarrier = 0;  // glMemoryBarrier bits before execute (memory_barriers.h)
+  const PassTypeDesc* type = nullptr;
+  PassPrograms programs;  // built from type->programs(paramSet) before setup
 
   const SlotBinding* find(std::string_view slot) const {
     for (const auto& s : slots)
@@ -137,6 +142,8 @@ class PassRun final : public PassContext {
   ShaderLibrary& shaders() override { return *shaderLib; }
   const Scene* scene() const override { return scenePtr; }
   GpuScene* gpuScene() override { return gpuScenePtr; }
+  uint32_t program(size_t index) const override { return programs.program(index, name); }
+  size_t programCount() const override { return programs.count(); }
 };
 }  // namespace
 
@@ -157,6 +164,8 @@ struct Executor::Impl {
   std::map<std::string, int, std::less<>> byName;  // resource and version names -> resource index
   std::vector<std::unique_ptr<PassRun>> runs;      // execution order
   std::vector<PassTiming> timings;
+  std::vector<BuiltProgram> builtPrograms;  // what passes asked the ShaderLibrary for, in order
+  uint32_t frameEndBarrier = 0;  // glMemoryBarrier bits after the last pass
 
   Impl(const PipelineConfig& p, const PassRegistry& r, ShaderLibrary& s, const Scene* sc)
       : pipeline(p), registry(r), shaders(s), scene(sc) {}
@@ -168,6 +177,8 @@ struct Executor::Impl {
     physicalBuffers.clear();
     byName.clear();
     timings.clear();
+    builtPrograms.clear();
+    frameEndBarrier = 0;
     built = false;
   }
 
@@ -176,6 +187,7 @@ struct Executor::Impl {
   std::unique_ptr<PassRun> createRun(uint32_t passIndex, Extent output);
   void applyClears(PassRun& run);
   void resetState(const PassRun& run);
+  void assignMemoryBarriers();
 
   int resourceIndex(std::string_view name) const {
     auto it = byName.find(name);
@@ -255,6 +267,7 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(uint32_t passIndex, Extent ou
 
   auto run = std::make_unique<PassRun>();
   run->name = pd.name;
+  run->type = type;
   run->typeName = pd.type;
   run->decl = declIndex;
   run->shaderLib = &shaders;
@@ -385,6 +398,19 @@ void Executor::Impl::build(Extent output) {
   }
   for (const auto& d : plan.diagnostics)
     if (d.severity == Severity::warning) spdlog::warn("{}", formatDiagnostic(d));
+  // What the pass types require of the passes that run (rgraph/pass_check.h),
+  // before any texture or program exists.
+  PassCheckOptions checkOptions;
+  checkOptions.scenePresent = scene != nullptr;
+  checkOptions.culledPasses = false;
+  const Diagnostics refused = runPassChecks(pipeline, plan, registry, checkOptions);
+  if (hasErrors(refused)) {
+    std::string msg = "the render graph";
+    if (!pipeline.file.empty()) msg += " of " + pipeline.file;
+    msg += " cannot run:";
+    for (const auto& d : refused) msg += "\n  " + formatDiagnostic(d);
+    throw RuntimeError(msg);
+  }
 
   if (scene && !gpuScene) gpuScene = std::make_unique<GpuScene>(*scene);
   createResources(output);
@@ -393,8 +419,13 @@ void Executor::Impl::build(Extent output) {
     throw RuntimeError("the render graph has no output texture");
 
   for (uint32_t idx : plan.order) runs.push_back(createRun(idx, output));
+  assignMemoryBarriers();
   for (auto& run : runs) {
     try {
+      // The programs the type's spec names, before setup, so that a pass
+      // takes them by index instead of building them itself.
+      RequestRecorder record(shaders, builtPrograms, run->name);
+      run->programs.build(run->name, *run->type, run->paramSet, shaders);
       run->instance->setup(*run);
     } catch (const RuntimeError& e) {
       // Where the pass is in the config, when it came from one.
@@ -428,6 +459,15 @@ void Executor::Impl::resetState(const PassRun& run) {
   glUseProgram(0);
   glBindVertexArray(0);
   if (run.fbo) glViewport(0, 0, static_cast<GLsizei>(run.fbExtent.width), static_cast<GLsizei>(run.fbExtent.height));
+}
+
+// Derived once per plan, not searched per frame: which passes read what an
+// earlier pass wrote through image or storage access.
+void Executor::Impl::assignMemoryBarriers() {
+  const MemoryBarrierPlan barriers = deriveMemoryBarriers(plan);
+  for (size_t i = 0; i < runs.size() && i < barriers.beforePass.size(); ++i)
+    runs[i]->memoryBarrier = barriers.beforePass[i];
+  frameEndBarrier = barriers.afterFrame;
 }
 
 void Executor::Impl::applyClears(PassRun& run) {
@@ -511,11 +551,15 @@ void Executor::renderFrame() {
     im.timings[i].name = run.name;
     Clock::time_point t0 = Clock::now();
     if (run.query) glBeginQuery(GL_TIME_ELAPSED, run.query.id());
+    if (run.memoryBarrier) glMemoryBarrier(run.memoryBarrier);
     im.resetState(run);
     im.applyClears(run);
+    run.programs.bindSlots(run);
     if (run.readOnlyDepth) glDepthMask(GL_FALSE);
     try {
+      RequestRecorder record(im.shaders, im.builtPrograms, run.name);
       run.instance->execute(run);
+      run.programs.unbindSlots();
     } catch (const RuntimeError& e) {
       if (run.query) glEndQuery(GL_TIME_ELAPSED);
       throw RuntimeError(std::string(e.what()) + "\n  (in pass '" + run.name + "' of type '" + run.typeName + "')");
@@ -526,6 +570,7 @@ void Executor::renderFrame() {
       im.timings[i].ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     }
   }
+  if (im.frameEndBarrier) glMemoryBarrier(im.frameEndBarrier);
   // Leave a neutral state for whoever draws next (e.g. a blit to the window:
   // sRGB encoding left on would encode the output a second time).
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -544,6 +589,13 @@ void Executor::renderFrame() {
 }
 
 const Plan& Executor::plan() const { return impl_->plan; }
+const std::vector<Executor::BuiltProgram>& Executor::builtPrograms() const { return impl_->builtPrograms; }
+std::vector<uint32_t> Executor::memoryBarriers() const {
+  std::vector<uint32_t> bits;
+  for (const auto& run : impl_->runs) bits.push_back(run->memoryBarrier);
+  return bits;
+}
+uint32_t Executor::frameEndMemoryBarrier() const { return impl_->frameEndBarrier; }
 GpuScene* Executor::gpuScene() const { return impl_->gpuScene.get(); }
 const std::vector<Executor::PassTiming>& Executor::timings() const { return impl_->timings; }
 bool Executor::cpuTimed() const { return impl_->software; }

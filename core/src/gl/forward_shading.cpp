@@ -9,21 +9,26 @@
 
 namespace rgraph::forward {
 
-uint32_t program(PassContext& ctx) {
-  std::vector<std::string> defines = lighting::defines(ctx.params());
-  if (ctx.scene() && ctx.scene()->hasNormalMaps()) defines.push_back("HAS_NORMAL_MAPS");
-  return ctx.shaders().program("scene.vert", "forward_lit.frag", defines);
+std::vector<ShaderProgramSpec> programs(const ParamSet& params, bool blendsSourceAlpha) {
+  ShaderProgramSpec s = programSpec("scene.vert", "forward_lit.frag", lighting::defines(params));
+  s.ownSamplers = lighting::materialSamplers();
+  s.blendsSourceAlpha = blendsSourceAlpha;
+  return lighting::normalMapVariants(s);
 }
 
-void drawSurfaces(PassContext& ctx, uint32_t prog, bool blended) {
+SurfaceDrawer::SurfaceDrawer(uint32_t program)
+    : program_(program), pointLightCount_(program, "u_pointLightCount"), blendPass_(program, "u_blendPass") {}
+
+void SurfaceDrawer::draw(PassContext& ctx, bool blended) const {
   GpuScene& scene = *ctx.gpuScene();
   const GpuScene::Filter filter = blended ? GpuScene::Filter::blend : GpuScene::Filter::opaque;
   if (scene.primitiveCount(filter) == 0) return;
   scene.bindFrame();
   scene.bindPointLights(lighting::threshold(ctx.params()));
+  const uint32_t prog = program_;
   glUseProgram(prog);
-  glProgramUniform1i(prog, glGetUniformLocation(prog, "u_pointLightCount"), static_cast<int>(scene.pointLightCount()));
-  glProgramUniform1i(prog, glGetUniformLocation(prog, "u_blendPass"), blended ? 1 : 0);
+  pointLightCount_.set(static_cast<int>(scene.pointLightCount()));
+  blendPass_.set(blended);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   if (blended) {

@@ -18,11 +18,30 @@ void bindPassFramebuffer(PassContext& ctx) {
   glViewport(0, 0, static_cast<GLsizei>(e.width), static_cast<GLsizei>(e.height));
 }
 
-void bindSampler(uint32_t program, const char* name, uint32_t unit, uint32_t texture) {
-  GLint loc = glGetUniformLocation(program, name);
-  if (loc < 0) return;
-  glProgramUniform1i(program, loc, static_cast<GLint>(unit));
-  glBindTextureUnit(unit, texture);
+ShaderProgramSpec fullscreenProgram(std::string frag, std::vector<SamplerSlot> samplers,
+                                    std::vector<std::string> defines) {
+  return programSpec("fullscreen.vert", std::move(frag), std::move(defines), std::move(samplers));
+}
+
+std::function<std::vector<ShaderProgramSpec>(const ParamSet&)> fullscreenPrograms(std::string frag,
+                                                                                  std::vector<SamplerSlot> samplers) {
+  return [spec = fullscreenProgram(std::move(frag), std::move(samplers))](const ParamSet&) {
+    return std::vector<ShaderProgramSpec>{spec};
+  };
+}
+
+void FullscreenPass::setup(PassContext& ctx) {
+  program_ = ctx.program(programIndex_);
+  for (ProgramUniform* u : uniforms_) static_cast<Uniform&>(*u) = Uniform(program_, u->name_);
+  if (!triangle_) triangle_ = std::make_unique<FullscreenTriangle>();
+  prepare(ctx);
+}
+
+void FullscreenPass::execute(PassContext& ctx) {
+  bindPassFramebuffer(ctx);
+  glUseProgram(program_);
+  update(ctx);
+  triangle_->draw();
 }
 
 }  // namespace rgraph::gl

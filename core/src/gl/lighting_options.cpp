@@ -4,8 +4,14 @@
 
 #include "rgraph/error.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/scene.h"
 
 namespace rgraph::lighting {
+
+const std::vector<Format>& hdrFormats() {
+  static const std::vector<Format> formats = {Format::rgba16f, Format::rgba32f, Format::r11g11b10f};
+  return formats;
+}
 
 std::vector<ParamDecl> params(double defaultThreshold, bool allowNoCutoff) {
   using namespace rgraph::decl;
@@ -60,6 +66,20 @@ std::vector<std::string> gbufferDefines(const ParamSet& p) {
   return d;
 }
 
+std::vector<ShaderProgramSpec> normalMapVariants(const ShaderProgramSpec& spec) {
+  std::vector<ShaderProgramSpec> v = {spec, spec};
+  v[1].defines.push_back("HAS_NORMAL_MAPS");
+  return v;
+}
+
+size_t normalMapVariant(const PassContext& ctx) { return ctx.scene() && ctx.scene()->hasNormalMaps() ? 1 : 0; }
+
+std::vector<std::string> shadingDefines(const ParamSet& p) {
+  std::vector<std::string> d = defines(p);
+  for (auto& def : gbufferDefines(p)) d.push_back(std::move(def));
+  return d;
+}
+
 std::vector<ParamDecl> constantMaterialParams() {
   using namespace rgraph::decl;
   return {param("constant_material", ParamType::boolean, false,
@@ -89,16 +109,7 @@ void adaptPointLightShading(const SceneFeatures& f, PassAdaptation& a) {
 
 float threshold(const ParamSet& p) { return static_cast<float>(p.getNumber("threshold", 5.0 / 256.0)); }
 
-namespace {
-constexpr const char* kSlots[] = {"position", "normal", "albedo", "material", "depth"};
-}
-
-void bindGBuffer(PassContext& ctx) {
-  for (GLuint unit = 0; unit < 5; ++unit)
-    glBindTextureUnit(unit, ctx.bound(kSlots[unit]) ? ctx.texture(kSlots[unit]) : 0);
-}
-
-void requireGBuffer(PassContext& ctx, const std::string& passKind) {
+void checkGBuffer(const PassCheckContext& ctx, PassChecks& checks) {
   const std::string layout = ctx.params().getString("layout", "pbr");
   std::vector<std::string> needed = {"normal", "albedo"};
   const bool material = !ctx.params().getBool("constant_material", false);
@@ -110,9 +121,7 @@ void requireGBuffer(PassContext& ctx, const std::string& passKind) {
     if (layout != "learnopengl" && material) needed.push_back("material");
   }
   for (const auto& slot : needed)
-    if (!ctx.bound(slot))
-      throw RuntimeError(passKind + " pass '" + ctx.passName() + "': input '" + slot + "' is required by layout '" +
-                         layout + "' but not bound");
+    if (!ctx.bound(slot)) checks.slotError(slot, "input '" + slot + "' is required by layout '" + layout + "' but not bound");
 }
 
 std::vector<std::string> materialSamplers() {
@@ -122,6 +131,17 @@ std::vector<std::string> materialSamplers() {
 std::vector<SamplerSlot> gbufferSamplers() {
   return {{"position", "g_position", 0}, {"normal", "g_normal", 1}, {"albedo", "g_albedo", 2},
           {"material", "g_material", 3}, {"depth", "g_depth", 4}};
+}
+
+PassTypeDesc gbufferReader(std::string name, std::string description) {
+  PassTypeDesc d;
+  d.name = std::move(name);
+  d.description = std::move(description);
+  d.slots = gbufferSlots();
+  d.check = checkGBuffer;
+  d.needsScene = true;
+  d.adapt = adaptGBuffer;
+  return d;
 }
 
 std::vector<SlotDecl> gbufferSlots() {

@@ -119,6 +119,7 @@ std::string cacheKey(const std::vector<std::string>& files, const std::vector<st
 
 uint32_t ShaderLibrary::program(const std::string& vert, const std::string& frag,
                                 const std::vector<std::string>& defines) {
+  if (log_) log_->push_back({vert, frag, {}, defines});
   std::string key = cacheKey({vert, frag}, defines);
   if (auto it = programs_.find(key); it != programs_.end()) return it->second.id();
   std::vector<gl::Shader> stages;
@@ -128,6 +129,7 @@ uint32_t ShaderLibrary::program(const std::string& vert, const std::string& frag
 }
 
 uint32_t ShaderLibrary::computeProgram(const std::string& comp, const std::vector<std::string>& defines) {
+  if (log_) log_->push_back({{}, {}, comp, defines});
   std::string key = cacheKey({comp}, defines);
   if (auto it = programs_.find(key); it != programs_.end()) return it->second.id();
   std::vector<gl::Shader> stages;

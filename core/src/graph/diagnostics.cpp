@@ -36,6 +36,8 @@ std::string_view diagCodeName(DiagCode c) {
     case DiagCode::duplicate_pass: return "duplicate_pass";
     case DiagCode::shader_error: return "shader_error";
     case DiagCode::plugin_error: return "plugin_error";
+    case DiagCode::pass_check: return "pass_check";
+    case DiagCode::needs_scene: return "needs_scene";
   }
   return "unknown";
 }

@@ -1,6 +1,7 @@
 #include "rgraph/registry.h"
 
 #include <algorithm>
+#include <exception>
 #include <set>
 
 namespace rgraph {
@@ -15,6 +16,31 @@ const ParamDecl* PassTypeDesc::findParam(std::string_view param) const {
   for (const auto& p : params)
     if (p.name == param) return &p;
   return nullptr;
+}
+
+ShaderProgramSpec programSpec(std::string vert, std::string frag, std::vector<std::string> defines,
+                              std::vector<SamplerSlot> samplers) {
+  ShaderProgramSpec s;
+  s.vert = std::move(vert);
+  s.frag = std::move(frag);
+  s.defines = std::move(defines);
+  s.samplers = std::move(samplers);
+  return s;
+}
+
+std::vector<std::string> PassTypeDesc::shaderFiles() const {
+  std::vector<std::string> files;
+  if (!programs) return files;
+  std::vector<ShaderProgramSpec> specs;
+  try {
+    specs = programs(defaultParams(params));
+  } catch (const std::exception&) {
+    return files;  // e.g. a shader parameter without a default
+  }
+  for (const auto& s : specs)
+    for (const std::string* f : {&s.vert, &s.frag, &s.comp})
+      if (!f->empty() && std::find(files.begin(), files.end(), *f) == files.end()) files.push_back(*f);
+  return files;
 }
 
 namespace {

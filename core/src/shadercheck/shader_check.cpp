@@ -38,19 +38,6 @@ std::string join(const std::vector<std::string>& v, const std::string& sep) {
   return out;
 }
 
-// The stage of a file from its extension (fallback checks of
-// PassTypeDesc::shaders); EShLangCount when unknown.
-EShLanguage stageOfFile(const std::string& file) {
-  std::string ext = std::filesystem::path(file).extension().string();
-  if (ext == ".vert") return EShLangVertex;
-  if (ext == ".frag") return EShLangFragment;
-  if (ext == ".comp") return EShLangCompute;
-  if (ext == ".geom") return EShLangGeometry;
-  if (ext == ".tesc") return EShLangTessControl;
-  if (ext == ".tese") return EShLangTessEvaluation;
-  return EShLangCount;
-}
-
 const char* stageName(EShLanguage s) {
   switch (s) {
     case EShLangVertex: return "vertex";
@@ -271,52 +258,30 @@ const ProgramCheck& ShaderChecker::program(const ShaderProgramSpec& spec) {
   return *cache_.emplace(key, std::move(result)).first->second;
 }
 
-const ProgramCheck& ShaderChecker::compileOnly(const std::string& file) {
-  const std::string key = "\x1d" + file;
-  if (auto it = cache_.find(key); it != cache_.end()) {
-    ++stats_.cacheHits;
-    return *it->second;
-  }
-  const auto start = std::chrono::steady_clock::now();
-  initGlslang();
-  auto result = std::make_unique<ProgramCheck>();
-  ProgramCheck& pc = *result;
-  Stage st{stageOfFile(file), file, {}, false, nullptr};
-  bool ok = false;
-  if (st.lang == EShLangCount) {
-    pc.files.push_back(file);
-    ok = true;  // not a stage we can tell from its name (an include, a data file): nothing to compile
-  } else if (loadStage(st, ShaderProgramSpec{}, dirs_, pc.messages)) {
-    pc.files.push_back(st.src.files[0]);
-    ok = compileStage(st, pc.messages);
-  } else {
-    pc.files.push_back(file);
-  }
-  pc.ok = ok;
-  ++stats_.programsCompiled;
-  stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return *cache_.emplace(key, std::move(result)).first->second;
-}
+namespace {
 
-Diagnostics ShaderChecker::checkPass(const std::string& passName, const PassTypeDesc& type, const ParamSet& params,
-                                     const std::vector<BoundSlot>& bound, const SourceLocation& passWhere) {
-  Diagnostics out;
-  std::set<std::string> seen;  // variants of one pass often repeat the same finding
-  auto add = [&](Severity sev, std::string message, SourceLocation where, std::string slot = {},
-                 std::string resource = {}) {
+// What checkPass finds in one pass instance, in the order found. Variants of
+// one pass often repeat the same finding: it is kept once.
+class PassFindings {
+ public:
+  PassFindings(const std::string& passName, const PassTypeDesc& type, const SourceLocation& passWhere)
+      : who("pass '" + passName + "' (" + type.name + ")"), passWhere(passWhere), passName_(passName) {}
+
+  void add(Severity sev, std::string message, SourceLocation where, std::string slot = {}, std::string resource = {}) {
     Diagnostic d;
     d.code = DiagCode::shader_error;
     d.severity = sev;
     d.message = std::move(message);
-    d.pass = passName;
+    d.pass = passName_;
     d.slot = std::move(slot);
     d.resource = std::move(resource);
     d.where = std::move(where);
     std::string key = formatDiagnostic(d);
-    if (seen.insert(key).second) out.push_back(std::move(d));
-  };
-  const std::string who = "pass '" + passName + "' (" + type.name + ")";
-  auto reportMessages = [&](const ProgramCheck& pc) {
+    if (seen_.insert(key).second) out_.push_back(std::move(d));
+  }
+
+  // The compiler's messages about a program, at their shader lines.
+  void reportMessages(const ProgramCheck& pc) {
     std::string context;
     if (pc.files.size() > 1 || !pc.spec.defines.empty()) {
       context = " [" + join(pc.files, " + ");
@@ -333,212 +298,281 @@ Diagnostics ShaderChecker::checkPass(const std::string& passName, const PassType
       where.line = m.line;
       add(m.severity, m.text + context, where);
     }
-  };
-
-  if (!type.programs) {
-    for (const auto& file : type.shaders) reportMessages(compileOnly(file));
-    return out;
   }
 
-  std::vector<ShaderProgramSpec> specs;
-  try {
-    specs = type.programs(params);
-  } catch (const std::exception& e) {
-    add(Severity::error, who + ": " + e.what(), passWhere);
-    return out;
-  }
+  Diagnostics take() { return std::move(out_); }
 
-  // Colour attachments in slot-declaration order at locations 0..N-1 (as the
-  // executor builds the pass's framebuffer); sampled inputs by slot.
+  const std::string who;  // "pass 'NAME' (TYPE)": how messages name the pass
+  const SourceLocation& passWhere;
+
+ private:
+  std::string passName_;
+  Diagnostics out_;
+  std::set<std::string> seen_;
+};
+
+// The pass's bindings as the executor uses them: colour attachments in
+// slot-declaration order at locations 0..N-1 (as the executor builds the
+// pass's framebuffer); sampled inputs by slot.
+struct PassBindings {
+  std::vector<const BoundSlot*> attachments;
+  std::map<std::string, const BoundSlot*> sampled;
+};
+
+PassBindings passBindings(const PassTypeDesc& type, const std::vector<BoundSlot>& bound) {
   auto slotIndex = [&](const std::string& slot) {
     for (size_t i = 0; i < type.slots.size(); ++i)
       if (type.slots[i].name == slot) return i;
     return type.slots.size();
   };
-  std::vector<const BoundSlot*> attachments;
-  std::map<std::string, const BoundSlot*> sampled;
+  PassBindings out;
   for (const auto& b : bound) {
-    if (b.access == Access::color_attachment) attachments.push_back(&b);
-    if (b.access == Access::sampled) sampled.emplace(b.slot, &b);
+    if (b.access == Access::color_attachment) out.attachments.push_back(&b);
+    if (b.access == Access::sampled) out.sampled.emplace(b.slot, &b);
   }
-  std::stable_sort(attachments.begin(), attachments.end(),
+  std::stable_sort(out.attachments.begin(), out.attachments.end(),
                    [&](const BoundSlot* a, const BoundSlot* b) { return slotIndex(a->slot) < slotIndex(b->slot); });
+  return out;
+}
 
+// A program's fragment outputs, one per location (arrays unrolled), and
+// whether their locations are known.
+struct LocatedOutputs {
+  std::vector<FragmentOutput> outs;
+  bool locationsKnown = true;
+};
+
+LocatedOutputs locateOutputs(const ProgramCheck& pc, const std::string& shader, PassFindings& f) {
+  LocatedOutputs located;
+  std::vector<FragmentOutput>& outs = located.outs;
+  size_t unlocated = 0;
+  for (const auto& o : pc.outputs) unlocated += o.location < 0 ? 1 : 0;
+  if (unlocated > 0 && pc.outputs.size() == 1 && pc.outputs[0].arraySize == 0) {
+    outs.push_back(pc.outputs[0]);
+    outs.back().location = 0;  // a single output without a location goes to location 0
+  } else if (unlocated > 0) {
+    located.locationsKnown = false;
+    f.add(Severity::warning,
+          f.who + ": " + shader + " declares " + std::to_string(pc.outputs.size()) +
+              " colour outputs, some without layout(location): their locations are the linker's choice; give "
+              "each output a location matching the pass's colour attachments",
+          f.passWhere);
+  } else {
+    for (const auto& o : pc.outputs) {
+      const int n = o.arraySize > 0 ? o.arraySize : 1;
+      for (int i = 0; i < n; ++i) {
+        FragmentOutput e = o;
+        e.location = o.location + i;
+        e.arraySize = 0;
+        if (o.arraySize > 0) e.name = o.name + "[" + std::to_string(i) + "]";
+        outs.push_back(std::move(e));
+      }
+    }
+  }
+  return located;
+}
+
+// Fragment outputs vs colour attachments: every output lands in an
+// attachment and every attachment is written.
+void checkOutputsMatchAttachments(const ProgramCheck& pc, const LocatedOutputs& located,
+                                  const std::vector<const BoundSlot*>& attachments, const std::string& shader,
+                                  PassFindings& f) {
+  const std::vector<FragmentOutput>& outs = located.outs;
+  auto outputList = [&] {
+    std::vector<std::string> v;
+    for (const auto& o : outs) v.push_back("'" + o.name + "' at " + std::to_string(o.location));
+    return v.empty() ? std::string("none") : join(v, ", ");
+  };
+  auto attachmentList = [&] {
+    std::vector<std::string> v;
+    for (size_t i = 0; i < attachments.size(); ++i)
+      v.push_back("'" + attachments[i]->slot + "' (" + attachments[i]->resource + ") at " + std::to_string(i));
+    return v.empty() ? std::string("none") : join(v, ", ");
+  };
+  const size_t outputCount = located.locationsKnown ? outs.size() : pc.outputs.size();
+  if (located.locationsKnown) {
+    std::vector<std::string> problems;
+    for (const auto& o : outs)
+      if (o.location < 0 || static_cast<size_t>(o.location) >= attachments.size())
+        problems.push_back("output '" + o.name + "' (location " + std::to_string(o.location) +
+                           ") has no colour attachment: its values are discarded");
+    for (size_t i = 0; i < attachments.size(); ++i)
+      if (std::none_of(outs.begin(), outs.end(),
+                       [&](const FragmentOutput& o) { return o.location == static_cast<int>(i); }))
+        problems.push_back("colour attachment '" + attachments[i]->slot + "' (location " + std::to_string(i) +
+                           ") is written by no output: its contents would be undefined");
+    if (!problems.empty())
+      f.add(Severity::error,
+            f.who + ": fragment shader " + shader + " writes " + std::to_string(outputCount) + " colour output" +
+                (outputCount == 1 ? "" : "s") + " (" + outputList() + ") but the pass binds " +
+                std::to_string(attachments.size()) + " colour attachment" + (attachments.size() == 1 ? "" : "s") +
+                " (" + attachmentList() + "): " + join(problems, "; "),
+            f.passWhere);
+  } else if (outputCount != attachments.size()) {
+    f.add(Severity::error,
+          f.who + ": fragment shader " + shader + " writes " + std::to_string(outputCount) +
+              " colour outputs but the pass binds " + std::to_string(attachments.size()) + " colour attachments (" +
+              attachmentList() + ")",
+          f.passWhere);
+  }
+}
+
+// Per attachment: the output's type and components against the format
+// (blending with a source alpha the shader leaves undefined is an error).
+void checkOutputFormats(const ShaderProgramSpec& spec, const std::vector<FragmentOutput>& outs,
+                        const std::vector<const BoundSlot*>& attachments, const std::string& shader, PassFindings& f) {
+  for (size_t i = 0; i < attachments.size(); ++i) {
+    const BoundSlot& a = *attachments[i];
+    auto it = std::find_if(outs.begin(), outs.end(),
+                           [&](const FragmentOutput& o) { return o.location == static_cast<int>(i); });
+    if (it == outs.end() || !a.format) continue;
+    const FormatInfo& fi = formatInfo(*a.format);
+    if (fi.isDepth) continue;  // the graph reports a depth format bound as a colour attachment
+    const std::string target = "colour attachment '" + a.slot + "' (" + a.resource + ", " + std::string(fi.name) +
+                               ", " + std::to_string(fi.components) + " component" + (fi.components == 1 ? "" : "s") +
+                               ")";
+    const SourceLocation& where = a.where.known() ? a.where : f.passWhere;
+    if (it->kind != FragmentOutput::Kind::floating) {
+      f.add(Severity::error,
+            f.who + ": fragment shader " + shader + " writes " + glslTypeName(*it) + " '" + it->name + "' into " +
+                target + ": integer outputs into a float or normalized format are undefined",
+            where, a.slot, a.resource);
+      continue;
+    }
+    const uint32_t comps = static_cast<uint32_t>(it->components);
+    if (comps > fi.components) {
+      f.add(Severity::warning,
+            f.who + ": fragment shader " + shader + " writes " + glslTypeName(*it) + " '" + it->name + "' into " +
+                target + ": components " + componentLetters(fi.components, comps) +
+                " are dropped (is the format right?)",
+            where, a.slot, a.resource);
+    } else if (comps < fi.components) {
+      const bool alphaMissing = fi.components == 4 && comps < 4;
+      const bool error = spec.blendsSourceAlpha && alphaMissing;
+      f.add(error ? Severity::error : Severity::warning,
+            f.who + ": fragment shader " + shader + " writes " + glslTypeName(*it) + " '" + it->name + "' into " +
+                target + ": components " + componentLetters(comps, fi.components) + " are left undefined" +
+                (error ? ", and the pass blends with source alpha" : ""),
+            where, a.slot, a.resource);
+    }
+  }
+}
+
+// Samplers the spec maps to sampled slots: given a unit, bound when read, on
+// the unit the spec names, and of a kind the bound texture can be sampled with.
+void checkMappedSamplers(const ProgramCheck& pc, const ShaderProgramSpec& spec,
+                         const std::map<std::string, const BoundSlot*>& sampled, const std::string& shader,
+                         PassFindings& f) {
+  for (const auto& m : spec.samplers) {
+    if (m.unit < 0) {
+      f.add(Severity::error,
+            f.who + ": sampler '" + m.uniform + "' (input '" + m.slot + "') names no texture unit: give every " +
+                "sampler of a ShaderProgramSpec its unit (SamplerSlot::unit)",
+            f.passWhere, m.slot);
+      continue;
+    }
+    const SamplerUniform* s = pc.findSampler(m.uniform);
+    auto bit = sampled.find(m.slot);
+    const BoundSlot* b = bit == sampled.end() ? nullptr : bit->second;
+    if (!s) {
+      if (b)
+        f.add(Severity::warning,
+              f.who + ": input '" + m.slot + "' is bound (" + b->resource + ") but " + join(pc.files, " + ") +
+                  " declares no sampler '" + m.uniform + "' to read it: the binding is unused",
+              b->where.known() ? b->where : f.passWhere, m.slot, b->resource);
+      continue;
+    }
+    if (!s->active) continue;  // declared, not read with these defines: binding it or not makes no difference
+    if (!b) {
+      if (m.optional) continue;  // the pass tells the shader the slot is unbound
+      f.add(Severity::error,
+            f.who + ": " + shader + " samples '" + m.uniform + "' (input '" + m.slot + "') but the config binds no " +
+                "resource to '" + m.slot + "': it would read texture 0 (bind the input)",
+            f.passWhere, m.slot);
+      continue;
+    }
+    const SourceLocation& where = b->where.known() ? b->where : f.passWhere;
+    // Without layout(binding) the shader reads the unit the executor sets
+    // the sampler uniform to; an explicit binding must agree with it.
+    if (s->binding >= 0 && s->binding != m.unit)
+      f.add(Severity::error,
+            f.who + ": sampler '" + m.uniform + "' in " + shader + " reads texture unit " + std::to_string(s->binding) +
+                " (layout(binding = " + std::to_string(s->binding) + ")) but the pass binds input '" + m.slot +
+                "' to unit " + std::to_string(m.unit),
+            where, m.slot, b->resource);
+    if (s->integer)
+      f.add(Severity::error,
+            f.who + ": sampler '" + m.uniform + "' in " + shader + " is an integer sampler but input '" + m.slot +
+                "' (" + b->resource + (b->format ? ", " + std::string(formatName(*b->format)) : std::string()) +
+                ") is a float or normalized texture: the results are undefined",
+            where, m.slot, b->resource);
+    if (s->multisample != (b->samples > 1))
+      f.add(Severity::error,
+            f.who + ": sampler '" + m.uniform + "' in " + shader + " is " +
+                (s->multisample ? "a multisample sampler" : "not a multisample sampler") + " but input '" + m.slot +
+                "' (" + b->resource + ") has " + std::to_string(b->samples) + " sample" + (b->samples == 1 ? "" : "s"),
+            where, m.slot, b->resource);
+    if (s->shadow && b->format && !isDepthFormat(*b->format))
+      f.add(Severity::error,
+            f.who + ": sampler '" + m.uniform + "' in " + shader + " is a shadow sampler but input '" + m.slot + "' (" +
+                b->resource + ", " + std::string(formatName(*b->format)) + ") has no depth",
+            where, m.slot, b->resource);
+  }
+}
+
+// Active samplers no slot maps and the pass does not bind itself: they read
+// whatever texture is on their unit.
+void checkUnmappedSamplers(const ProgramCheck& pc, const ShaderProgramSpec& spec, const std::string& shader,
+                           PassFindings& f) {
+  std::set<std::string> mapped;
+  for (const auto& m : spec.samplers) mapped.insert(m.uniform);
+  for (const auto& s : pc.samplers) {
+    if (!s.active || mapped.count(s.name)) continue;
+    if (std::find(spec.ownSamplers.begin(), spec.ownSamplers.end(), s.name) != spec.ownSamplers.end()) continue;
+    std::vector<std::string> known;
+    for (const auto& m : spec.samplers) known.push_back(m.uniform + " <- " + m.slot);
+    f.add(Severity::warning,
+          f.who + ": sampler '" + s.name + "' in " + shader + " is bound to no input of the pass (it reads whatever " +
+              "texture is on unit " + std::to_string(s.binding < 0 ? 0 : s.binding) + ")" +
+              (known.empty() ? std::string() : "; the pass binds " + join(known, ", ")),
+          f.passWhere);
+  }
+}
+
+}  // namespace
+
+// One function per check above; this one only walks the pass's programs.
+Diagnostics ShaderChecker::checkPass(const std::string& passName, const PassTypeDesc& type, const ParamSet& params,
+                                     const std::vector<BoundSlot>& bound, const SourceLocation& passWhere) {
+  PassFindings f(passName, type, passWhere);
+  if (!type.programs) return f.take();  // a pass type without programs uses no shaders
+
+  std::vector<ShaderProgramSpec> specs;
+  try {
+    specs = type.programs(params);
+  } catch (const std::exception& e) {
+    f.add(Severity::error, f.who + ": " + e.what(), passWhere);
+    return f.take();
+  }
+
+  const PassBindings bindings = passBindings(type, bound);
   for (const auto& spec : specs) {
     const ProgramCheck& pc = program(spec);
-    reportMessages(pc);
+    checked_.push_back({passName, spec});
+    f.reportMessages(pc);
     if (!pc.ok) continue;
     const std::string shader = pc.files.empty() ? spec.frag : pc.files.back();
-
-    // ---- fragment outputs vs colour attachments
     if (!spec.frag.empty() && spec.drawsToAttachments) {
-      std::vector<FragmentOutput> outs;  // one per location
-      size_t unlocated = 0;
-      for (const auto& o : pc.outputs) unlocated += o.location < 0 ? 1 : 0;
-      bool locationsKnown = true;
-      if (unlocated > 0 && pc.outputs.size() == 1 && pc.outputs[0].arraySize == 0) {
-        outs.push_back(pc.outputs[0]);
-        outs.back().location = 0;  // a single output without a location goes to location 0
-      } else if (unlocated > 0) {
-        locationsKnown = false;
-        add(Severity::warning,
-            who + ": " + shader + " declares " + std::to_string(pc.outputs.size()) +
-                " colour outputs, some without layout(location): their locations are the linker's choice; give "
-                "each output a location matching the pass's colour attachments",
-            passWhere);
-      } else {
-        for (const auto& o : pc.outputs) {
-          const int n = o.arraySize > 0 ? o.arraySize : 1;
-          for (int i = 0; i < n; ++i) {
-            FragmentOutput e = o;
-            e.location = o.location + i;
-            e.arraySize = 0;
-            if (o.arraySize > 0) e.name = o.name + "[" + std::to_string(i) + "]";
-            outs.push_back(std::move(e));
-          }
-        }
-      }
-      auto outputList = [&] {
-        std::vector<std::string> v;
-        for (const auto& o : outs) v.push_back("'" + o.name + "' at " + std::to_string(o.location));
-        return v.empty() ? std::string("none") : join(v, ", ");
-      };
-      auto attachmentList = [&] {
-        std::vector<std::string> v;
-        for (size_t i = 0; i < attachments.size(); ++i)
-          v.push_back("'" + attachments[i]->slot + "' (" + attachments[i]->resource + ") at " + std::to_string(i));
-        return v.empty() ? std::string("none") : join(v, ", ");
-      };
-      const size_t outputCount = locationsKnown ? outs.size() : pc.outputs.size();
-      if (locationsKnown) {
-        std::vector<std::string> problems;
-        for (const auto& o : outs)
-          if (o.location < 0 || static_cast<size_t>(o.location) >= attachments.size())
-            problems.push_back("output '" + o.name + "' (location " + std::to_string(o.location) +
-                               ") has no colour attachment: its values are discarded");
-        for (size_t i = 0; i < attachments.size(); ++i)
-          if (std::none_of(outs.begin(), outs.end(), [&](const FragmentOutput& o) { return o.location == static_cast<int>(i); }))
-            problems.push_back("colour attachment '" + attachments[i]->slot + "' (location " + std::to_string(i) +
-                               ") is written by no output: its contents would be undefined");
-        if (!problems.empty())
-          add(Severity::error,
-              who + ": fragment shader " + shader + " writes " + std::to_string(outputCount) + " colour output" +
-                  (outputCount == 1 ? "" : "s") + " (" + outputList() + ") but the pass binds " +
-                  std::to_string(attachments.size()) + " colour attachment" + (attachments.size() == 1 ? "" : "s") +
-                  " (" + attachmentList() + "): " + join(problems, "; "),
-              passWhere);
-      } else if (outputCount != attachments.size()) {
-        add(Severity::error,
-            who + ": fragment shader " + shader + " writes " + std::to_string(outputCount) +
-                " colour outputs but the pass binds " + std::to_string(attachments.size()) + " colour attachments (" +
-                attachmentList() + ")",
-            passWhere);
-      }
-
-      // Per attachment: output type and components against the format.
-      if (locationsKnown) {
-        for (size_t i = 0; i < attachments.size(); ++i) {
-          const BoundSlot& a = *attachments[i];
-          auto it = std::find_if(outs.begin(), outs.end(), [&](const FragmentOutput& o) { return o.location == static_cast<int>(i); });
-          if (it == outs.end() || !a.format) continue;
-          const FormatInfo& fi = formatInfo(*a.format);
-          if (fi.isDepth) continue;  // the graph reports a depth format bound as a colour attachment
-          const std::string target = "colour attachment '" + a.slot + "' (" + a.resource + ", " +
-                                     std::string(fi.name) + ", " + std::to_string(fi.components) + " component" +
-                                     (fi.components == 1 ? "" : "s") + ")";
-          const SourceLocation& where = a.where.known() ? a.where : passWhere;
-          if (it->kind != FragmentOutput::Kind::floating) {
-            add(Severity::error,
-                who + ": fragment shader " + shader + " writes " + glslTypeName(*it) + " '" + it->name + "' into " +
-                    target + ": integer outputs into a float or normalized format are undefined",
-                where, a.slot, a.resource);
-            continue;
-          }
-          const uint32_t comps = static_cast<uint32_t>(it->components);
-          if (comps > fi.components) {
-            add(Severity::warning,
-                who + ": fragment shader " + shader + " writes " + glslTypeName(*it) + " '" + it->name + "' into " +
-                    target + ": components " + componentLetters(fi.components, comps) +
-                    " are dropped (is the format right?)",
-                where, a.slot, a.resource);
-          } else if (comps < fi.components) {
-            const bool alphaMissing = fi.components == 4 && comps < 4;
-            const bool error = spec.blendsSourceAlpha && alphaMissing;
-            add(error ? Severity::error : Severity::warning,
-                who + ": fragment shader " + shader + " writes " + glslTypeName(*it) + " '" + it->name + "' into " +
-                    target + ": components " + componentLetters(comps, fi.components) + " are left undefined" +
-                    (error ? ", and the pass blends with source alpha" : ""),
-                where, a.slot, a.resource);
-          }
-        }
-      }
+      const LocatedOutputs located = locateOutputs(pc, shader, f);
+      checkOutputsMatchAttachments(pc, located, bindings.attachments, shader, f);
+      if (located.locationsKnown) checkOutputFormats(spec, located.outs, bindings.attachments, shader, f);
     }
-
-    // ---- samplers vs sampled inputs
     if (spec.checkSamplers) {
-      std::set<std::string> mapped;
-      for (const auto& m : spec.samplers) {
-        mapped.insert(m.uniform);
-        const SamplerUniform* s = pc.findSampler(m.uniform);
-        auto bit = sampled.find(m.slot);
-        const BoundSlot* b = bit == sampled.end() ? nullptr : bit->second;
-        if (!s) {
-          if (b)
-            add(Severity::warning,
-                who + ": input '" + m.slot + "' is bound (" + b->resource + ") but " + join(pc.files, " + ") +
-                    " declares no sampler '" + m.uniform + "' to read it: the binding is unused",
-                b->where.known() ? b->where : passWhere, m.slot, b->resource);
-          continue;
-        }
-        if (!s->active) continue;  // declared, not read with these defines: binding it or not makes no difference
-        if (!b) {
-          if (m.optional) continue;  // the pass tells the shader the slot is unbound
-          add(Severity::error,
-              who + ": " + shader + " samples '" + m.uniform + "' (input '" + m.slot + "') but the config binds no " +
-                  "resource to '" + m.slot + "': it would read texture 0 (bind the input)",
-              passWhere, m.slot);
-          continue;
-        }
-        const SourceLocation& where = b->where.known() ? b->where : passWhere;
-        const int unit = s->binding < 0 ? 0 : s->binding;
-        if (m.unit >= 0 && unit != m.unit)
-          add(Severity::error,
-              who + ": sampler '" + m.uniform + "' in " + shader + " reads texture unit " + std::to_string(unit) +
-                  (s->binding < 0 ? " (no layout(binding))" : " (layout(binding = " + std::to_string(s->binding) + "))") +
-                  " but the pass binds input '" + m.slot + "' to unit " + std::to_string(m.unit),
-              where, m.slot, b->resource);
-        if (s->integer)
-          add(Severity::error,
-              who + ": sampler '" + m.uniform + "' in " + shader + " is an integer sampler but input '" + m.slot +
-                  "' (" + b->resource + (b->format ? ", " + std::string(formatName(*b->format)) : std::string()) +
-                  ") is a float or normalized texture: the results are undefined",
-              where, m.slot, b->resource);
-        if (s->multisample != (b->samples > 1))
-          add(Severity::error,
-              who + ": sampler '" + m.uniform + "' in " + shader + " is " +
-                  (s->multisample ? "a multisample sampler" : "not a multisample sampler") + " but input '" + m.slot +
-                  "' (" + b->resource + ") has " + std::to_string(b->samples) + " sample" + (b->samples == 1 ? "" : "s"),
-              where, m.slot, b->resource);
-        if (s->shadow && b->format && !isDepthFormat(*b->format))
-          add(Severity::error,
-              who + ": sampler '" + m.uniform + "' in " + shader + " is a shadow sampler but input '" + m.slot +
-                  "' (" + b->resource + ", " + std::string(formatName(*b->format)) + ") has no depth",
-              where, m.slot, b->resource);
-      }
-      for (const auto& s : pc.samplers) {
-        if (!s.active || mapped.count(s.name)) continue;
-        if (std::find(spec.ownSamplers.begin(), spec.ownSamplers.end(), s.name) != spec.ownSamplers.end()) continue;
-        std::vector<std::string> known;
-        for (const auto& m : spec.samplers) known.push_back(m.uniform + " <- " + m.slot);
-        add(Severity::warning,
-            who + ": sampler '" + s.name + "' in " + shader + " is bound to no input of the pass (it reads whatever " +
-                "texture is on unit " + std::to_string(s.binding < 0 ? 0 : s.binding) + ")" +
-                (known.empty() ? std::string() : "; the pass binds " + join(known, ", ")),
-            passWhere);
-      }
+      checkMappedSamplers(pc, spec, bindings.sampled, shader, f);
+      checkUnmappedSamplers(pc, spec, shader, f);
     }
   }
-  return out;
+  return f.take();
 }
 
 Diagnostics ShaderChecker::checkPipeline(const PipelineConfig& pipeline, const Plan& plan,

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "rgraph/config.h"
+#include "rgraph/gl/shader_library.h"
 #include "rgraph/graph.h"
 #include "rgraph/pass.h"
 
@@ -45,6 +46,23 @@ class Executor {
   void renderFrame();
 
   const Plan& plan() const;
+  // Every program a pass asked the ShaderLibrary for (each once per pass, in
+  // order): those the executor built from the pass type's programs(params)
+  // before setup(), and any the pass built itself. The same specs are what
+  // `rgraph validate` checks (ShaderChecker::checkedPrograms).
+  struct BuiltProgram {
+    std::string pass;
+    ProgramRequest program;
+    bool operator==(const BuiltProgram&) const = default;
+  };
+  const std::vector<BuiltProgram>& builtPrograms() const;
+  // The glMemoryBarrier bits issued before each executed pass (execution
+  // order, as timings()), 0 for none, and after the last pass: derived in
+  // resize() from declared access, so that what a pass wrote through image or
+  // storage access is visible to whoever touches it next (no pass issues
+  // barriers itself). For tests and tools.
+  std::vector<uint32_t> memoryBarriers() const;
+  uint32_t frameEndMemoryBarrier() const;
   // The scene uploaded to the GPU (created by the first resize() when a scene
   // was given; its Frame block is updated for the output extent at the start
   // of every frame). nullptr without a scene.

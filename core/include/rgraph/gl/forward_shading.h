@@ -3,16 +3,32 @@
 // program per lighting configuration, every point light per fragment.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <vector>
 
+#include "rgraph/gl/uniform.h"
 #include "rgraph/pass.h"
 
 namespace rgraph::forward {
 
-// Compiles forward_lit for the pass's lighting params (and the scene's normal maps).
-uint32_t program(PassContext& ctx);
-// Draws the scene's surfaces of one kind with `prog`: opaque (depth written)
-// or blended (back to front, alpha blending, depth tested but not written).
-void drawSurfaces(PassContext& ctx, uint32_t prog, bool blended);
+// The forward_lit programs for the pass's lighting params, for
+// PassTypeDesc::programs: without and with HAS_NORMAL_MAPS (which one runs
+// follows the scene: lighting::normalMapVariant).
+std::vector<ShaderProgramSpec> programs(const ParamSet& params, bool blendsSourceAlpha);
+
+// Draws the scene's surfaces of one kind with a forward_lit program: opaque
+// (depth written) or blended (back to front, alpha blending, depth tested but
+// not written). Its uniforms are looked up once, at construction (setup).
+class SurfaceDrawer {
+ public:
+  SurfaceDrawer() = default;
+  explicit SurfaceDrawer(uint32_t program);
+  void draw(PassContext& ctx, bool blended) const;
+
+ private:
+  uint32_t program_ = 0;
+  gl::Uniform pointLightCount_, blendPass_;
+};
 
 }  // namespace rgraph::forward

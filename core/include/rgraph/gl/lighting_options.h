@@ -11,6 +11,8 @@
 
 namespace rgraph::lighting {
 
+// The formats an HDR lighting target may have (rgba16f, rgba32f, r11g11b10f).
+const std::vector<Format>& hdrFormats();
 // model, attenuation, threshold parameter declarations.
 std::vector<ParamDecl> params(double defaultThreshold = 5.0 / 256.0, bool allowNoCutoff = true);
 // The G-buffer layout parameter (learnopengl, pbr, compact, fp32).
@@ -23,6 +25,15 @@ std::string layoutDefine(const ParamSet& params);
 // Every define a G-buffer writer or reader needs: the layout, and with
 // constant_material, CONSTANT_MATERIAL + CONSTANT_METALLIC/ROUGHNESS values.
 std::vector<std::string> gbufferDefines(const ParamSet& params);
+// The two variants of a scene-drawing program: `spec`, and `spec` with
+// HAS_NORMAL_MAPS. Which one runs follows the scene (normalMapVariant), so a
+// pass declares both and validate checks both.
+std::vector<ShaderProgramSpec> normalMapVariants(const ShaderProgramSpec& spec);
+// The index in normalMapVariants of the pass's scene: 1 with normal maps.
+size_t normalMapVariant(const PassContext& ctx);
+// defines() and gbufferDefines(): what a pass that shades lights from the
+// G-buffer compiles its program with.
+std::vector<std::string> shadingDefines(const ParamSet& params);
 // constant_material, metallic, roughness: set by adaptGBuffer for scenes with
 // one metallic/roughness, so no G-buffer target carries them.
 std::vector<ParamDecl> constantMaterialParams();
@@ -34,17 +45,19 @@ void adaptGBuffer(const SceneFeatures& features, PassAdaptation& adaptation);
 void adaptPointLightShading(const SceneFeatures& features, PassAdaptation& adaptation);
 float threshold(const ParamSet& params);
 
-// Binds the sampled G-buffer slots (position, normal, albedo, material, depth)
-// to texture units 0..4; unbound slots get texture 0.
-void bindGBuffer(PassContext& ctx);
-// Checks that the slots a layout reads are bound; throws RuntimeError naming what is missing.
-void requireGBuffer(PassContext& ctx, const std::string& passKind);
+// Check hook (PassTypeDesc::check): the slots the pass's layout reads are bound.
+void checkGBuffer(const PassCheckContext& ctx, PassChecks& checks);
+// What every pass that reads the G-buffer declares alike: name, description,
+// the sampled G-buffer slots (gbufferSlots), the check that its layout's
+// slots are bound (checkGBuffer), needsScene, and adaptGBuffer as its adapt
+// hook. The pass adds its own slots, params and programs.
+PassTypeDesc gbufferReader(std::string name, std::string description);
 // Sampled G-buffer slot declarations (position, normal, albedo, material, depth).
 std::vector<SlotDecl> gbufferSlots();
 // The samplers of include/material.glsl, bound per draw by GpuScene (not slots).
 std::vector<std::string> materialSamplers();
-// The samplers of include/gbuffer_read.glsl for those slots, on the units
-// bindGBuffer binds them to (for PassTypeDesc::programs).
+// The samplers of include/gbuffer_read.glsl for those slots, on units 0..4
+// (for PassTypeDesc::programs: the executor binds the slots there).
 std::vector<SamplerSlot> gbufferSamplers();
 
 }  // namespace rgraph::lighting

@@ -21,6 +21,14 @@
 
 namespace rgraph {
 
+// One program()/computeProgram() call: the files and defines asked for.
+struct ProgramRequest {
+  std::string vert, frag;  // a vertex + fragment program
+  std::string comp;        // or a compute program
+  std::vector<std::string> defines;
+  bool operator==(const ProgramRequest&) const = default;
+};
+
 class ShaderLibrary {
  public:
   ShaderLibrary();
@@ -45,6 +53,11 @@ class ShaderLibrary {
   void addSearchDirectory(const std::string& dir);  // searched before the defaults
   std::vector<std::string> searchDirectories() const;
 
+  // While set, every program() and computeProgram() call (cached or not) is
+  // appended to *log; nullptr stops. The executor reports with it what each
+  // pass built (Executor::builtPrograms).
+  void recordRequests(std::vector<ProgramRequest>* log) { log_ = log; }
+
   // Drops every cached program (e.g. to reload edited shaders). Needs the context current.
   void clear();
   size_t cachedPrograms() const { return programs_.size(); }
@@ -61,6 +74,7 @@ class ShaderLibrary {
 
   std::vector<std::string> extraDirs_;
   std::map<std::string, gl::Program> programs_;
+  std::vector<ProgramRequest>* log_ = nullptr;
 };
 
 }  // namespace rgraph

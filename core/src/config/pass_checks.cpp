@@ -1,0 +1,171 @@
+// Runs the pass types' check hooks (rgraph/pass_check.h) on a compiled plan
+// and turns what they report into located diagnostics.
+#include <algorithm>
+#include <memory>
+
+#include "rgraph/config.h"
+#include "rgraph/registry.h"
+
+namespace rgraph {
+
+const CheckedSlot* PassCheckContext::find(std::string_view slot) const {
+  for (const auto& s : slots_)
+    if (s.slot == slot) return &s;
+  return nullptr;
+}
+
+std::optional<Format> PassCheckContext::format(std::string_view slot) const {
+  const CheckedSlot* s = find(slot);
+  return s ? s->format : std::nullopt;
+}
+
+Extent PassCheckContext::extent(std::string_view slot) const {
+  const CheckedSlot* s = find(slot);
+  return s ? s->extent : Extent{};
+}
+
+uint32_t PassCheckContext::samples(std::string_view slot) const {
+  const CheckedSlot* s = find(slot);
+  return s ? s->samples : 1;
+}
+
+bool PassCheckContext::loads(std::string_view slot) const {
+  const CheckedSlot* s = find(slot);
+  return s && s->loads;
+}
+
+void PassChecks::slotError(std::string slot, std::string message) {
+  entries_.push_back({Entry::Kind::slot, std::move(slot), std::move(message)});
+}
+
+void PassChecks::paramError(std::string param, std::string message) {
+  entries_.push_back({Entry::Kind::param, std::move(param), std::move(message)});
+}
+
+void PassChecks::passError(std::string message) { entries_.push_back({Entry::Kind::pass, {}, std::move(message)}); }
+
+std::string extentText(Extent e) { return std::to_string(e.width) + "x" + std::to_string(e.height); }
+
+void checkSameSize(const PassCheckContext& ctx, PassChecks& checks, const std::string& a, const std::string& b) {
+  const Extent ea = ctx.extent(a), eb = ctx.extent(b);
+  if (ea.width == 0 || eb.width == 0 || ea == eb) return;
+  checks.slotError(
+      a, "'" + a + "' (" + extentText(ea) + ") and '" + b + "' (" + extentText(eb) + ") must have the same size");
+}
+
+std::vector<CheckedSlot> planSlots(const GraphDesc& g, const Plan& plan, size_t pass) {
+  const PassDecl& pd = g.passes[pass];
+  const std::vector<BoundUse>* uses = pass < plan.bindings.size() ? &plan.bindings[pass] : nullptr;
+  std::vector<CheckedSlot> out;
+  for (const ResourceUse& ru : pd.uses) {
+    CheckedSlot s;
+    s.slot = ru.slot;
+    s.access = ru.access;
+    const bool write = isWriteAccess(ru.access);
+    s.resource = write ? ru.output : ru.input;
+    s.loads = write && !ru.input.empty();
+    s.where = write ? ru.outputWhere : ru.inputWhere;
+    const BoundUse* bu = nullptr;
+    if (uses)
+      for (const auto& x : *uses)
+        if (x.slot == ru.slot) bu = &x;
+    if (bu && bu->resource >= 0 && static_cast<size_t>(bu->resource) < g.resources.size()) {
+      const ResourceDecl& rd = g.resources[bu->resource];
+      if (rd.kind == ResourceKind::texture) {
+        s.format = rd.texture.format;
+        s.samples = std::max<uint32_t>(1, rd.texture.samples);
+        if (static_cast<size_t>(bu->resource) < plan.resources.size()) s.extent = plan.resources[bu->resource].extent;
+      }
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+namespace {
+
+// Reads the config file again, once, only when a parameter must be located.
+class DocLocator {
+ public:
+  explicit DocLocator(std::string file) : file_(std::move(file)) {}
+  SourceLocation locate(const std::string& pointer, const SourceLocation& fallback) {
+    if (!tried_) {
+      tried_ = true;
+      if (!file_.empty()) {
+        Diagnostics ignored;
+        auto doc = std::make_unique<ConfigDocument>(ConfigDocument::parseFile(file_, ignored));
+        if (doc->ok()) doc_ = std::move(doc);
+      }
+    }
+    if (!doc_) return fallback;
+    SourceLocation at = doc_->locate(pointer);
+    return at.known() ? at : fallback;
+  }
+
+ private:
+  std::string file_;
+  bool tried_ = false;
+  std::unique_ptr<ConfigDocument> doc_;
+};
+
+SourceLocation slotLocation(const PassDecl& pd, const PassTypeDesc& type, const PassCheckContext& ctx,
+                            const std::string& slot, DocLocator& doc) {
+  if (const CheckedSlot* bound = ctx.find(slot); bound && bound->where.known()) return bound->where;
+  // Unbound: the pass's inputs or outputs object, where it would be bound.
+  if (pd.where.path.empty()) return pd.where;
+  const SlotDecl* decl = type.findSlot(slot);
+  const bool write = decl && isWriteAccess(decl->access);
+  return doc.locate(pd.where.path + (write ? "/outputs" : "/inputs"), pd.where);
+}
+
+}  // namespace
+
+Diagnostics runPassChecks(const PipelineConfig& pipeline, const Plan& plan, const PassRegistry& registry,
+                          const PassCheckOptions& options) {
+  Diagnostics out;
+  const GraphDesc& g = pipeline.graph;
+  DocLocator locator(pipeline.file);
+  for (size_t p = 0; p < g.passes.size(); ++p) {
+    const PassDecl& pd = g.passes[p];
+    if (!pd.enabled) continue;
+    if (!options.culledPasses && p < plan.passes.size() && plan.passes[p].culled) continue;
+    const PassTypeDesc* type = registry.find(pd.type);
+    if (!type) continue;
+    const std::string who = pd.type + " pass '" + pd.name + "'";
+    auto add = [&](DiagCode code, std::string message, SourceLocation where, std::string slot) {
+      Diagnostic d;
+      d.code = code;
+      d.message = who + ": " + message;
+      d.pass = pd.name;
+      d.slot = std::move(slot);
+      d.where = std::move(where);
+      out.push_back(std::move(d));
+    };
+    if (type->needsScene && options.scenePresent == false)
+      add(DiagCode::needs_scene, "needs a scene (rgraph render --scene ...)", pd.where, {});
+    if (!type->check) continue;
+
+    ParamSet params = defaultParams(type->params);
+    if (p < pipeline.params.size())
+      for (const auto& [k, v] : pipeline.params[p].values()) params.set(k, v);
+    const PassCheckContext ctx(pd.name, params, planSlots(g, plan, p), plan.output, options.scenePresent);
+    PassChecks checks;
+    type->check(ctx, checks);
+    for (const auto& e : checks.entries()) {
+      switch (e.kind) {
+        case PassChecks::Entry::Kind::slot:
+          add(DiagCode::pass_check, e.message, slotLocation(pd, *type, ctx, e.name, locator), e.name);
+          break;
+        case PassChecks::Entry::Kind::param:
+          add(DiagCode::pass_check, e.message, locator.locate(pd.where.path + "/params/" + e.name, pd.where), {});
+          break;
+        case PassChecks::Entry::Kind::pass:
+          add(DiagCode::pass_check, e.message, pd.where, {});
+          break;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace rgraph

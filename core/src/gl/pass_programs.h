@@ -1,0 +1,56 @@
+// The programs of one pass, built by the executor from its type's
+// PassTypeDesc::programs(params) (the same specs `rgraph validate` checks),
+// and the sampled slots those programs read, with their texture units.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rgraph/gl/executor.h"
+#include "rgraph/gl/shader_library.h"
+#include "rgraph/pass.h"
+
+namespace rgraph {
+
+class PassPrograms {
+ public:
+  // Builds every program of the specs through `shaders` (which caches them)
+  // and sets each sampler uniform to its unit, once. Throws RuntimeError
+  // naming the pass: programs() threw, a sampler names no unit or no sampled
+  // slot of the type, two slots share a unit, a shader fails to compile.
+  void build(const std::string& passName, const PassTypeDesc& type, const ParamSet& params, ShaderLibrary& shaders);
+
+  uint32_t program(size_t index, const std::string& passName) const;
+  size_t count() const { return ids_.size(); }
+
+  // Binds every sampled slot the specs name to its unit (texture 0 when the
+  // slot is unbound); unbindSlots puts texture 0 back on those units.
+  void bindSlots(const PassContext& ctx) const;
+  void unbindSlots() const;
+
+ private:
+  std::vector<uint32_t> ids_;
+  std::vector<std::pair<uint32_t, std::string>> units_;  // unit -> sampled slot, each unit once
+};
+
+// Records the programs a pass asks the ShaderLibrary for while it is set up
+// or executed (each once per pass) into `built` (Executor::builtPrograms),
+// for as long as it lives.
+class RequestRecorder {
+ public:
+  RequestRecorder(ShaderLibrary& shaders, std::vector<Executor::BuiltProgram>& built, const std::string& pass);
+  ~RequestRecorder();
+  RequestRecorder(const RequestRecorder&) = delete;
+  RequestRecorder& operator=(const RequestRecorder&) = delete;
+
+ private:
+  ShaderLibrary& shaders_;
+  std::vector<Executor::BuiltProgram>& built_;
+  const std::string& pass_;
+  std::vector<ProgramRequest> log_;
+};
+
+}  // namespace rgraph

@@ -1,0 +1,223 @@
+// Pass check hooks run without GL (rgraph/pass_check.h), and the on-disk cache
+// of the shader checks (rgraph/shader_check_cache.h).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "rgraph/config.h"
+#include "rgraph/registry.h"
+#include "rgraph/shader_check.h"
+#include "rgraph/shader_check_cache.h"
+
+namespace fs = std::filesystem;
+using namespace rgraph;
+
+namespace {
+
+const std::string kChecks = std::string(RGRAPH_SOURCE_DIR) + "/tests/configs/invalid/checks";
+const std::string kPipelines = std::string(RGRAPH_SOURCE_DIR) + "/pipelines";
+
+struct Loaded {
+  PipelineConfig pipeline;
+  Plan plan;
+};
+
+Loaded load(const std::string& path) {
+  Diagnostics diags;
+  ConfigDocument doc = ConfigDocument::parseFile(path, diags);
+  EXPECT_TRUE(doc.ok());
+  Loaded l;
+  l.pipeline = doc.build(PassRegistry::builtins(), diags);
+  EXPECT_FALSE(hasErrors(diags)) << (diags.empty() ? "" : formatDiagnostic(diags.front()));
+  l.plan = compile(l.pipeline.graph);
+  return l;
+}
+
+std::string lines(const Diagnostics& diags) {
+  std::string out;
+  for (const auto& d : diags) out += formatDiagnostic(d) + "\n";
+  return out;
+}
+
+class TempDir {
+ public:
+  TempDir() : path_(fs::temp_directory_path() / ("rgraph-cache-test-" + std::to_string(::getpid()))) {
+    fs::remove_all(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  std::string str() const { return path_.string(); }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+TEST(PassChecks, ShippedPipelinesPassEveryCheckWithAScene) {
+  for (const char* name : {"default.json", "deferred-pbr.json", "deferred-tiled.json", "deferred-compact.json",
+                           "forward.json", "gbuffer-debug.json"}) {
+    Loaded l = load(kPipelines + "/" + name);
+    PassCheckOptions o;
+    o.scenePresent = true;
+    EXPECT_EQ(lines(runPassChecks(l.pipeline, l.plan, PassRegistry::builtins(), o)), "") << name;
+  }
+}
+
+TEST(PassChecks, SceneIsRequiredOnlyWhenKnownToBeAbsent) {
+  Loaded l = load(kPipelines + "/deferred-pbr.json");
+  PassCheckOptions unknown;  // plain validate: no scene named, none refused
+  EXPECT_EQ(lines(runPassChecks(l.pipeline, l.plan, PassRegistry::builtins(), unknown)), "");
+  PassCheckOptions none;
+  none.scenePresent = false;
+  const Diagnostics d = runPassChecks(l.pipeline, l.plan, PassRegistry::builtins(), none);
+  // geometry, deferred_lighting and forward draw the scene; depth_blit and tonemap do not.
+  ASSERT_EQ(d.size(), 3u) << lines(d);
+  EXPECT_EQ(d[0].code, DiagCode::needs_scene);
+  EXPECT_EQ(d[0].pass, "gbuffer");
+  EXPECT_EQ(d[0].where.path, "/passes/0");
+  EXPECT_GT(d[0].where.line, 0);
+  EXPECT_NE(d[0].message.find("needs a scene"), std::string::npos) << d[0].message;
+  EXPECT_EQ(d[1].pass, "lighting");
+  EXPECT_EQ(d[2].pass, "forward");
+}
+
+TEST(PassChecks, SizesComeFromThePlanAtItsOutputSize) {
+  Loaded l = load(kChecks + "/tonemap_half_size_hdr.json");
+  CompileOptions small;
+  small.output = {64, 32};
+  const Plan plan = compile(l.pipeline.graph, small);
+  const Diagnostics d = runPassChecks(l.pipeline, plan, PassRegistry::builtins());
+  ASSERT_EQ(d.size(), 1u) << lines(d);
+  EXPECT_EQ(d[0].code, DiagCode::pass_check);
+  EXPECT_EQ(d[0].slot, "hdr");
+  EXPECT_EQ(d[0].where.path, "/passes/4/inputs/hdr");
+  EXPECT_NE(d[0].message.find("'hdr' (32x16) and 'output' (64x32)"), std::string::npos) << d[0].message;
+}
+
+TEST(PassChecks, ParamErrorsPointAtTheParam) {
+  // A pass type of this test whose hook refuses a parameter.
+  PassRegistry registry;
+  PassTypeDesc t;
+  t.name = "picky";
+  t.slots = {SlotDecl{"color", Access::color_attachment}};
+  ParamDecl p;
+  p.name = "level";
+  p.type = ParamType::integer;
+  p.defaultValue = int64_t{1};
+  t.params = {p};
+  t.check = [](const PassCheckContext& ctx, PassChecks& checks) {
+    if (ctx.params().getInt("level") > 2) checks.paramError("level", "level above 2 is not supported");
+  };
+  t.create = [] { return std::unique_ptr<PassInstance>(); };  // never run here
+  std::string error;
+  ASSERT_TRUE(registry.add(t, &error)) << error;
+  const fs::path file = fs::temp_directory_path() / ("rgraph-picky-" + std::to_string(::getpid()) + ".json");
+  std::ofstream(file) << "{\"version\": 1, \"resources\": {\"out\": {\"format\": \"rgba8\"}},\n"
+                         " \"passes\": [{\"name\": \"p\", \"type\": \"picky\",\n"
+                         "   \"params\": {\"level\": 3}, \"outputs\": {\"color\": \"out\"}}],\n"
+                         " \"output\": \"out\"}\n";
+  Diagnostics diags;
+  PipelineConfig pipeline = ConfigDocument::parseFile(file.string(), diags).build(registry, diags);
+  ASSERT_FALSE(hasErrors(diags)) << lines(diags);
+  const Diagnostics d = runPassChecks(pipeline, compile(pipeline.graph), registry);
+  fs::remove(file);
+  ASSERT_EQ(d.size(), 1u) << lines(d);
+  EXPECT_EQ(d[0].where.path, "/passes/0/params/level");
+  EXPECT_EQ(d[0].where.line, 3);
+  EXPECT_EQ(d[0].where.column, 24);
+  EXPECT_EQ(d[0].message, "picky pass 'p': level above 2 is not supported");
+}
+
+TEST(ShaderCheckCache, SecondRunIsAHitWithTheSameDiagnostics) {
+  TempDir dir;
+  Loaded l = load(kChecks + "/lighting_missing_material.json");  // has shader errors and warnings
+  ShaderChecker first;
+  const CachedShaderCheck a = checkPipelineCached(first, l.pipeline, l.plan, PassRegistry::builtins(), dir.str());
+  EXPECT_FALSE(a.hit);
+  EXPECT_GT(first.stats().programsCompiled, 0u);
+  ASSERT_TRUE(hasErrors(a.diagnostics));
+
+  ShaderChecker second;
+  const CachedShaderCheck b = checkPipelineCached(second, l.pipeline, l.plan, PassRegistry::builtins(), dir.str());
+  EXPECT_TRUE(b.hit);
+  EXPECT_EQ(second.stats().programsCompiled, 0u) << "a hit must not run glslang";
+  EXPECT_EQ(lines(b.diagnostics), lines(a.diagnostics));
+  for (size_t i = 0; i < a.diagnostics.size() && i < b.diagnostics.size(); ++i) {
+    EXPECT_EQ(b.diagnostics[i].code, a.diagnostics[i].code);
+    EXPECT_EQ(b.diagnostics[i].pass, a.diagnostics[i].pass);
+    EXPECT_EQ(b.diagnostics[i].slot, a.diagnostics[i].slot);
+  }
+}
+
+TEST(ShaderCheckCache, ADifferentParamIsAMiss) {
+  TempDir dir;
+  Loaded l = load(kPipelines + "/deferred-pbr.json");
+  ShaderChecker c;
+  EXPECT_FALSE(checkPipelineCached(c, l.pipeline, l.plan, PassRegistry::builtins(), dir.str()).hit);
+  l.pipeline.params[1].set("model", std::string("blinn_phong"));  // other defines for the lighting program
+  EXPECT_FALSE(checkPipelineCached(c, l.pipeline, l.plan, PassRegistry::builtins(), dir.str()).hit);
+  EXPECT_TRUE(checkPipelineCached(c, l.pipeline, l.plan, PassRegistry::builtins(), dir.str()).hit);
+}
+
+TEST(ShaderCheckCache, DamagedEntriesAreIgnoredAndRewritten) {
+  TempDir dir;
+  Loaded l = load(kChecks + "/lighting_missing_material.json");
+  ShaderChecker c;
+  const CachedShaderCheck fresh = checkPipelineCached(c, l.pipeline, l.plan, PassRegistry::builtins(), dir.str());
+  std::vector<fs::path> entries;
+  for (const auto& e : fs::directory_iterator(dir.path())) entries.push_back(e.path());
+  ASSERT_EQ(entries.size(), 1u) << "one entry, no temporary file left behind";
+  const std::string text = [&] {
+    std::ifstream in(entries[0]);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  for (const std::string& damaged : {text.substr(0, text.size() / 2), std::string("\x01garbage"), std::string(),
+                                     std::string("{\"check\": \"0000000000000000\", \"diagnostics\": []}")}) {
+    std::ofstream(entries[0], std::ios::trunc) << damaged;
+    ShaderChecker again;
+    const CachedShaderCheck r = checkPipelineCached(again, l.pipeline, l.plan, PassRegistry::builtins(), dir.str());
+    EXPECT_FALSE(r.hit) << "damaged entry used: " << damaged.substr(0, 40);
+    EXPECT_EQ(lines(r.diagnostics), lines(fresh.diagnostics));
+    ShaderChecker third;
+    EXPECT_TRUE(checkPipelineCached(third, l.pipeline, l.plan, PassRegistry::builtins(), dir.str()).hit)
+        << "the damaged entry was not rewritten";
+  }
+}
+
+TEST(ShaderCheckCache, AChangedShaderSourceIsAMiss) {
+  TempDir dir;
+  const fs::path shaders = dir.path() / "shaders";
+  fs::create_directories(shaders);
+  std::ofstream(shaders / "cache_probe.frag") << "#version 450 core\nlayout(location = 0) out vec4 o;\n"
+                                                 "void main() { o = vec4(1.0); }\n";
+  PipelineConfig pipeline;
+  Diagnostics diags;
+  pipeline = ConfigDocument::parseText(
+                 "{\"version\": 1, \"resources\": {\"out\": {\"format\": \"rgba8\"}}, \"passes\": [{\"name\": \"f\", "
+                 "\"type\": \"fullscreen\", \"params\": {\"shader\": \"cache_probe.frag\"}, \"outputs\": {\"color\": "
+                 "\"out\"}}], \"output\": \"out\"}",
+                 "probe.json", diags)
+                 .build(PassRegistry::builtins(), diags);
+  ASSERT_FALSE(hasErrors(diags)) << lines(diags);
+  const Plan plan = compile(pipeline.graph);
+  std::vector<std::string> dirs = {shaders.string()};
+  for (auto& d : defaultShaderSearchDirectories()) dirs.push_back(d);
+  const std::string cache = (dir.path() / "cache").string();
+  ShaderChecker c(dirs);
+  EXPECT_FALSE(checkPipelineCached(c, pipeline, plan, PassRegistry::builtins(), cache).hit);
+  EXPECT_TRUE(checkPipelineCached(c, pipeline, plan, PassRegistry::builtins(), cache).hit);
+  // Now a compile error: the cached "no error" must not be reused.
+  std::ofstream(shaders / "cache_probe.frag", std::ios::trunc)
+      << "#version 450 core\nlayout(location = 0) out vec4 o;\nvoid main() { o = vec4(1.0) }\n";
+  ShaderChecker after(dirs);
+  const CachedShaderCheck r = checkPipelineCached(after, pipeline, plan, PassRegistry::builtins(), cache);
+  EXPECT_FALSE(r.hit);
+  EXPECT_TRUE(hasErrors(r.diagnostics)) << lines(r.diagnostics);
+}
+
+}  // namespace
