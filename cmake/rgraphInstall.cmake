@@ -2,7 +2,7 @@
 #   bin/rgraph                                  the command line
 #   <libdir>/librgraph.so                       the library (graph, GL backend, built-in passes)
 #   <libdir>/rgraph/plugins/librgraph_*.so      plugins (rgraph_add_plugin)
-#   include/rgraph/**                           public headers (with gl/)
+#   include/rgraph/**                           public headers (with gl/, and passes/ from passes/common)
 #   share/rgraph/shaders/**                     built-in shaders
 #   share/rgraph/plugins/<name>/                plugin shaders (rgraph_add_plugin)
 #   share/rgraph/pipelines/**                   pipelines (`rgraph render` finds default.json here)
@@ -14,6 +14,8 @@ set_target_properties(rgraph_cli PROPERTIES INSTALL_RPATH "$ORIGIN/../${CMAKE_IN
 install(TARGETS rgraph_lib EXPORT rgraphTargets LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS rgraph_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/rgraph DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+  FILES_MATCHING PATTERN "*.h")
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/passes/common/include/rgraph DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   FILES_MATCHING PATTERN "*.h")
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/shaders/ DESTINATION ${RGRAPH_SHADER_INSTALL_DIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/pipelines/ DESTINATION ${CMAKE_INSTALL_DATADIR}/rgraph/pipelines

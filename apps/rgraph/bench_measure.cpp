@@ -44,13 +44,13 @@ Measured measure(PipelineConfig cfg, const Scene& scene, Extent size, ShaderLibr
     CompileOptions opts;
     opts.output = size;
     const Plan declared = compile(cfg.graph, opts);
-    m.gbufferBytes = gbufferBytesPerPixel(cfg, declared);
+    m.gbufferBytes = gbufferBytesPerPixel(cfg, declared, PassRegistry::builtins());
   }
   adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));  // as `rgraph render` does
   const uint64_t errorsBefore = context.debugErrorCount();
   Executor exec(cfg, PassRegistry::builtins(), shaders, &scene);
   exec.resize(size);
-  m.gbufferBytesAdapted = gbufferBytesPerPixel(cfg, exec.plan());
+  m.gbufferBytesAdapted = gbufferBytesPerPixel(cfg, exec.plan(), PassRegistry::builtins());
   m.allocatedBytes = exec.plan().allocatedBytes;
   m.naiveBytes = exec.plan().naiveBytes;
 

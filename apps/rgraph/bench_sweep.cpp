@@ -9,6 +9,7 @@
 
 #include "bench.h"
 #include "rgraph/error.h"
+#include "rgraph/passes/gbuffer_layout.h"
 #include "rgraph/registry.h"
 
 namespace rgraph::cli::bench {
@@ -57,20 +58,11 @@ std::string describe(const Config& c) {
 
 namespace {
 
-struct LayoutTargets {
-  std::vector<std::pair<std::string, std::string>> color;  // slot -> format, in slot order
-  std::string depth;
-};
-
-LayoutTargets layoutTargets(const std::string& layout) {
-  if (layout == "learnopengl")
-    return {{{"position", "rgba16f"}, {"normal", "rgba16f"}, {"albedo", "rgba8"}}, "depth24_stencil8"};
-  if (layout == "compact") return {{{"normal", "rg16f"}, {"albedo", "rgba8"}, {"material", "rg8"}}, "depth32f"};
-  if (layout == "fp32")
-    return {{{"position", "rgba32f"}, {"normal", "rgba32f"}, {"albedo", "rgba32f"}, {"material", "rgba32f"}},
-            "depth32f"};
-  return {{{"position", "rgba16f"}, {"normal", "rgba16f"}, {"albedo", "rgba16f"}, {"material", "rgba16f"}},
-          "depth24_stencil8"};  // pbr: 4 x 8 + 4 = 36 bytes per pixel
+// The G-buffer targets of a layout, in the formats of its table row.
+const gbuffer::Layout& benchLayout(const std::string& name) {
+  for (const auto& l : gbuffer::layouts())
+    if (l.name == name) return l;
+  throw RuntimeError("rgraph bench: no G-buffer layout '" + name + "' (layouts: " + gbuffer::nameList(false) + ")");
 }
 
 json lightingParams(const Config& c) {
@@ -96,17 +88,18 @@ std::string pipelineJson(const Config& c, bool reference) {
                       {"params", params},
                       {"outputs", {{"color", "hdr"}, {"depth", "depth"}}}});
   } else {
-    const LayoutTargets t = layoutTargets(c.layout);
+    const gbuffer::Layout& layout = benchLayout(c.layout);
+    const std::string depthFormat(formatName(layout.depth));
     json gOutputs = json::object(), gInputs = json::object();
-    for (const auto& [slot, format] : t.color) {
-      const std::string name = "g_" + slot;
-      res[name] = {{"format", format}, {"size", "output"}};
-      gOutputs[slot] = name;
-      gInputs[slot] = name;
+    for (const auto& t : layout.targets) {
+      const std::string name = "g_" + t.slot;
+      res[name] = {{"format", formatName(t.format)}, {"size", "output"}};
+      gOutputs[t.slot] = name;
+      gInputs[t.slot] = name;
     }
-    res["g_depth"] = {{"format", t.depth}, {"size", "output"}};
+    res["g_depth"] = {{"format", depthFormat}, {"size", "output"}};
     gOutputs["depth"] = "g_depth";
-    if (c.layout == "compact") gInputs["depth"] = "g_depth";  // position rebuilt from depth
+    if (layout.positionFromDepth) gInputs["depth"] = "g_depth";
     passes.push_back(
         {{"name", "gbuffer"}, {"type", "geometry"}, {"params", {{"layout", c.layout}}}, {"outputs", gOutputs}});
     json params = lightingParams(c);
@@ -127,9 +120,9 @@ std::string pipelineJson(const Config& c, bool reference) {
                         {"inputs", gInputs},
                         {"outputs", {{"color", "hdr"}}}});
       json vin = gInputs;
-      if (c.layout == "compact") {
+      if (layout.positionFromDepth) {
         // The volumes sample depth: test against a copy (no feedback loop).
-        res["volume_depth"] = {{"format", t.depth}, {"size", "output"}};
+        res["volume_depth"] = {{"format", depthFormat}, {"size", "output"}};
         passes.push_back({{"name", "depth_copy"},
                           {"type", "depth_blit"},
                           {"inputs", {{"src", "g_depth"}}},

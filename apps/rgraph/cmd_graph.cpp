@@ -27,9 +27,14 @@ std::optional<std::pair<PipelineConfig, Plan>> loadAndCompile(const std::string&
   return std::make_pair(std::move(*pipeline), std::move(plan));
 }
 
-nlohmann::json passName(const Plan& plan, int order) {
-  if (order < 0 || order >= static_cast<int>(plan.order.size())) return nullptr;
-  return plan.passes[plan.order[order]].name;
+// The plans printed here are ok (rgraph/graph.h: valid steps name passes that run).
+template <class Tag>
+nlohmann::json indexJson(PlanIndex<Tag> i) {
+  return i.valid() ? nlohmann::json(i.value()) : nlohmann::json(nullptr);
+}
+
+nlohmann::json passName(const Plan& plan, StepIndex step) {
+  return step.valid() ? nlohmann::json(plan.pass(plan.step(step)).name) : nlohmann::json(nullptr);
 }
 
 nlohmann::json planJson(const Plan& plan) {
@@ -37,7 +42,7 @@ nlohmann::json planJson(const Plan& plan) {
   for (const auto& p : plan.passes) {
     passes.push_back({{"name", p.name},
                       {"type", p.type},
-                      {"order", p.culled ? nlohmann::json(nullptr) : nlohmann::json(p.order)},
+                      {"order", indexJson(p.order)},
                       {"culled", p.culled},
                       {"reason", p.reason}});
   }
@@ -50,16 +55,16 @@ nlohmann::json planJson(const Plan& plan) {
                          {"height", r.extent.height},
                          {"first_pass", passName(plan, r.firstPass)},
                          {"last_pass", passName(plan, r.lastPass)},
-                         {"first_order", r.firstPass < 0 ? nlohmann::json(nullptr) : nlohmann::json(r.firstPass)},
-                         {"last_order", r.lastPass < 0 ? nlohmann::json(nullptr) : nlohmann::json(r.lastPass)},
-                         {"physical", r.physical < 0 ? nlohmann::json(nullptr) : nlohmann::json(r.physical)},
+                         {"first_order", indexJson(r.firstPass)},
+                         {"last_order", indexJson(r.lastPass)},
+                         {"physical", indexJson(r.physical)},
                          {"bytes", r.bytes},
                          {"versions", r.versions}});
   }
   nlohmann::json physical = nlohmann::json::array();
   for (const auto& ph : plan.physical) {
     nlohmann::json names = nlohmann::json::array();
-    for (uint32_t r : ph.resources) names.push_back(plan.resources[r].name);
+    for (ResourceIndex r : ph.resources) names.push_back(plan.resource(r).name);
     physical.push_back({{"format", formatName(ph.format)},
                         {"width", ph.extent.width},
                         {"height", ph.extent.height},
@@ -82,25 +87,25 @@ std::string mib(uint64_t bytes) {
 void printPlanText(const Plan& plan) {
   std::cout << "passes (" << plan.order.size() << " run, " << plan.passes.size() - plan.order.size()
             << " culled) at " << plan.output.width << "x" << plan.output.height << ":\n";
-  for (uint32_t idx : plan.order) {
-    const auto& p = plan.passes[idx];
-    std::cout << "  " << std::setw(3) << p.order << "  " << std::left << std::setw(24) << p.name << std::right << " ("
-              << p.type << ")\n";
+  for (PassIndex idx : plan.order) {
+    const auto& p = plan.pass(idx);
+    std::cout << "  " << std::setw(3) << p.order.value() << "  " << std::left << std::setw(24) << p.name << std::right
+              << " (" << p.type << ")\n";
   }
   for (const auto& p : plan.passes)
     if (p.culled) std::cout << "  cut  " << std::left << std::setw(24) << p.name << std::right << " " << p.reason << "\n";
   std::cout << "resources:\n";
   for (const auto& r : plan.resources) {
     std::cout << "  " << std::left << std::setw(20) << r.name << std::right;
-    if (r.firstPass < 0) {
+    if (!r.firstPass.valid()) {
       std::cout << " unused\n";
       continue;
     }
-    std::cout << " passes " << r.firstPass << ".." << r.lastPass;
+    std::cout << " passes " << r.firstPass.value() << ".." << r.lastPass.value();
     if (r.imported)
       std::cout << "  imported";
     else
-      std::cout << "  physical #" << r.physical;
+      std::cout << "  physical #" << r.physical.value();
     std::cout << "  " << mib(r.bytes) << "\n";
   }
   std::cout << "memory: naive " << mib(plan.naiveBytes) << ", allocated " << mib(plan.allocatedBytes) << " in "
@@ -148,8 +153,8 @@ int runPlan(const std::string& path, const SizeOptions& size, bool json, const s
                             adaptedDiags, /*scenePresent=*/true);
   printDiagnostics(adaptedDiags);
   if (hasErrors(adaptedDiags)) return kExitFailure;
-  const uint32_t before = gbufferBytesPerPixel(result->first, result->second);
-  const uint32_t after = gbufferBytesPerPixel(adapted, plan);
+  const uint32_t before = gbufferBytesPerPixel(result->first, result->second, PassRegistry::builtins());
+  const uint32_t after = gbufferBytesPerPixel(adapted, plan, PassRegistry::builtins());
   if (json) {
     nlohmann::json out = planJson(plan);
     out["scene"] = {{"source", scene.source},

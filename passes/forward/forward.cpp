@@ -4,11 +4,11 @@
 #include <GL/glcorearb.h>
 
 #include "rgraph/error.h"
-#include "rgraph/gl/forward_shading.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
-#include "rgraph/gl/lighting_options.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/forward_shading.h"
+#include "rgraph/passes/lighting_options.h"
 #include "rgraph/registry.h"
 
 namespace {

@@ -6,32 +6,14 @@
 #include "rgraph/error.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
-#include "rgraph/gl/lighting_options.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/gbuffer_layout.h"
+#include "rgraph/passes/lighting_options.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
 
 namespace {
 using namespace rgraph;
-
-struct Layout {
-  const char* name;
-  const char* define;
-  bool position, material;  // which optional slots the layout writes
-  uint32_t normalComponents;
-};
-constexpr Layout kLayouts[] = {
-    {"learnopengl", "GBUFFER_LEARNOPENGL", true, false, 3},
-    {"pbr", "GBUFFER_PBR", true, true, 3},
-    {"compact", "GBUFFER_COMPACT", false, true, 2},
-    {"fp32", "GBUFFER_FP32", true, true, 3},
-};
-
-const Layout& findLayout(const std::string& name) {
-  for (const auto& l : kLayouts)
-    if (name == l.name) return l;
-  return kLayouts[1];
-}
 
 class GeometryPass final : public PassInstance {
  public:
@@ -46,7 +28,7 @@ class GeometryPass final : public PassInstance {
     const float one = 1.0f;
     const GLuint fbo = ctx.framebuffer();
     GLint drawBuffers = 0;
-    for (const char* slot : {"position", "normal", "albedo", "material"})
+    for (const auto& slot : gbuffer::colorSlots())
       if (ctx.bound(slot)) glClearNamedFramebufferfv(fbo, GL_COLOR, drawBuffers++, zero);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
@@ -63,21 +45,19 @@ class GeometryPass final : public PassInstance {
   uint32_t program_ = 0;
 };
 
-// The targets the layout writes are exactly the bound ones.
+// The targets the layout writes are exactly the bound ones (gbuffer_layout.h).
 void checkGeometry(const PassCheckContext& ctx, PassChecks& checks) {
-  const Layout& layout = findLayout(ctx.params().getString("layout", "pbr"));
-  auto require = [&](const char* slot, bool wanted) {
+  const gbuffer::Layout& layout = gbuffer::of(ctx.params());
+  auto require = [&](const std::string& slot, bool wanted) {
     if (ctx.bound(slot) != wanted)
-      checks.slotError(slot, std::string("layout '") + layout.name + "' " + (wanted ? "writes" : "does not write") +
-                                 " a '" + slot + "' target; " +
-                                 (wanted ? "bind it in outputs" : "remove it from outputs"));
+      checks.slotError(slot, "layout '" + layout.name + "' " + (wanted ? "writes" : "does not write") + " a '" + slot +
+                                 "' target; " + (wanted ? "bind it in outputs" : "remove it from outputs"));
   };
-  require("position", layout.position);
-  require("material", layout.material && !ctx.params().getBool("constant_material", false));
+  require("position", layout.writes("position"));
+  require("material", layout.writes("material") && !ctx.params().getBool("constant_material", false));
   if (auto normal = ctx.format("normal"); normal && formatInfo(*normal).components < layout.normalComponents)
-    checks.slotError("normal", std::string("layout '") + layout.name + "' needs " +
-                                   std::to_string(layout.normalComponents) + " components in 'normal', got " +
-                                   std::string(formatName(*normal)));
+    checks.slotError("normal", "layout '" + layout.name + "' needs " + std::to_string(layout.normalComponents) +
+                                   " components in 'normal', got " + std::string(formatName(*normal)));
 }
 
 PassTypeDesc makeGeometryPass() {
@@ -98,9 +78,9 @@ PassTypeDesc makeGeometryPass() {
       slot("depth", Access::depth_attachment, true, SlotDecl::Load::never, "scene depth",
            {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}),
   };
-  d.params = {param("layout", ParamType::enumeration, std::string("pbr"),
-                    "G-buffer layout: learnopengl, pbr (4x rgba16f), compact (no position, octahedral normal), fp32",
-                    {"learnopengl", "pbr", "compact", "fp32"})};
+  for (auto& s : d.slots) s.gbufferTarget = true;  // what `rgraph plan --scene` counts as G-buffer bytes
+  d.params = {param("layout", ParamType::enumeration, std::string(gbuffer::kDefaultLayout),
+                    "G-buffer layout: " + gbuffer::nameList(true), gbuffer::names())};
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
   d.adapt = lighting::adaptGBuffer;
   d.programs = [](const ParamSet& p) {  // HAS_NORMAL_MAPS follows the scene: both variants

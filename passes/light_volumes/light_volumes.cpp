@@ -8,8 +8,8 @@
 #include "rgraph/error.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
-#include "rgraph/gl/lighting_options.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/lighting_options.h"
 #include "rgraph/registry.h"
 
 namespace {

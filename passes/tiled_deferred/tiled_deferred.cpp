@@ -3,7 +3,7 @@
 // frustum into a shared-memory list, and shades its pixels with that list
 // only (ambient and the directional light too, unless another pass adds
 // them), storing the HDR result with image stores. Same lighting maths and
-// defines as deferred_lighting and light_volumes (rgraph/gl/lighting_options.h).
+// defines as deferred_lighting and light_volumes (rgraph/passes/lighting_options.h).
 #include <GL/glcorearb.h>
 
 #include <algorithm>
@@ -11,9 +11,9 @@
 
 #include "rgraph/error.h"
 #include "rgraph/gl/gpu_scene.h"
-#include "rgraph/gl/lighting_options.h"
 #include "rgraph/gl/uniform.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/lighting_options.h"
 #include "rgraph/registry.h"
 
 namespace {

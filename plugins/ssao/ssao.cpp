@@ -18,9 +18,10 @@
 #include "rgraph/error.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
-#include "rgraph/gl/lighting_options.h"
 #include "rgraph/gl/objects.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/gbuffer_layout.h"
+#include "rgraph/passes/lighting_options.h"
 #include "rgraph/plugin.h"
 
 namespace {
@@ -140,10 +141,10 @@ void registerSsao(PluginHost& host) {
       return std::vector<ShaderProgramSpec>{s};
     };
     d.check = [](const PassCheckContext& ctx, PassChecks& checks) {
-      const std::string layout = ctx.params().getString("layout", "pbr");
-      const std::string needed = layout == "compact" ? "depth" : "position";
+      const gbuffer::Layout& layout = gbuffer::of(ctx.params());
+      const std::string needed = layout.positionSlot();
       if (!ctx.bound(needed))
-        checks.slotError(needed, "input '" + needed + "' is required by layout '" + layout + "' but not bound");
+        checks.slotError(needed, "input '" + needed + "' is required by layout '" + layout.name + "' but not bound");
     };
     d.needsScene = true;  // for the camera
     d.create = [] { return std::make_unique<SsaoPass>(); };

@@ -1,10 +1,10 @@
 // G-buffer layouts. Exactly one of these is defined by the pass that includes
 // this file: GBUFFER_LEARNOPENGL, GBUFFER_PBR, GBUFFER_COMPACT, GBUFFER_FP32.
-//   learnopengl: position rgba16f | normal rgba16f | albedo.rgb + specular rgba8
-//   pbr:         position rgba16f | normal rgba16f | albedo rgba16f | metallic, roughness, ao rgba16f
-//   compact:     no position (rebuilt from depth) | octahedral normal rg16f | albedo + specular rgba8
-//                | metallic, roughness rg8
-//   fp32:        the pbr layout in rgba32f (the reference)
+// What each stores, in which formats, is the layout table in
+// passes/common/include/rgraph/passes/gbuffer_layout.h (compact: no position,
+// rebuilt from depth; octahedral normal rg; fp32: the pbr layout in rgba32f,
+// the reference). gbuffer.frag writes the targets in the table's slot order.
+// include/gbuffer_read.glsl reads them back.
 
 struct Surface {
   vec3 position;   // world space

@@ -101,7 +101,7 @@ TEST(AdaptToScene, NoBlendMaterialsAndNoLightsDropTheForwardPassAndItsDepthBlit)
   // Nothing reads the blitted depth any more: the compiler culls the blit and
   // allocates no forward depth buffer.
   EXPECT_TRUE(passNamed(a.planAfter, "depth_blit").culled);
-  EXPECT_EQ(resourceNamed(a.planAfter, "forwardDepth").physical, -1);
+  EXPECT_FALSE(resourceNamed(a.planAfter, "forwardDepth").physical.valid());
   EXPECT_LT(a.planAfter.allocatedBytes, a.planBefore.allocatedBytes);
 }
 
@@ -127,12 +127,12 @@ TEST(AdaptToScene, OneMetallicRoughnessDropsTheMaterialTarget) {
   Scene scene = cubeScene();
   ASSERT_FALSE(scene.hasMetallicRoughnessVariation());
   Adapted a = adapt("deferred-pbr.json", scene);
-  EXPECT_GE(resourceNamed(a.planBefore, "gMetalRough").physical, 0);
-  EXPECT_EQ(resourceNamed(a.planAfter, "gMetalRough").physical, -1);
-  EXPECT_EQ(resourceNamed(a.planAfter, "gMetalRough").firstPass, -1);
+  EXPECT_TRUE(resourceNamed(a.planBefore, "gMetalRough").physical.valid());
+  EXPECT_FALSE(resourceNamed(a.planAfter, "gMetalRough").physical.valid());
+  EXPECT_FALSE(resourceNamed(a.planAfter, "gMetalRough").firstPass.valid());
   // PBR layout: 4 x rgba16f + depth32f = 36 bytes; without the material target 28.
-  EXPECT_EQ(gbufferBytesPerPixel(a.before, a.planBefore), 36u);
-  EXPECT_EQ(gbufferBytesPerPixel(a.after, a.planAfter), 28u);
+  EXPECT_EQ(gbufferBytesPerPixel(a.before, a.planBefore, PassRegistry::builtins()), 36u);
+  EXPECT_EQ(gbufferBytesPerPixel(a.after, a.planAfter, PassRegistry::builtins()), 28u);
   // The lighting pass gets the scene's values instead.
   const size_t lighting = 1;
   ASSERT_EQ(a.after.graph.passes[lighting].name, "lighting");
@@ -150,8 +150,8 @@ TEST(AdaptToScene, MetallicRoughnessVariationKeepsTheMaterialTarget) {
   p.material = 1;
   scene.primitives.push_back(p);
   Adapted a = adapt("deferred-pbr.json", scene);
-  EXPECT_GE(resourceNamed(a.planAfter, "gMetalRough").physical, 0);
-  EXPECT_EQ(gbufferBytesPerPixel(a.after, a.planAfter), 36u);
+  EXPECT_TRUE(resourceNamed(a.planAfter, "gMetalRough").physical.valid());
+  EXPECT_EQ(gbufferBytesPerPixel(a.after, a.planAfter, PassRegistry::builtins()), 36u);
 }
 
 TEST(AdaptToScene, NormalMapsAreAFeatureOfTheScene) {
@@ -168,7 +168,8 @@ TEST(AdaptToScene, TheLearnOpenGLSceneNeedsEverythingItsPipelineHas) {
   Adapted a = adapt("deferred-light-volumes.json", makeLearnOpenGLScene());
   for (const auto& p : a.planAfter.passes) EXPECT_FALSE(p.culled) << p.name;
   // learnopengl layout has no material target to drop.
-  EXPECT_EQ(gbufferBytesPerPixel(a.before, a.planBefore), gbufferBytesPerPixel(a.after, a.planAfter));
+  EXPECT_EQ(gbufferBytesPerPixel(a.before, a.planBefore, PassRegistry::builtins()),
+            gbufferBytesPerPixel(a.after, a.planAfter, PassRegistry::builtins()));
 }
 
 }  // namespace

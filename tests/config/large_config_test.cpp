@@ -1,7 +1,7 @@
 // Large configs take the loader's paths for size: objects with many members
 // are searched through a hash index (while parsing and when locating), and
-// version names are resolved by a walk that does not depend on the order the
-// passes are declared in. They must give the same answers as small ones.
+// version names are resolved (by the compiler) whatever order the passes are
+// declared in. They must give the same answers as small ones.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -97,7 +97,7 @@ TEST_F(GlTest, InvertTwiceThroughAliasedTexturesIsIdentity) {
   const Plan& plan = exec.plan();
   ASSERT_TRUE(plan.ok());
   // a dies when invert1 ends; c starts after: they share one physical texture.
-  EXPECT_GE(plan.resources[0].physical, 0);
+  EXPECT_TRUE(plan.resources[0].physical.valid());
   EXPECT_EQ(plan.resources[0].physical, plan.resources[2].physical);
   EXPECT_NE(plan.resources[0].physical, plan.resources[1].physical);
   EXPECT_EQ(plan.physical.size(), 2u);

@@ -211,7 +211,7 @@ TEST_F(GlTest, AliasOfImageStoreTargetGetsFramebufferBarrier) {
   exec.resize(kSize);
   const Plan& plan = exec.plan();
   ASSERT_EQ(plan.order.size(), 4u);
-  ASSERT_GE(plan.resources[0].physical, 0);
+  ASSERT_TRUE(plan.resources[0].physical.valid());
   ASSERT_EQ(plan.resources[0].physical, plan.resources[1].physical) << "a and c are expected to share memory";
   const std::vector<uint32_t> want = {0, GL_TEXTURE_FETCH_BARRIER_BIT, GL_FRAMEBUFFER_BARRIER_BIT, 0};
   EXPECT_EQ(exec.memoryBarriers(), want) << bitsText(exec.memoryBarriers());
@@ -240,7 +240,7 @@ TEST_F(GlTest, ClearOfAnAliasOfImageStoreTargetGetsTextureUpdateBarrier) {
   exec.resize(kSize);
   const Plan& plan = exec.plan();
   ASSERT_EQ(plan.order.size(), 4u);
-  ASSERT_GE(plan.resources[0].physical, 0);
+  ASSERT_TRUE(plan.resources[0].physical.valid());
   ASSERT_EQ(plan.resources[0].physical, plan.resources[1].physical) << "a and c are expected to share memory";
   const std::vector<uint32_t> want = {0, GL_TEXTURE_FETCH_BARRIER_BIT,
                                       GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT,

@@ -31,17 +31,17 @@ TEST(Compile, LinearGraphOrderLifetimesAndBindings) {
   ASSERT_TRUE(plan.ok()) << dumpDiagnostics(plan);
   EXPECT_EQ(orderNames(plan), (Strings{"gbuffer", "lighting", "tonemap"}));
   EXPECT_EQ(plan.output, (Extent{1280, 720}));
-  EXPECT_EQ(plan.outputResource, 3);
+  EXPECT_EQ(plan.outputResource, ResourceIndex(3));
   EXPECT_EQ(plan.outputVersion, "out");
-  EXPECT_EQ(res(plan, "gColor").firstPass, 0);
-  EXPECT_EQ(res(plan, "gColor").lastPass, 1);
-  EXPECT_EQ(res(plan, "gDepth").firstPass, 0);
-  EXPECT_EQ(res(plan, "gDepth").lastPass, 1);
-  EXPECT_EQ(res(plan, "hdr").firstPass, 1);
-  EXPECT_EQ(res(plan, "hdr").lastPass, 2);
-  EXPECT_EQ(res(plan, "out").firstPass, 2);
-  EXPECT_EQ(res(plan, "out").lastPass, 2);
-  EXPECT_EQ(res(plan, "out").physical, -1);
+  EXPECT_EQ(res(plan, "gColor").firstPass, StepIndex(0));
+  EXPECT_EQ(res(plan, "gColor").lastPass, StepIndex(1));
+  EXPECT_EQ(res(plan, "gDepth").firstPass, StepIndex(0));
+  EXPECT_EQ(res(plan, "gDepth").lastPass, StepIndex(1));
+  EXPECT_EQ(res(plan, "hdr").firstPass, StepIndex(1));
+  EXPECT_EQ(res(plan, "hdr").lastPass, StepIndex(2));
+  EXPECT_EQ(res(plan, "out").firstPass, StepIndex(2));
+  EXPECT_EQ(res(plan, "out").lastPass, StepIndex(2));
+  EXPECT_FALSE(res(plan, "out").physical.valid());
   EXPECT_EQ(res(plan, "hdr").extent, (Extent{1280, 720}));
   EXPECT_EQ(res(plan, "hdr").bytes, 1280u * 720u * 8u);
 
@@ -50,12 +50,12 @@ TEST(Compile, LinearGraphOrderLifetimesAndBindings) {
   const BoundUse& albedo = plan.bindings[1][0];
   EXPECT_EQ(albedo.slot, "albedo");
   EXPECT_EQ(albedo.access, Access::sampled);
-  EXPECT_EQ(albedo.resource, 0);
+  EXPECT_EQ(albedo.resource, ResourceIndex(0));
   EXPECT_EQ(albedo.readVersion, "gColor");
   EXPECT_TRUE(albedo.writeVersion.empty());
   EXPECT_FALSE(albedo.firstWrite);
   const BoundUse& hdr = plan.bindings[1][2];
-  EXPECT_EQ(hdr.resource, 2);
+  EXPECT_EQ(hdr.resource, ResourceIndex(2));
   EXPECT_EQ(hdr.writeVersion, "hdr");
   EXPECT_TRUE(hdr.readVersion.empty());
   EXPECT_TRUE(hdr.firstWrite);
@@ -73,10 +73,10 @@ TEST(Compile, OrderRespectsDependenciesWhenDeclaredOutOfOrder) {
   EXPECT_EQ(orderNames(plan), (Strings{"gbuffer", "lighting", "tonemap"}));
   // Plan::passes stays in declaration order.
   EXPECT_EQ(plan.passes[0].name, "tonemap");
-  EXPECT_EQ(plan.passes[0].decl, 0u);
-  EXPECT_EQ(plan.passes[0].order, 2);
-  EXPECT_EQ(plan.passes[2].order, 0);
-  EXPECT_EQ(plan.order, (std::vector<uint32_t>{2, 1, 0}));
+  EXPECT_EQ(plan.passes[0].decl, PassIndex(0));
+  EXPECT_EQ(plan.passes[0].order, StepIndex(2));
+  EXPECT_EQ(plan.passes[2].order, StepIndex(0));
+  EXPECT_EQ(plan.order, (std::vector<PassIndex>{PassIndex(2), PassIndex(1), PassIndex(0)}));
 }
 
 TEST(Compile, TiesKeepDeclarationOrderAndCompileIsDeterministic) {
@@ -110,16 +110,16 @@ TEST(Compile, CullsDebugPassAndTheChainBehindIt) {
   EXPECT_EQ(orderNames(plan), (Strings{"render", "present"}));
   const PlannedPass& debug = plan.passes[2];
   EXPECT_TRUE(debug.culled);
-  EXPECT_EQ(debug.order, -1);
+  EXPECT_FALSE(debug.order.valid());
   EXPECT_NE(debug.reason.find("debug_view"), std::string::npos) << debug.reason;
   EXPECT_NE(debug.reason.find("never read"), std::string::npos) << debug.reason;
   EXPECT_TRUE(plan.passes[1].culled);
   EXPECT_NE(plan.passes[1].reason.find("dbg_a"), std::string::npos);
   EXPECT_FALSE(plan.passes[0].culled);
   // Resources only culled passes touch are unused: no physical, no bytes.
-  EXPECT_EQ(res(plan, "debug_view").physical, -1);
-  EXPECT_EQ(res(plan, "debug_view").firstPass, -1);
-  EXPECT_EQ(res(plan, "dbg_a").physical, -1);
+  EXPECT_FALSE(res(plan, "debug_view").physical.valid());
+  EXPECT_FALSE(res(plan, "debug_view").firstPass.valid());
+  EXPECT_FALSE(res(plan, "dbg_a").physical.valid());
   EXPECT_EQ(plan.naiveBytes, res(plan, "scene").bytes);
   EXPECT_EQ(plan.allocatedBytes, res(plan, "scene").bytes);
   ASSERT_EQ(plan.physical.size(), 1u);
@@ -141,8 +141,8 @@ TEST(Compile, SideEffectPassIsNotCulledNorAnythingItNeeds) {
   ASSERT_TRUE(plan.ok()) << dumpDiagnostics(plan);
   EXPECT_EQ(orderNames(plan), (Strings{"render", "luminance", "readback", "present"}));
   EXPECT_TRUE(plan.passes[4].culled);
-  EXPECT_EQ(res(plan, "stats").firstPass, 2);
-  EXPECT_GE(res(plan, "stats").physical, 0);
+  EXPECT_EQ(res(plan, "stats").firstPass, StepIndex(2));
+  EXPECT_TRUE(res(plan, "stats").physical.valid());
 }
 
 TEST(Compile, InPlaceVersionsShareOneResourceAndPhysical) {
@@ -160,13 +160,13 @@ TEST(Compile, InPlaceVersionsShareOneResourceAndPhysical) {
   EXPECT_EQ(orderNames(plan), (Strings{"clear", "lights", "sky", "tonemap"}));
   const PlannedResource& hdr = res(plan, "hdr");
   EXPECT_EQ(hdr.versions, (Strings{"hdr", "hdr_lit", "hdr_sky"}));
-  EXPECT_EQ(hdr.firstPass, 0);
-  EXPECT_EQ(hdr.lastPass, 3);
+  EXPECT_EQ(hdr.firstPass, StepIndex(0));
+  EXPECT_EQ(hdr.lastPass, StepIndex(3));
   ASSERT_EQ(plan.physical.size(), 1u);
-  EXPECT_EQ(plan.physical[0].resources, (std::vector<uint32_t>{0}));
+  EXPECT_EQ(plan.physical[0].resources, (std::vector<ResourceIndex>{ResourceIndex(0)}));
   EXPECT_EQ(plan.physical[0].format, Format::rgba16f);
   const BoundUse& lit = plan.bindings[1][0];
-  EXPECT_EQ(lit.resource, 0);
+  EXPECT_EQ(lit.resource, ResourceIndex(0));
   EXPECT_EQ(lit.readVersion, "hdr");
   EXPECT_EQ(lit.writeVersion, "hdr_lit");
   EXPECT_FALSE(lit.firstWrite);
@@ -177,7 +177,7 @@ TEST(Compile, InPlaceVersionsShareOneResourceAndPhysical) {
   d.passes.pop_back();
   Plan p2 = compile(d);
   ASSERT_TRUE(p2.ok()) << dumpDiagnostics(p2);
-  EXPECT_EQ(p2.outputResource, 0);
+  EXPECT_EQ(p2.outputResource, ResourceIndex(0));
   EXPECT_EQ(p2.outputVersion, "hdr_lit");
   EXPECT_EQ(orderNames(p2), (Strings{"clear", "lights"}));
 }
@@ -198,8 +198,8 @@ TEST(Compile, WriteAfterReadRunsReaderOfOldVersionFirst) {
   ASSERT_TRUE(plan.ok()) << dumpDiagnostics(plan);
   EXPECT_EQ(orderNames(plan), (Strings{"base", "extract", "blend", "compose"}));
   // Aliasing must respect the in-place chain: hdr lives from base to compose.
-  EXPECT_EQ(res(plan, "hdr").firstPass, 0);
-  EXPECT_EQ(res(plan, "hdr").lastPass, 3);
+  EXPECT_EQ(res(plan, "hdr").firstPass, StepIndex(0));
+  EXPECT_EQ(res(plan, "hdr").lastPass, StepIndex(3));
   EXPECT_NE(res(plan, "hdr").physical, res(plan, "bright").physical);
 }
 
@@ -234,14 +234,14 @@ TEST(Compile, ImportedResourcesAreReadableAndNeverPooled) {
   EXPECT_EQ(orderNames(plan), (Strings{"sky", "fx", "present"}));
   const PlannedResource& env = res(plan, "env");
   EXPECT_TRUE(env.imported);
-  EXPECT_EQ(env.physical, -1);
-  EXPECT_EQ(env.firstPass, 0);
-  EXPECT_EQ(env.lastPass, 2);
-  EXPECT_EQ(res(plan, "out").physical, -1);
+  EXPECT_FALSE(env.physical.valid());
+  EXPECT_EQ(env.firstPass, StepIndex(0));
+  EXPECT_EQ(env.lastPass, StepIndex(2));
+  EXPECT_FALSE(res(plan, "out").physical.valid());
   // Transient a [0,1] and b [1,2] overlap; env never joins a pool even though its descriptor matches.
   ASSERT_EQ(plan.physical.size(), 2u);
   for (const auto& ph : plan.physical)
-    for (uint32_t r : ph.resources) EXPECT_FALSE(plan.resources[r].imported);
+    for (ResourceIndex r : ph.resources) EXPECT_FALSE(plan.resource(r).imported);
   EXPECT_EQ(plan.naiveBytes, 2u * 1280u * 720u * 8u);
 }
 
@@ -259,12 +259,12 @@ TEST(Compile, DisabledInPlacePassIsAPassThrough) {
   EXPECT_EQ(orderNames(plan), (Strings{"lighting", "tonemap"}));
   EXPECT_TRUE(plan.passes[1].culled);
   EXPECT_EQ(plan.passes[1].reason, "disabled");
-  EXPECT_EQ(plan.passes[1].order, -1);
+  EXPECT_FALSE(plan.passes[1].order.valid());
   EXPECT_EQ(res(plan, "hdr").versions, (Strings{"hdr", "hdr_bloom"}));
-  EXPECT_EQ(res(plan, "hdr").firstPass, 0);
-  EXPECT_EQ(res(plan, "hdr").lastPass, 1);
+  EXPECT_EQ(res(plan, "hdr").firstPass, StepIndex(0));
+  EXPECT_EQ(res(plan, "hdr").lastPass, StepIndex(1));
   // The tonemap binding still names the version, resolved to the same resource.
-  EXPECT_EQ(plan.bindings[2][0].resource, 0);
+  EXPECT_EQ(plan.bindings[2][0].resource, ResourceIndex(0));
   EXPECT_EQ(plan.bindings[2][0].readVersion, "hdr_bloom");
 }
 
@@ -280,7 +280,7 @@ TEST(Compile, DisabledPassThroughAtTheEndStillFeedsTheOutput) {
   ASSERT_TRUE(plan.ok()) << dumpDiagnostics(plan);
   // The disabled overlay aliases "out": that is the version actually written.
   EXPECT_EQ(plan.outputVersion, "out");
-  EXPECT_EQ(plan.outputResource, 0);
+  EXPECT_EQ(plan.outputResource, ResourceIndex(0));
   EXPECT_EQ(orderNames(plan), (Strings{"draw"}));
 }
 
@@ -321,13 +321,13 @@ TEST(Compile, LongInPlaceChainOfOneResource) {
   Plan plan = compile(d);
   ASSERT_TRUE(plan.ok()) << dumpDiagnostics(plan);
   ASSERT_EQ(plan.order.size(), static_cast<size_t>(n + 2));
-  EXPECT_EQ(plan.passes[plan.order.front()].name, "clear");
-  EXPECT_EQ(plan.passes[plan.order.back()].name, "present");
+  EXPECT_EQ(plan.pass(plan.order.front()).name, "clear");
+  EXPECT_EQ(plan.pass(plan.order.back()).name, "present");
   for (int i = 0; i < n; ++i) EXPECT_EQ(orderOf(plan, "add" + std::to_string(i)), i + 1);
   EXPECT_EQ(res(plan, "acc").versions.size(), static_cast<size_t>(n + 1));
   EXPECT_EQ(res(plan, "acc").versions.back(), prev);
-  EXPECT_EQ(res(plan, "acc").firstPass, 0);
-  EXPECT_EQ(res(plan, "acc").lastPass, n + 1);
+  EXPECT_EQ(res(plan, "acc").firstPass, StepIndex(0));
+  EXPECT_EQ(res(plan, "acc").lastPass, StepIndex(n + 1));
   EXPECT_EQ(plan.physical.size(), 1u);
 }
 
@@ -350,16 +350,16 @@ TEST(Compile, AliasingSharesExactlyAlternateChainTextures) {
   Plan plan = compile(chain(4));
   ASSERT_TRUE(plan.ok()) << dumpDiagnostics(plan);
   for (int i = 0; i < 4; ++i) {
-    EXPECT_EQ(plan.resources[i].firstPass, i);
-    EXPECT_EQ(plan.resources[i].lastPass, i + 1);
+    EXPECT_EQ(plan.resources[i].firstPass, StepIndex(i));
+    EXPECT_EQ(plan.resources[i].lastPass, StepIndex(i + 1));
   }
   ASSERT_EQ(plan.physical.size(), 2u);
-  EXPECT_EQ(plan.physical[0].resources, (std::vector<uint32_t>{0, 2}));
-  EXPECT_EQ(plan.physical[1].resources, (std::vector<uint32_t>{1, 3}));
-  EXPECT_EQ(plan.resources[0].physical, 0);
-  EXPECT_EQ(plan.resources[1].physical, 1);
-  EXPECT_EQ(plan.resources[2].physical, 0);
-  EXPECT_EQ(plan.resources[3].physical, 1);
+  EXPECT_EQ(plan.physical[0].resources, (std::vector<ResourceIndex>{ResourceIndex(0), ResourceIndex(2)}));
+  EXPECT_EQ(plan.physical[1].resources, (std::vector<ResourceIndex>{ResourceIndex(1), ResourceIndex(3)}));
+  EXPECT_EQ(plan.resources[0].physical, PhysicalIndex(0));
+  EXPECT_EQ(plan.resources[1].physical, PhysicalIndex(1));
+  EXPECT_EQ(plan.resources[2].physical, PhysicalIndex(0));
+  EXPECT_EQ(plan.resources[3].physical, PhysicalIndex(1));
   const uint64_t one = 1280ull * 720ull * 4ull;
   EXPECT_EQ(plan.naiveBytes, 4 * one);
   EXPECT_EQ(plan.allocatedBytes, 2 * one);
@@ -410,11 +410,11 @@ TEST(Compile, IncompatibleDescriptorsNeverShare) {
   ASSERT_TRUE(plan.ok()) << dumpDiagnostics(plan);
   // Only a [0,1] and f [5,6] match (b [1,2] matches too, but the lowest free physical wins).
   ASSERT_EQ(plan.physical.size(), 6u);
-  EXPECT_EQ(plan.physical[0].resources, (std::vector<uint32_t>{0, 5}));
+  EXPECT_EQ(plan.physical[0].resources, (std::vector<ResourceIndex>{ResourceIndex(0), ResourceIndex(5)}));
   for (size_t i = 1; i < plan.physical.size(); ++i) EXPECT_EQ(plan.physical[i].resources.size(), 1u) << i;
   EXPECT_EQ(res(plan, "d").extent, (Extent{640, 360}));
-  EXPECT_EQ(plan.physical[res(plan, "e").physical].mips, 11u);  // full chain of 1280x720
-  EXPECT_EQ(plan.physical[res(plan, "g").physical].samples, 4u);
+  EXPECT_EQ(plan.physicalTexture(res(plan, "e").physical).mips, 11u);  // full chain of 1280x720
+  EXPECT_EQ(plan.physicalTexture(res(plan, "g").physical).samples, 4u);
   EXPECT_LT(plan.allocatedBytes, plan.naiveBytes);
 }
 
@@ -438,8 +438,8 @@ TEST(Compile, BuffersArePooledBySize) {
   EXPECT_NE(res(plan, "big").physical, res(plan, "b0").physical);
   EXPECT_NE(res(plan, "big").physical, res(plan, "b1").physical);
   EXPECT_EQ(plan.physical.size(), 3u);
-  EXPECT_EQ(plan.physical[res(plan, "big").physical].kind, ResourceKind::buffer);
-  EXPECT_EQ(plan.physical[res(plan, "big").physical].bytes, 4096u);
+  EXPECT_EQ(plan.physicalTexture(res(plan, "big").physical).kind, ResourceKind::buffer);
+  EXPECT_EQ(plan.physicalTexture(res(plan, "big").physical).bytes, 4096u);
   EXPECT_EQ(plan.naiveBytes, 3u * 1024u + 4096u);
   EXPECT_EQ(plan.allocatedBytes, 2u * 1024u + 4096u);
 }
@@ -450,9 +450,9 @@ TEST(Compile, UnusedTransientHasNoPhysicalAndNoBytes) {
   Plan plan = compile(d);
   ASSERT_TRUE(plan.ok()) << dumpDiagnostics(plan);
   const PlannedResource& spare = res(plan, "spare");
-  EXPECT_EQ(spare.physical, -1);
-  EXPECT_EQ(spare.firstPass, -1);
-  EXPECT_EQ(spare.lastPass, -1);
+  EXPECT_FALSE(spare.physical.valid());
+  EXPECT_FALSE(spare.firstPass.valid());
+  EXPECT_FALSE(spare.lastPass.valid());
   EXPECT_EQ(spare.bytes, 1280u * 720u * 16u);
   EXPECT_EQ(plan.naiveBytes, res(plan, "gColor").bytes + res(plan, "gDepth").bytes + res(plan, "hdr").bytes);
 }

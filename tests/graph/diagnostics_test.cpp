@@ -60,7 +60,7 @@ TEST(Diagnostics, UnknownResourceOnReadSuggestsAName) {
   // The plan is still filled in.
   EXPECT_EQ(plan.passes.size(), 2u);
   EXPECT_EQ(plan.bindings.size(), 2u);
-  EXPECT_EQ(plan.bindings[1][0].resource, -1);
+  EXPECT_FALSE(plan.bindings[1][0].resource.valid());
 }
 
 TEST(Diagnostics, UnknownResourceOnWriteAndOnOutput) {
@@ -185,7 +185,7 @@ TEST(Diagnostics, CycleNamesThePassesInOrder) {
   EXPECT_EQ(dg.pass, "a");
   expectWhere(dg, at(3, 5, "/passes/0"));
   ASSERT_EQ(plan.passes.size(), 3u);
-  for (const auto& p : plan.passes) EXPECT_EQ(p.order, -1);
+  for (const auto& p : plan.passes) EXPECT_FALSE(p.order.valid());
   EXPECT_TRUE(plan.order.empty());
   EXPECT_EQ(plan.bindings.size(), 3u);
 }
@@ -221,7 +221,7 @@ TEST(Diagnostics, LongerCycleAndUnrelatedPassesStayFilledIn) {
   const Diagnostic& dg = only(plan, DiagCode::cycle);
   EXPECT_EQ(dg.message.rfind("cycle: c -> a -> b -> c", 0), 0u) << dg.message;
   EXPECT_EQ(plan.passes[0].name, "present");
-  EXPECT_EQ(plan.passes[0].order, -1);
+  EXPECT_FALSE(plan.passes[0].order.valid());
 }
 
 TEST(Diagnostics, FeedbackLoop) {
@@ -343,7 +343,7 @@ TEST(Diagnostics, NoOutput) {
   Plan plan = compile(d);
   const Diagnostic& dg = only(plan, DiagCode::no_output);
   expectWhere(dg, at(1, 1, ""));
-  EXPECT_EQ(plan.outputResource, -1);
+  EXPECT_FALSE(plan.outputResource.valid());
   // Nothing reaches an output, so everything without a side effect is culled.
   EXPECT_TRUE(plan.order.empty());
 }
@@ -382,7 +382,7 @@ TEST(Diagnostics, DuplicateResource) {
   EXPECT_TRUE(contains(dg.message, "graph.json:2")) << dg.message;
   expectWhere(dg, at(7, 3, "/resources/2"));
   EXPECT_EQ(plan.resources.size(), 3u);
-  EXPECT_EQ(plan.resources[2].physical, -1);
+  EXPECT_FALSE(plan.resources[2].physical.valid());
 }
 
 TEST(Diagnostics, InvalidResources) {

@@ -67,7 +67,7 @@ TEST(Dot, PassesVersionsEdgesCullingAndAliasing) {
   EXPECT_TRUE(contains(debugLine, "never read")) << debugLine;
   EXPECT_FALSE(contains(lineOf(dot, p1), "dashed"));
   // Aliased t0/t2 share a fill colour and a "phys #N" line; t1 differs.
-  const std::string phys = "phys #" + std::to_string(plan.resources[0].physical);
+  const std::string phys = "phys #" + std::to_string(plan.resources[0].physical.value());
   EXPECT_TRUE(contains(lineOf(dot, t0), phys)) << lineOf(dot, t0);
   EXPECT_TRUE(contains(lineOf(dot, t2), phys)) << lineOf(dot, t2);
   EXPECT_FALSE(contains(lineOf(dot, t1), phys));

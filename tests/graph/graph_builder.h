@@ -89,7 +89,9 @@ inline int passIndex(const Plan& plan, const std::string& name) {
 }
 inline int orderOf(const Plan& plan, const std::string& name) {
   int i = passIndex(plan, name);
-  return i < 0 ? -2 : plan.passes[i].order;
+  if (i < 0) return -2;
+  const StepIndex s = plan.passes[i].order;
+  return s.valid() ? static_cast<int>(s.value()) : -1;
 }
 inline int resourceIndex(const Plan& plan, const std::string& name) {
   for (size_t i = 0; i < plan.resources.size(); ++i)
@@ -104,7 +106,7 @@ inline const PlannedResource& res(const Plan& plan, const std::string& name) {
 // Names of the passes in execution order.
 inline std::vector<std::string> orderNames(const Plan& plan) {
   std::vector<std::string> out;
-  for (uint32_t p : plan.order) out.push_back(plan.passes[p].name);
+  for (PassIndex p : plan.order) out.push_back(plan.pass(p).name);
   return out;
 }
 inline std::vector<const Diagnostic*> withCode(const Plan& plan, DiagCode c) {

@@ -41,12 +41,12 @@ const PlannedPass& planned(const Plan& plan, const std::string& name) {
 TEST(OutputVersion, IntermediateVersionIsTheImageAndLaterWritersAreCulled) {
   Plan plan = compile(chain("h_1"));
   ASSERT_TRUE(plan.ok()) << dumpDiagnostics(plan);
-  EXPECT_EQ(plan.outputResource, 0);
+  EXPECT_EQ(plan.outputResource, ResourceIndex(0));
   EXPECT_EQ(plan.outputVersion, "h_1");
   EXPECT_EQ(orderNames(plan), (Strings{"draw", "blur"}));
   const PlannedPass& grade = planned(plan, "grade");
   EXPECT_TRUE(grade.culled);
-  EXPECT_EQ(grade.order, -1);
+  EXPECT_FALSE(grade.order.valid());
   EXPECT_EQ(grade.reason,
             "it writes 'h_2', a later version of 'h' than the output 'h_1', and nothing that reaches the output "
             "reads its outputs (h_2)");
@@ -55,7 +55,7 @@ TEST(OutputVersion, IntermediateVersionIsTheImageAndLaterWritersAreCulled) {
   EXPECT_TRUE(contains(planned(plan, "probe").reason, "never read by a pass that reaches the output"))
       << planned(plan, "probe").reason;
   // h lives from draw to blur only.
-  EXPECT_EQ(res(plan, "h").lastPass, 1);
+  EXPECT_EQ(res(plan, "h").lastPass, StepIndex(1));
 }
 
 TEST(OutputVersion, ResourceNameIsItsFirstVersion) {

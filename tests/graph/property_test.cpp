@@ -37,25 +37,27 @@ void checkPlan(const RandomGraph& g, const Plan& plan, const CompileOptions& opt
   ASSERT_TRUE(plan.ok()) << dumpDiagnostics(plan);
   ASSERT_EQ(plan.passes.size(), d.passes.size());
   ASSERT_EQ(plan.resources.size(), d.resources.size());
+  EXPECT_EQ(checkPlanContract(plan), "");
+  const auto step = [](int i) { return i < 0 ? StepIndex() : StepIndex(static_cast<uint32_t>(i)); };
 
   // The order lists every live pass once, consistently with PlannedPass::order.
   std::vector<int> pos(d.passes.size(), -1);
   for (size_t i = 0; i < plan.order.size(); ++i) {
-    uint32_t p = plan.order[i];
+    const uint32_t p = plan.order[i].value();
     ASSERT_LT(p, d.passes.size());
     ASSERT_EQ(pos[p], -1) << "pass listed twice";
     pos[p] = static_cast<int>(i);
   }
   for (size_t p = 0; p < d.passes.size(); ++p) {
-    EXPECT_EQ(plan.passes[p].decl, p);
-    EXPECT_EQ(plan.passes[p].order, pos[p]);
+    EXPECT_EQ(plan.passes[p].decl, PassIndex(static_cast<uint32_t>(p)));
+    EXPECT_EQ(plan.passes[p].order, step(pos[p]));
     EXPECT_EQ(plan.passes[p].culled, pos[p] < 0);
     if (d.passes[p].sideEffect) {
       EXPECT_FALSE(plan.passes[p].culled) << d.passes[p].name;
     }
   }
   // The output's writer is live.
-  ASSERT_GE(plan.outputResource, 0);
+  ASSERT_TRUE(plan.outputResource.valid());
   // Every dependency edge between live passes is respected; a live pass's data
   // producers are live.
   for (const DepEdge& e : g.edges) {
@@ -69,21 +71,22 @@ void checkPlan(const RandomGraph& g, const Plan& plan, const CompileOptions& opt
   // Lifetimes, recomputed from the bindings and the order.
   std::vector<int> first(d.resources.size(), -1), last(d.resources.size(), -1);
   for (size_t i = 0; i < plan.order.size(); ++i)
-    for (const BoundUse& b : plan.bindings[plan.order[i]]) {
-      ASSERT_GE(b.resource, 0);
-      if (first[b.resource] < 0) first[b.resource] = static_cast<int>(i);
-      last[b.resource] = static_cast<int>(i);
+    for (const BoundUse& b : plan.uses(plan.order[i])) {
+      ASSERT_TRUE(b.resource.valid());
+      const uint32_t r = b.resource.value();
+      if (first[r] < 0) first[r] = static_cast<int>(i);
+      last[r] = static_cast<int>(i);
     }
   uint64_t naive = 0;
   for (size_t r = 0; r < d.resources.size(); ++r) {
     const PlannedResource& pr = plan.resources[r];
-    EXPECT_EQ(pr.firstPass, first[r]) << pr.name;
-    EXPECT_EQ(pr.lastPass, last[r]) << pr.name;
+    EXPECT_EQ(pr.firstPass, step(first[r])) << pr.name;
+    EXPECT_EQ(pr.lastPass, step(last[r])) << pr.name;
     const bool live = first[r] >= 0;
     if (d.resources[r].imported || !live) {
-      EXPECT_EQ(pr.physical, -1) << pr.name;
+      EXPECT_FALSE(pr.physical.valid()) << pr.name;
     } else {
-      EXPECT_GE(pr.physical, 0) << pr.name;
+      EXPECT_TRUE(pr.physical.valid()) << pr.name;
       naive += pr.bytes;
     }
   }
@@ -96,19 +99,19 @@ void checkPlan(const RandomGraph& g, const Plan& plan, const CompileOptions& opt
     ASSERT_FALSE(pt.resources.empty());
     allocated += pt.bytes;
     members += pt.resources.size();
-    const Descriptor ref = descriptorOf(d.resources[pt.resources[0]], options.output);
+    const Descriptor ref = descriptorOf(d.resources[pt.resources[0].value()], options.output);
     for (size_t i = 0; i < pt.resources.size(); ++i) {
-      uint32_t r = pt.resources[i];
-      EXPECT_EQ(plan.resources[r].physical, static_cast<int>(ph));
+      const uint32_t r = pt.resources[i].value();
+      EXPECT_EQ(plan.resources[r].physical, PhysicalIndex(static_cast<uint32_t>(ph)));
       EXPECT_EQ(plan.resources[r].bytes, pt.bytes);
       EXPECT_TRUE(descriptorOf(d.resources[r], options.output) == ref)
-          << plan.resources[r].name << " vs " << plan.resources[pt.resources[0]].name;
+          << plan.resources[r].name << " vs " << plan.resource(pt.resources[0]).name;
       if (i > 0) {
-        EXPECT_LE(plan.resources[pt.resources[i - 1]].firstPass, plan.resources[r].firstPass);
+        EXPECT_LE(plan.resource(pt.resources[i - 1]).firstPass, plan.resources[r].firstPass);
       }
       for (size_t j = i + 1; j < pt.resources.size(); ++j) {
         const PlannedResource& a = plan.resources[r];
-        const PlannedResource& b = plan.resources[pt.resources[j]];
+        const PlannedResource& b = plan.resource(pt.resources[j]);
         EXPECT_TRUE(a.lastPass < b.firstPass || b.lastPass < a.firstPass)
             << a.name << " [" << a.firstPass << "," << a.lastPass << "] and " << b.name << " [" << b.firstPass << ","
             << b.lastPass << "] share physical " << ph;
@@ -118,7 +121,7 @@ void checkPlan(const RandomGraph& g, const Plan& plan, const CompileOptions& opt
   EXPECT_EQ(plan.allocatedBytes, allocated);
   EXPECT_LE(plan.allocatedBytes, plan.naiveBytes);
   size_t liveTransients = 0;
-  for (const auto& pr : plan.resources) liveTransients += pr.physical >= 0;
+  for (const auto& pr : plan.resources) liveTransients += pr.physical.valid();
   EXPECT_EQ(members, liveTransients);
   if (!options.alias) {
     EXPECT_EQ(plan.physical.size(), liveTransients);
@@ -166,8 +169,8 @@ TEST(Property, ShuffledDeclarationGivesTheSameLiveSet) {
     Plan a = compile(inOrder.desc), b = compile(shuffled.desc);
     ASSERT_TRUE(a.ok() && b.ok());
     std::set<std::string> liveA, liveB;
-    for (uint32_t p : a.order) liveA.insert(a.passes[p].name);
-    for (uint32_t p : b.order) liveB.insert(b.passes[p].name);
+    for (PassIndex p : a.order) liveA.insert(a.pass(p).name);
+    for (PassIndex p : b.order) liveB.insert(b.pass(p).name);
     EXPECT_EQ(liveA, liveB) << seed;
     // Declared in generation order, with no ties broken differently, the
     // order is the declaration order restricted to live passes.

@@ -16,6 +16,8 @@ need include/rgraph/plugin.h
 need include/rgraph/pass.h
 need include/rgraph/gl/shader_library.h
 need include/rgraph/gl/fullscreen.h
+need include/rgraph/passes/gbuffer_layout.h
+need include/rgraph/passes/lighting_options.h
 need share/rgraph/shaders/fullscreen.vert
 need share/rgraph/shaders/include/frame.glsl
 need share/rgraph/pipelines/default.json

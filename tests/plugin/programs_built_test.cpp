@@ -84,7 +84,7 @@ TEST(ProgramsBuilt, EveryShippedPipelineBuildsExactlyTheProgramsValidateChecks) 
 
     // The passes the plan runs (the checker also checks culled ones).
     std::set<std::string> planned;
-    for (uint32_t i : exec.plan().order) planned.insert(exec.plan().passes.at(i).name);
+    for (PassIndex i : exec.plan().order) planned.insert(exec.plan().pass(i).name);
     ProgramsByPass checked, built;
     for (const auto& c : checker.checkedPrograms())
       if (planned.count(c.pass)) checked[c.pass].insert(describe(request(c.spec)));

@@ -217,10 +217,10 @@ bool liveToTheEnd(const Plan& plan, const std::string& resource, std::string* wh
     return false;
   }
   const PlannedResource& me = plan.resources[index];
-  if (me.physical < 0) return true;  // its own texture
-  for (uint32_t other : plan.physical[me.physical].resources) {
-    if (static_cast<int>(other) == index) continue;
-    const PlannedResource& o = plan.resources[other];
+  if (!me.physical.valid()) return true;  // its own texture
+  for (ResourceIndex other : plan.physicalTexture(me.physical).resources) {
+    if (other == ResourceIndex(static_cast<uint32_t>(index))) continue;
+    const PlannedResource& o = plan.resource(other);
     if (o.firstPass > me.lastPass) {
       if (why) *why = "'" + o.name + "' reuses its texture after its last use";
       return false;

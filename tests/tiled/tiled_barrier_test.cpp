@@ -30,7 +30,7 @@ TEST_F(TiledBarriers, ShippedPipelineGetsBarriersFromDeclaredAccess) {
   const std::vector<uint32_t> bits = exec.memoryBarriers();
   ASSERT_EQ(bits.size(), exec.plan().order.size());
   std::vector<std::string> names;
-  for (uint32_t p : exec.plan().order) names.push_back(exec.plan().passes[p].name);
+  for (PassIndex p : exec.plan().order) names.push_back(exec.plan().pass(p).name);
   ASSERT_EQ(names, (std::vector<std::string>{"gbuffer", "tiled_lighting", "depth_blit", "light_boxes", "tonemap"}));
   EXPECT_EQ(bits[0], 0u);
   EXPECT_EQ(bits[1], 0u);  // reads the G-buffer, written by a fragment pass: coherent

@@ -21,8 +21,9 @@ struct AdaptReport {
 // Applies every pass type's adapt hook to the pipeline in place.
 AdaptReport adaptToScene(PipelineConfig& pipeline, const PassRegistry& registry, const SceneFeatures& features);
 
-// Bytes per pixel of the G-buffer: every attachment written by a live pass
-// of type "geometry" whose resource is used, at the output resolution.
-uint32_t gbufferBytesPerPixel(const PipelineConfig& pipeline, const Plan& plan);
+// Bytes per pixel of the G-buffer: every attachment a live pass writes
+// through a slot its type declares a G-buffer target (SlotDecl::gbufferTarget)
+// and whose resource is used, at the output resolution.
+uint32_t gbufferBytesPerPixel(const PipelineConfig& pipeline, const Plan& plan, const PassRegistry& registry);
 
 }  // namespace rgraph

@@ -80,4 +80,8 @@ bool hasErrors(const Diagnostics& d);
 // otherwise `error: message` prefixed with the pass/slot it concerns.
 std::string formatDiagnostic(const Diagnostic& d);
 
+// "Did you mean": the closest candidate by edit distance (<= max(2, len/3)),
+// or "". Shared by the config loader, the compiler and the pass registry.
+std::string closestMatch(std::string_view word, const std::vector<std::string>& candidates);
+
 }  // namespace rgraph

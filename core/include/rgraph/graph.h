@@ -18,7 +18,10 @@
 //    descriptors match and whose lifetimes do not overlap.
 #pragma once
 
+#include <cassert>
+#include <compare>
 #include <cstdint>
+#include <iosfwd>
 #include <optional>
 #include <string>
 #include <vector>
@@ -125,6 +128,37 @@ struct GraphDesc {
 
 // ---------------------------------------------------------------- the plan
 
+// An index into one of the plan's arrays, typed by that array: a
+// ResourceIndex cannot subscript Plan::physical, and "none" is a named state
+// (valid() is false) rather than -1. Nothing converts to or from an integer
+// implicitly: build one with an explicit value, read it with value() (to
+// subscript a vector) or through the Plan accessors below.
+template <class Tag>
+class PlanIndex {
+ public:
+  constexpr PlanIndex() = default;  // invalid
+  constexpr explicit PlanIndex(uint32_t i) : value_(i) {}
+  constexpr bool valid() const { return value_ != kInvalid; }
+  constexpr uint32_t value() const {
+    assert(valid());
+    return value_;
+  }
+  // Invalid orders after every valid index.
+  friend constexpr auto operator<=>(const PlanIndex&, const PlanIndex&) = default;
+
+ private:
+  static constexpr uint32_t kInvalid = UINT32_MAX;
+  uint32_t value_ = kInvalid;
+};
+// Prints the value, or "none" (test failures, logs).
+template <class Tag>
+std::ostream& operator<<(std::ostream& os, PlanIndex<Tag> i);
+
+using PassIndex = PlanIndex<struct PassIndexTag>;          // into Plan::passes / Plan::bindings (declaration order)
+using StepIndex = PlanIndex<struct StepIndexTag>;          // a position in Plan::order (execution order)
+using ResourceIndex = PlanIndex<struct ResourceIndexTag>;  // into Plan::resources (declaration order)
+using PhysicalIndex = PlanIndex<struct PhysicalIndexTag>;  // into Plan::physical
+
 struct CompileOptions {
   Extent output{1280, 720};
   bool alias = true;  // false: every transient gets its own physical texture
@@ -138,9 +172,9 @@ struct CompileOptions {
 };
 
 struct PlannedPass {
-  uint32_t decl = 0;          // index into GraphDesc::passes
+  PassIndex decl;             // index into GraphDesc::passes (and Plan::passes)
   std::string name, type;
-  int order = -1;             // position in execution order, -1 when culled
+  StepIndex order;            // position in execution order, invalid when culled
   bool culled = false;
   std::string reason;         // why culled ("disabled", "its outputs reach no output ...")
 };
@@ -151,9 +185,9 @@ struct PlannedResource {
   bool imported = false;
   Extent extent;              // resolved size (textures)
   uint64_t bytes = 0;         // memory it would need on its own
-  int firstPass = -1;         // execution-order index of first use, -1 when unused
-  int lastPass = -1;          // execution-order index of last use
-  int physical = -1;          // index into Plan::physical, -1 for imported/unused
+  StepIndex firstPass;        // execution-order index of first use, invalid when unused
+  StepIndex lastPass;         // execution-order index of last use
+  PhysicalIndex physical;     // invalid for imported and unused resources
   std::vector<std::string> versions;  // version names in write order
 };
 
@@ -163,7 +197,7 @@ struct PhysicalTexture {
   Extent extent;
   uint32_t mips = 1, samples = 1;
   uint64_t bytes = 0;
-  std::vector<uint32_t> resources;  // indices into Plan::resources sharing it, in first-use order
+  std::vector<ResourceIndex> resources;  // the resources sharing it, in first-use order
 };
 
 // A resolved binding of one slot for the executor: which resource and which
@@ -171,30 +205,59 @@ struct PhysicalTexture {
 struct BoundUse {
   std::string slot;
   Access access = Access::sampled;
-  int resource = -1;        // index into Plan::resources
+  ResourceIndex resource;   // invalid only in a plan that is not ok
   std::string readVersion;  // empty for a fresh write
   std::string writeVersion; // empty for a read
   bool firstWrite = false;  // writes version 0: apply the resource's clear here
 };
 
+// What a plan promises its readers (the executor, the memory barriers, the
+// CLI's plan printer), so that they index without checking bounds:
+//  * Always, ok or not: passes and bindings have one entry per GraphDesc
+//    pass, resources one per GraphDesc resource, in declaration order;
+//    passes[i].decl is i.
+//  * When ok():
+//    - every BoundUse::resource of every pass (culled or not) is valid;
+//    - a resource is used by a pass that runs exactly when its firstPass and
+//      lastPass are valid; every such resource is imported or has a valid
+//      physical, which lists it; a resource with a physical is not imported
+//      and is used;
+//    - order holds each pass that runs once, and passes[order[s]].order is s;
+//    - outputResource is valid, a texture, and used by a pass that runs (so
+//      it is imported or has a physical).
+// A plan that is not ok promises only the first point: readers that show
+// errors (validate, dot) check valid() before they index.
+// checkPlanContract() states the promise as code: compile() asserts it in
+// debug builds, and the tests check it for every ok plan they make.
 struct Plan {
   Extent output;
   std::vector<PlannedPass> passes;          // one per GraphDesc pass, declaration order
-  std::vector<uint32_t> order;              // indices into passes, execution order (culled excluded)
+  std::vector<PassIndex> order;             // execution order (culled excluded)
   std::vector<PlannedResource> resources;   // one per GraphDesc resource, declaration order
   std::vector<PhysicalTexture> physical;
   std::vector<std::vector<BoundUse>> bindings;  // per pass (declaration order)
-  int outputResource = -1;
+  ResourceIndex outputResource;
   std::string outputVersion;                // the version that becomes the image (see GraphDesc::output)
   uint64_t naiveBytes = 0;                  // every live transient on its own
   uint64_t allocatedBytes = 0;              // after aliasing
   Diagnostics diagnostics;
   bool ok() const { return !hasErrors(diagnostics); }
+
+  // Typed subscripts: an index of the wrong kind does not compile.
+  const PlannedPass& pass(PassIndex i) const { return passes[i.value()]; }
+  const std::vector<BoundUse>& uses(PassIndex i) const { return bindings[i.value()]; }
+  PassIndex step(StepIndex s) const { return order[s.value()]; }
+  const PlannedResource& resource(ResourceIndex i) const { return resources[i.value()]; }
+  const PhysicalTexture& physicalTexture(PhysicalIndex i) const { return physical[i.value()]; }
 };
 
 // Validate and compile. Never throws for bad input: problems are diagnostics.
 // When diagnostics contain errors, the plan's order/physical may be partial.
 Plan compile(const GraphDesc& desc, const CompileOptions& options = {});
+
+// The promise above, checked: empty when it holds (a plan that is not ok is
+// held to its first point only), otherwise the first broken point.
+std::string checkPlanContract(const Plan& plan);
 
 // Size in bytes of a texture with this descriptor at this extent (mips, samples included).
 uint64_t textureBytes(Format f, Extent e, uint32_t mips, uint32_t samples);

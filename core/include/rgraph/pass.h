@@ -32,6 +32,10 @@ struct SlotDecl {
   std::vector<Format> formats;  // accepted formats; empty accepts any
   bool acceptsMultisample = false;
   std::string description;
+  // A G-buffer target: gbufferBytesPerPixel (rgraph plan --scene, rgraph
+  // bench) counts the resources bound to such slots. Core knows no pass type
+  // by name; the pass type says which of its slots hold the G-buffer.
+  bool gbufferTarget = false;
 };
 
 class PassContext;

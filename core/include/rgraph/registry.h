@@ -32,9 +32,6 @@ class PassRegistry {
   std::map<std::string, PassTypeDesc, std::less<>> types_;
 };
 
-// Closest candidate by edit distance (<= max(2, len/3)), or "".
-std::string closestMatch(std::string_view word, const std::vector<std::string>& candidates);
-
 struct PassRegistrar {
   explicit PassRegistrar(PassTypeDesc (*make)());
 };

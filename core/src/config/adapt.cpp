@@ -33,17 +33,19 @@ AdaptReport adaptToScene(PipelineConfig& pipeline, const PassRegistry& registry,
   return report;
 }
 
-uint32_t gbufferBytesPerPixel(const PipelineConfig& pipeline, const Plan& plan) {
-  std::set<int> counted;
+uint32_t gbufferBytesPerPixel(const PipelineConfig& pipeline, const Plan& plan, const PassRegistry& registry) {
+  std::set<ResourceIndex> counted;
   uint32_t bytes = 0;
   for (size_t i = 0; i < plan.passes.size() && i < pipeline.graph.passes.size(); ++i) {
-    if (plan.passes[i].culled || pipeline.graph.passes[i].type != "geometry") continue;
+    const PassTypeDesc* type = registry.find(pipeline.graph.passes[i].type);
+    if (plan.passes[i].culled || !type) continue;
     for (const BoundUse& use : plan.bindings[i]) {
-      if (!isAttachmentAccess(use.access) || use.resource < 0 || !counted.insert(use.resource).second) continue;
-      const PlannedResource& r = plan.resources[use.resource];
-      if (r.firstPass < 0) continue;
-      bytes += formatInfo(pipeline.graph.resources[use.resource].texture.format).bytesPerPixel *
-               pipeline.graph.resources[use.resource].texture.samples;
+      const SlotDecl* slot = type->findSlot(use.slot);
+      if (!slot || !slot->gbufferTarget) continue;
+      if (!isAttachmentAccess(use.access) || !use.resource.valid() || !counted.insert(use.resource).second) continue;
+      if (!plan.resource(use.resource).firstPass.valid()) continue;
+      const TextureDesc& t = pipeline.graph.resources[use.resource.value()].texture;
+      bytes += formatInfo(t.format).bytesPerPixel * t.samples;
     }
   }
   return bytes;

@@ -5,7 +5,8 @@
 // (unknown resource names, read-before-write, cycles...) belong to compile().
 //
 // The Builder (config_builder.h) is split by subject: this file holds the top
-// level and the checks across resources and passes (versions, slot formats).
+// level and the checks across resources and passes (slot formats, on the
+// versions as the compiler resolves them).
 #include <algorithm>
 #include <cstddef>
 #include <set>
@@ -22,6 +23,15 @@ namespace rgraph::config_detail {
 namespace {
 
 const std::vector<std::string> kTopLevelKeys = {"version", "description", "plugins", "resources", "passes", "output"};
+
+// Every version name of the compiled plan -> its resource (views of the
+// plan's strings: the plan must outlive the map).
+VersionResources versionResources(const Plan& plan) {
+  VersionResources out;
+  for (size_t r = 0; r < plan.resources.size(); ++r)
+    for (const std::string& v : plan.resources[r].versions) out.emplace(v, r);
+  return out;
+}
 
 }  // namespace
 
@@ -134,53 +144,39 @@ void Builder::checkTopLevel() {
   else
     checkPasses(*it);
 
-  resolveVersions();
-  checkFormats();
-
+  GraphDesc& g = config_.graph;
+  bool outputNamed = false;
   if (auto it = root_.find("output"); it == root_.end()) {
     missing("output", "the name of the resource that becomes the output image");
   } else if (!it->is_string()) {
     typeError("/output", "a resource name (string)", *it);
   } else {
-    GraphDesc& g = config_.graph;
     g.output = it->get<std::string>();
     g.outputWhere = at("/output");
-    // The output image is the caller's: imported, never aliased, no content
-    // before the first write. Unknown names are left to compile().
-    if (auto r = versions_.find(g.output); r != versions_.end()) {
-      g.resources[r->second].imported = true;
-      g.resources[r->second].importedHasContent = false;
-    }
+    outputNamed = true;
+  }
+
+  // Version names resolve as the compiler resolves them (one resolution
+  // for the loader and the graph): compile() on the graph built so far, its
+  // diagnostics left to the caller's compile(). The loader needs the answer
+  // before that compile, for the slot formats and the output image. Names it
+  // cannot resolve (unknown, naming loops) are left to compile() as well.
+  CompileOptions options;
+  options.alias = false;  // only the version chains are read
+  const Plan plan = compile(g, options);
+  const VersionResources versions = versionResources(plan);
+  checkFormats(versions);
+  // The output image is the caller's: imported, never aliased, no content
+  // before the first write.
+  if (auto r = versions.find(g.output); outputNamed && r != versions.end()) {
+    g.resources[r->second].imported = true;
+    g.resources[r->second].importedHasContent = false;
   }
 }
 
 // ------------------------------------------------------------ formats
 
-// Maps version names to resources by following, within the document, the
-// passes that load one name and produce another: a breadth-first walk from
-// the resources, linear however the passes are ordered (a chain declared
-// last to first took one sweep over all passes per link). Best effort:
-// names that cannot be resolved are left to compile().
-void Builder::resolveVersions() {
-  std::unordered_map<std::string_view, std::vector<std::string_view>> produced;  // loaded name -> names made from it
-  for (const PassInfo& info : passInfo_) {
-    if (!info.type) continue;
-    for (const auto& [slot, out] : info.outputs) {
-      const SlotDecl* decl = info.type->findSlot(slot);
-      if (!decl || !writes(decl->access)) continue;
-      if (auto in = info.inputs.find(slot); in != info.inputs.end()) produced[in->second.name].push_back(out.name);
-    }
-  }
-  std::vector<std::pair<std::string_view, size_t>> queue(versions_.begin(), versions_.end());
-  for (size_t next = 0; next < queue.size(); ++next) {
-    auto edges = produced.find(queue[next].first);
-    if (edges == produced.end()) continue;
-    for (std::string_view out : edges->second)
-      if (versions_.emplace(std::string(out), queue[next].second).second) queue.emplace_back(out, queue[next].second);
-  }
-}
-
-void Builder::checkFormats() {
+void Builder::checkFormats(const VersionResources& versions) {
   const GraphDesc& g = config_.graph;
   for (size_t i = 0; i < passInfo_.size(); ++i) {
     const PassInfo& info = passInfo_[i];
@@ -191,8 +187,8 @@ void Builder::checkFormats() {
       if (auto in = info.inputs.find(slot.name); in != info.inputs.end()) bound.push_back(&in->second);
       if (auto out = info.outputs.find(slot.name); out != info.outputs.end()) bound.push_back(&out->second);
       for (const Binding* b : bound) {
-        auto r = versions_.find(b->name);
-        if (r == versions_.end() || !formatOk_[r->second]) continue;
+        auto r = versions.find(b->name);
+        if (r == versions.end() || !formatOk_[r->second]) continue;
         const ResourceDecl& res = g.resources[r->second];
         if (res.kind != ResourceKind::texture) continue;
         if (std::find(slot.formats.begin(), slot.formats.end(), res.texture.format) != slot.formats.end()) continue;

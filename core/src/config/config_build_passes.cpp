@@ -14,29 +14,6 @@ namespace rgraph::config_detail {
 
 namespace {
 
-// A local copy, like writes() in config_builder.h.
-std::string_view accessLabel(Access a) {
-  switch (a) {
-    case Access::color_attachment:
-      return "color_attachment";
-    case Access::depth_attachment:
-      return "depth_attachment";
-    case Access::depth_attachment_read:
-      return "depth_attachment_read";
-    case Access::sampled:
-      return "sampled";
-    case Access::storage_read:
-      return "storage_read";
-    case Access::storage_write:
-      return "storage_write";
-    case Access::blit_src:
-      return "blit_src";
-    case Access::blit_dst:
-      return "blit_dst";
-  }
-  return "unknown";
-}
-
 const std::vector<std::string> kPassKeys = {"name",        "type",   "description", "enabled",
                                             "side_effect", "inputs", "outputs",     "params"};
 
@@ -182,18 +159,18 @@ void Builder::checkSlotName(const std::string& slot, const std::string& pointer,
     d.slot = slot;
     return;
   }
-  bool writing = writes(decl->access);
+  bool writing = isWriteAccess(decl->access);
   if (inInputs && writing && decl->load == SlotDecl::Load::never) {
     Diagnostic& d =
         error(DiagCode::unknown_slot, keyAt(pointer),
-              "slot '" + slot + "' of " + info.label + " is output-only (" + std::string(accessLabel(decl->access)) +
+              "slot '" + slot + "' of " + info.label + " is output-only (" + std::string(accessName(decl->access)) +
                   ", it cannot load a previous version): bind it under \"outputs\"");
     d.pass = passName;
     d.slot = slot;
   } else if (!inInputs && !writing) {
     Diagnostic& d = error(DiagCode::unknown_slot, keyAt(pointer),
                           "slot '" + slot + "' of " + info.label + " is an input (" +
-                              std::string(accessLabel(decl->access)) + "): bind it under \"inputs\"");
+                              std::string(accessName(decl->access)) + "): bind it under \"inputs\"");
     d.pass = passName;
     d.slot = slot;
   }
@@ -213,7 +190,7 @@ void Builder::checkSlots(const PassInfo& info, PassDecl& decl) {
     d.slot = slot;
   };
   for (const SlotDecl& slot : info.type->slots) {
-    bool writing = writes(slot.access);
+    bool writing = isWriteAccess(slot.access);
     auto in = info.inputs.find(slot.name);
     auto out = info.outputs.find(slot.name);
     bool mayLoad = writing && slot.load != SlotDecl::Load::never;

@@ -33,7 +33,6 @@ void Builder::checkResources(const Json& resources) {
     } else {
       formatOk = checkResource(*it, pointer, r);
     }
-    versions_[name] = config_.graph.resources.size();
     formatOk_.push_back(formatOk);
     config_.graph.resources.push_back(std::move(r));
   }

@@ -1,8 +1,9 @@
 // Internal to the config loader: the Builder behind ConfigDocument::build,
 // its member functions split by subject over three files:
-//   config_build.cpp            the top level, duplicate keys, versions and
-//                               slot formats (checks across resources and
-//                               passes), ConfigDocument::build;
+//   config_build.cpp            the top level, duplicate keys, slot formats
+//                               (checks across resources and passes, on the
+//                               compiler's version resolution),
+//                               ConfigDocument::build;
 //   config_build_resources.cpp  resource declarations (type, format, size,
 //                               samples, mips, clear, buffer size);
 //   config_build_passes.cpp     passes, their bindings, slots and parameters.
@@ -14,6 +15,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "config_impl.h"
@@ -22,19 +24,8 @@
 
 namespace rgraph::config_detail {
 
-// Local copies of the access helpers so that the loader does not depend on
-// the graph compiler's sources.
-inline bool writes(Access a) {
-  switch (a) {
-    case Access::color_attachment:
-    case Access::depth_attachment:
-    case Access::storage_write:
-    case Access::blit_dst:
-      return true;
-    default:
-      return false;
-  }
-}
+// Version or resource name -> index of its resource in the GraphDesc.
+using VersionResources = std::unordered_map<std::string_view, size_t>;
 
 // One "inputs"/"outputs" entry that holds a usable name.
 struct Binding {
@@ -85,8 +76,7 @@ class Builder {
                                   const std::vector<std::string>& allowed, const std::string& what);
   void reportDuplicateKeys();
   void checkTopLevel();
-  void resolveVersions();
-  void checkFormats();
+  void checkFormats(const VersionResources& versions);
 
   // config_build_resources.cpp
   void checkResources(const Json& resources);
@@ -114,9 +104,8 @@ class Builder {
   const PassRegistry& registry_;
   Diagnostics& diags_;
   PipelineConfig config_;
-  std::vector<PassInfo> passInfo_;          // parallel to config_.graph.passes
-  std::map<std::string, size_t> versions_;  // resource or version name -> resource index
-  std::vector<bool> formatOk_;              // parallel to config_.graph.resources
+  std::vector<PassInfo> passInfo_;  // parallel to config_.graph.passes
+  std::vector<bool> formatOk_;      // parallel to config_.graph.resources
 };
 
 }  // namespace rgraph::config_detail

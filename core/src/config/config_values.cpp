@@ -8,7 +8,7 @@
 #include <limits>
 #include <sstream>
 
-#include "rgraph/registry.h"  // closestMatch
+#include "rgraph/diagnostics.h"  // closestMatch
 
 namespace rgraph::config_detail {
 

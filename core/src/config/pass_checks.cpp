@@ -69,12 +69,13 @@ std::vector<CheckedSlot> planSlots(const GraphDesc& g, const Plan& plan, size_t 
     if (uses)
       for (const auto& x : *uses)
         if (x.slot == ru.slot) bu = &x;
-    if (bu && bu->resource >= 0 && static_cast<size_t>(bu->resource) < g.resources.size()) {
-      const ResourceDecl& rd = g.resources[bu->resource];
+    // Plan::resources matches g.resources one to one (rgraph/graph.h), ok or not.
+    if (bu && bu->resource.valid()) {
+      const ResourceDecl& rd = g.resources[bu->resource.value()];
       if (rd.kind == ResourceKind::texture) {
         s.format = rd.texture.format;
         s.samples = std::max<uint32_t>(1, rd.texture.samples);
-        if (static_cast<size_t>(bu->resource) < plan.resources.size()) s.extent = plan.resources[bu->resource].extent;
+        s.extent = plan.resource(bu->resource).extent;
       }
     }
     out.push_back(std::move(s));

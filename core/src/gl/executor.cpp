@@ -25,7 +25,7 @@ namespace {
 struct SlotBinding {
   std::string slot;
   Access access = Access::sampled;
-  int resource = -1;
+  ResourceIndex resource;
   uint32_t texture = 0, buffer = 0;
   Format format = Format::rgba8;
   Extent extent;
@@ -87,7 +87,7 @@ class PassRun final : public PassContext {
  public:
   std::string name;
   std::string typeName;
-  uint32_t decl = 0;
+  PassIndex decl;
   ParamSet paramSet;
   std::vector<SlotBinding> slots;
   gl::Framebuffer fbo;
@@ -161,7 +161,7 @@ struct Executor::Impl {
   std::vector<gl::Texture> physicalTextures;
   std::vector<gl::Buffer> physicalBuffers;
   std::vector<ResourceObject> resources;
-  std::map<std::string, int, std::less<>> byName;  // resource and version names -> resource index
+  std::map<std::string, ResourceIndex, std::less<>> byName;  // resource and version names
   std::vector<std::unique_ptr<PassRun>> runs;      // execution order
   std::vector<PassTiming> timings;
   std::vector<BuiltProgram> builtPrograms;  // what passes asked the ShaderLibrary for, in order
@@ -183,19 +183,21 @@ struct Executor::Impl {
   }
 
   void build(Extent output);
-  void createResources(Extent output);
-  std::unique_ptr<PassRun> createRun(uint32_t passIndex, Extent output);
+  void createResources();
+  std::unique_ptr<PassRun> createRun(PassIndex pass, Extent output);
   void applyClears(PassRun& run);
   void resetState(const PassRun& run);
   void assignMemoryBarriers();
 
-  int resourceIndex(std::string_view name) const {
+  ResourceIndex resourceIndex(std::string_view name) const {
     auto it = byName.find(name);
-    return it == byName.end() ? -1 : it->second;
+    return it == byName.end() ? ResourceIndex() : it->second;
   }
 };
 
-void Executor::Impl::createResources(Extent output) {
+// The plan is ok: every resource a pass uses has a physical or is imported
+// (rgraph/graph.h), and Plan::resources matches the config's resources.
+void Executor::Impl::createResources() {
   physicalTextures.resize(plan.physical.size());
   physicalBuffers.resize(plan.physical.size());
   for (size_t i = 0; i < plan.physical.size(); ++i) {
@@ -211,29 +213,25 @@ void Executor::Impl::createResources(Extent output) {
 
   const auto& decls = pipeline.graph.resources;
   resources.resize(plan.resources.size());
-  for (size_t r = 0; r < plan.resources.size(); ++r) {
+  for (uint32_t r = 0; r < plan.resources.size(); ++r) {
     const PlannedResource& pr = plan.resources[r];
+    const ResourceDecl& decl = decls[r];
     ResourceObject& obj = resources[r];
-    const ResourceDecl* decl = r < decls.size() ? &decls[r] : nullptr;
-    byName[pr.name] = static_cast<int>(r);
-    for (const auto& v : pr.versions) byName.emplace(v, static_cast<int>(r));
+    byName[pr.name] = ResourceIndex(r);
+    for (const auto& v : pr.versions) byName.emplace(v, ResourceIndex(r));
     if (pr.kind == ResourceKind::texture) {
       obj.extent = pr.extent;
-      if ((obj.extent.width == 0 || obj.extent.height == 0) && decl) obj.extent = resolveSize(decl->texture.size, output);
-      if (decl) {
-        obj.format = decl->texture.format;
-        obj.samples = std::max<uint32_t>(1, decl->texture.samples);
-        obj.mips = decl->texture.mips;
-      }
-      if (pr.physical >= 0 && static_cast<size_t>(pr.physical) < physicalTextures.size() &&
-          physicalTextures[pr.physical]) {
-        const PhysicalTexture& p = plan.physical[pr.physical];
-        obj.texture = physicalTextures[pr.physical].id();
+      obj.format = decl.texture.format;
+      obj.samples = std::max<uint32_t>(1, decl.texture.samples);
+      obj.mips = decl.texture.mips;
+      if (pr.physical.valid()) {
+        const PhysicalTexture& p = plan.physicalTexture(pr.physical);
+        obj.texture = physicalTextures[pr.physical.value()].id();
         obj.format = p.format;
         obj.extent = p.extent;
         obj.samples = std::max<uint32_t>(1, p.samples);
         obj.mips = p.mips;
-      } else if (pr.imported || pr.firstPass >= 0 || static_cast<int>(r) == plan.outputResource) {
+      } else if (pr.imported) {  // used or not; an unused transient gets nothing
         obj.ownTexture = gl::createTexture2D(obj.format, obj.extent, obj.mips, obj.samples);
         obj.texture = obj.ownTexture.id();
       }
@@ -244,13 +242,11 @@ void Executor::Impl::createResources(Extent output) {
         obj.mips = static_cast<uint32_t>(std::max(levels, 1));
       }
     } else {
-      if (pr.physical >= 0 && static_cast<size_t>(pr.physical) < physicalBuffers.size() &&
-          physicalBuffers[pr.physical]) {
-        obj.buffer = physicalBuffers[pr.physical].id();
-      } else if (pr.imported || pr.firstPass >= 0) {
-        uint64_t bytes = pr.bytes ? pr.bytes : (decl ? decl->bufferBytes : 0);
+      if (pr.physical.valid()) {
+        obj.buffer = physicalBuffers[pr.physical.value()].id();
+      } else if (pr.imported) {
         obj.ownBuffer = gl::createBuffer();
-        glNamedBufferStorage(obj.ownBuffer.id(), static_cast<GLsizeiptr>(std::max<uint64_t>(bytes, 4)), nullptr,
+        glNamedBufferStorage(obj.ownBuffer.id(), static_cast<GLsizeiptr>(std::max<uint64_t>(pr.bytes, 4)), nullptr,
                              GL_DYNAMIC_STORAGE_BIT);
         obj.buffer = obj.ownBuffer.id();
       }
@@ -258,10 +254,8 @@ void Executor::Impl::createResources(Extent output) {
   }
 }
 
-std::unique_ptr<PassRun> Executor::Impl::createRun(uint32_t passIndex, Extent output) {
-  const PlannedPass& pp = plan.passes[passIndex];
-  uint32_t declIndex = pp.decl;
-  const PassDecl& pd = pipeline.graph.passes.at(declIndex);
+std::unique_ptr<PassRun> Executor::Impl::createRun(PassIndex pass, Extent output) {
+  const PassDecl& pd = pipeline.graph.passes[pass.value()];
   const PassTypeDesc* type = registry.find(pd.type);
   if (!type) throw RuntimeError("pass '" + pd.name + "': unknown pass type '" + pd.type + "'");
 
@@ -269,14 +263,14 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(uint32_t passIndex, Extent ou
   run->name = pd.name;
   run->type = type;
   run->typeName = pd.type;
-  run->decl = declIndex;
+  run->decl = pass;
   run->shaderLib = &shaders;
   run->scenePtr = scene;
   run->gpuScenePtr = gpuScene.get();
   run->output = output;
   run->paramSet = defaultParams(type->params);
-  if (declIndex < pipeline.params.size())
-    for (const auto& [k, v] : pipeline.params[declIndex].values()) run->paramSet.set(k, v);
+  if (pass.value() < pipeline.params.size())
+    for (const auto& [k, v] : pipeline.params[pass.value()].values()) run->paramSet.set(k, v);
 
   auto slotOrder = [&](const std::string& slot) {
     for (size_t i = 0; i < type->slots.size(); ++i)
@@ -284,24 +278,20 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(uint32_t passIndex, Extent ou
     return type->slots.size();
   };
 
-  const std::vector<BoundUse>& uses =
-      passIndex < plan.bindings.size() ? plan.bindings[passIndex] : std::vector<BoundUse>{};
-  for (const BoundUse& u : uses) {
+  for (const BoundUse& u : plan.uses(pass)) {
+    const ResourceObject& obj = resources[u.resource.value()];
     SlotBinding b;
     b.slot = u.slot;
     b.access = u.access;
     b.resource = u.resource;
     b.loads = isWriteAccess(u.access) && !u.readVersion.empty();
     b.firstWrite = u.firstWrite;
-    if (u.resource >= 0 && static_cast<size_t>(u.resource) < resources.size()) {
-      const ResourceObject& obj = resources[u.resource];
-      b.texture = obj.texture;
-      b.buffer = obj.buffer;
-      b.format = obj.format;
-      b.extent = obj.extent;
-      b.samples = obj.samples;
-      b.mips = obj.mips;
-    }
+    b.texture = obj.texture;
+    b.buffer = obj.buffer;
+    b.format = obj.format;
+    b.extent = obj.extent;
+    b.samples = obj.samples;
+    b.mips = obj.mips;
     run->slots.push_back(std::move(b));
   }
   std::stable_sort(run->slots.begin(), run->slots.end(),
@@ -335,7 +325,6 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(uint32_t passIndex, Extent ou
     bool extentSet = false;
     for (const auto& s : run->slots) {
       if (s.colorIndex < 0 && !s.depthAttachment) continue;
-      if (!s.texture) throw RuntimeError("pass '" + pd.name + "' slot '" + s.slot + "': bound resource has no texture");
       GLenum point = s.depthAttachment ? gl::attachmentPoint(s.format) : GL_COLOR_ATTACHMENT0 + s.colorIndex;
       glNamedFramebufferTexture(run->fbo.id(), point, s.texture, 0);
       if (!extentSet) {
@@ -413,12 +402,8 @@ void Executor::Impl::build(Extent output) {
   }
 
   if (scene && !gpuScene) gpuScene = std::make_unique<GpuScene>(*scene);
-  createResources(output);
-  if (plan.outputResource < 0 || static_cast<size_t>(plan.outputResource) >= resources.size() ||
-      !resources[plan.outputResource].texture)
-    throw RuntimeError("the render graph has no output texture");
-
-  for (uint32_t idx : plan.order) runs.push_back(createRun(idx, output));
+  createResources();
+  for (PassIndex pass : plan.order) runs.push_back(createRun(pass, output));
   assignMemoryBarriers();
   for (auto& run : runs) {
     try {
@@ -430,12 +415,10 @@ void Executor::Impl::build(Extent output) {
     } catch (const RuntimeError& e) {
       // Where the pass is in the config, when it came from one.
       std::string at;
-      if (run->decl < pipeline.graph.passes.size()) {
-        const SourceLocation& w = pipeline.graph.passes[run->decl].where;
-        if (w.known())
-          at = " at " + w.file + ":" + std::to_string(w.line) + ":" + std::to_string(w.column) +
-               (w.path.empty() ? "" : " (" + w.path + ")");
-      }
+      const SourceLocation& w = pipeline.graph.passes[run->decl.value()].where;
+      if (w.known())
+        at = " at " + w.file + ":" + std::to_string(w.line) + ":" + std::to_string(w.column) +
+             (w.path.empty() ? "" : " (" + w.path + ")");
       throw RuntimeError(std::string(e.what()) + "\n  (in setup of pass '" + run->name + "' of type '" +
                          run->typeName + "'" + at + ")");
     }
@@ -473,9 +456,9 @@ void Executor::Impl::assignMemoryBarriers() {
 void Executor::Impl::applyClears(PassRun& run) {
   const auto& decls = pipeline.graph.resources;
   for (const auto& s : run.slots) {
-    if (!s.firstWrite || s.resource < 0 || static_cast<size_t>(s.resource) >= decls.size()) continue;
-    const ResourceDecl& decl = decls[s.resource];
-    if (decl.kind != ResourceKind::texture || !decl.texture.clear || !s.texture) continue;
+    if (!s.firstWrite) continue;
+    const ResourceDecl& decl = decls[s.resource.value()];
+    if (decl.kind != ResourceKind::texture || !decl.texture.clear) continue;
     const std::vector<float>& c = *decl.texture.clear;
     if (gl::isDepth(s.format)) {
       float d = c.empty() ? 1.0f : c[0];
@@ -602,17 +585,17 @@ bool Executor::cpuTimed() const { return impl_->software; }
 
 uint32_t Executor::outputTexture() const {
   if (!impl_->built) return 0;
-  return impl_->resources[impl_->plan.outputResource].texture;
+  return impl_->resources[impl_->plan.outputResource.value()].texture;
 }
 
 Extent Executor::outputExtent() const {
   if (!impl_->built) return {};
-  return impl_->resources[impl_->plan.outputResource].extent;
+  return impl_->resources[impl_->plan.outputResource.value()].extent;
 }
 
 Format Executor::outputFormat() const {
   if (!impl_->built) return Format::rgba8;
-  return impl_->resources[impl_->plan.outputResource].format;
+  return impl_->resources[impl_->plan.outputResource.value()].format;
 }
 
 namespace {
@@ -627,7 +610,7 @@ void flipRows(std::vector<T>& data, size_t rowElems, size_t rows) {
 
 std::vector<uint8_t> Executor::readOutputRGBA8() const {
   if (!impl_->built) throw RuntimeError("Executor::readOutputRGBA8: nothing rendered (call resize() first)");
-  const ResourceObject& obj = impl_->resources[impl_->plan.outputResource];
+  const ResourceObject& obj = impl_->resources[impl_->plan.outputResource.value()];
   if (obj.samples > 1) throw RuntimeError("the output image is multisampled and cannot be read back directly");
   if (gl::isDepth(obj.format)) throw RuntimeError("the output image has a depth format");
   size_t w = obj.extent.width, h = obj.extent.height;
@@ -639,9 +622,10 @@ std::vector<uint8_t> Executor::readOutputRGBA8() const {
 }
 
 std::vector<float> Executor::readTextureRGBA32F(const std::string& name) const {
-  int r = impl_->resourceIndex(name);
-  if (!impl_->built || r < 0) throw RuntimeError("readTextureRGBA32F: no live resource or version named '" + name + "'");
-  const ResourceObject& obj = impl_->resources[r];
+  const ResourceIndex r = impl_->resourceIndex(name);
+  if (!impl_->built || !r.valid())
+    throw RuntimeError("readTextureRGBA32F: no live resource or version named '" + name + "'");
+  const ResourceObject& obj = impl_->resources[r.value()];
   if (!obj.texture) throw RuntimeError("readTextureRGBA32F: resource '" + name + "' has no texture");
   if (obj.samples > 1) throw RuntimeError("readTextureRGBA32F: resource '" + name + "' is multisampled");
   size_t w = obj.extent.width, h = obj.extent.height;
@@ -665,13 +649,13 @@ std::vector<float> Executor::readTextureRGBA32F(const std::string& name) const {
 }
 
 uint32_t Executor::textureOf(const std::string& name) const {
-  int r = impl_->resourceIndex(name);
-  return impl_->built && r >= 0 ? impl_->resources[r].texture : 0;
+  const ResourceIndex r = impl_->resourceIndex(name);
+  return impl_->built && r.valid() ? impl_->resources[r.value()].texture : 0;
 }
 
 uint32_t Executor::bufferOf(const std::string& name) const {
-  int r = impl_->resourceIndex(name);
-  return impl_->built && r >= 0 ? impl_->resources[r].buffer : 0;
+  const ResourceIndex r = impl_->resourceIndex(name);
+  return impl_->built && r.valid() ? impl_->resources[r.value()].buffer : 0;
 }
 
 size_t Executor::ownedObjects() const {

@@ -46,41 +46,38 @@ uint32_t memoryBarrierBit(Access access, ResourceKind kind) {
 
 MemoryBarrierPlan deriveMemoryBarriers(const Plan& plan) {
   MemoryBarrierPlan out;
-  // One entry per physical texture, then one per resource of its own
-  // (imported or not aliased).
+  // One entry per physical texture, then one per resource: the plan is ok,
+  // so a resource a pass uses has a physical or is imported (its own memory).
   const size_t physicalCount = plan.physical.size();
   std::vector<MemoryState> memory(physicalCount + plan.resources.size());
-  auto memoryOf = [&](int resource) -> MemoryState* {
-    if (resource < 0 || static_cast<size_t>(resource) >= plan.resources.size()) return nullptr;
-    const PlannedResource& r = plan.resources[resource];
-    const size_t index = r.physical >= 0 ? static_cast<size_t>(r.physical) : physicalCount + resource;
-    return index < memory.size() ? &memory[index] : nullptr;
+  auto memoryOf = [&](ResourceIndex resource) -> MemoryState& {
+    const PlannedResource& r = plan.resource(resource);
+    return memory[r.physical.valid() ? r.physical.value() : physicalCount + resource.value()];
   };
 
-  for (uint32_t passIndex : plan.order) {
-    static const std::vector<BoundUse> kNone;
-    const std::vector<BoundUse>& uses = passIndex < plan.bindings.size() ? plan.bindings[passIndex] : kNone;
+  for (PassIndex pass : plan.order) {
+    const std::vector<BoundUse>& uses = plan.uses(pass);
     uint32_t bits = 0;
     for (const BoundUse& u : uses) {
-      const MemoryState* m = memoryOf(u.resource);
-      if (!m || !m->storageWritten) continue;
-      const ResourceKind kind = plan.resources[u.resource].kind;
+      const MemoryState& m = memoryOf(u.resource);
+      if (!m.storageWritten) continue;
+      const ResourceKind kind = plan.resource(u.resource).kind;
       uint32_t need = memoryBarrierBit(u.access, kind);
       // A first write applies the resource's clear, to a texture that is not
       // attached with glClearTexImage: a texture update.
       if (u.firstWrite && kind == ResourceKind::texture && !isAttachmentAccess(u.access))
         need |= GL_TEXTURE_UPDATE_BARRIER_BIT;
-      bits |= need & ~m->covered;
+      bits |= need & ~m.covered;
     }
     // The barrier orders every incoherent write issued so far.
     for (MemoryState& m : memory)
       if (m.storageWritten) m.covered |= bits;
     for (const BoundUse& u : uses) {
-      MemoryState* m = memoryOf(u.resource);
-      if (!m || u.access != Access::storage_write) continue;
-      m->storageWritten = true;
-      m->kind = plan.resources[u.resource].kind;
-      m->covered = 0;
+      if (u.access != Access::storage_write) continue;
+      MemoryState& m = memoryOf(u.resource);
+      m.storageWritten = true;
+      m.kind = plan.resource(u.resource).kind;
+      m.covered = 0;
     }
     out.beforePass.push_back(bits);
   }

@@ -34,7 +34,7 @@ uint32_t memoryBarrierBit(Access access, ResourceKind kind);
 // it does not attach) unless an earlier barrier since that write had it.
 // A barrier covers every write issued before it, so each bit is issued once
 // per write. After the frame, every way an outside reader may touch what was
-// written through storage and is not yet covered.
+// written through storage and is not yet covered. The plan must be ok.
 MemoryBarrierPlan deriveMemoryBarriers(const Plan& plan);
 
 }  // namespace rgraph

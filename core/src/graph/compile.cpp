@@ -26,13 +26,14 @@
 //
 // The steps are member functions of Compiler (compile_internal.h), one file
 // per subject.
+#include <cassert>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
 #include "compile_internal.h"
-#include "rgraph/registry.h"  // closestMatch
+#include "rgraph/diagnostics.h"  // closestMatch
 
 namespace rgraph {
 namespace graph_detail {
@@ -52,6 +53,7 @@ void Compiler::run() {
     lifetimesAndAliasing();
   }
   finish();
+  assert(checkPlanContract(plan_).empty());  // rgraph/graph.h: what the plan promises its readers
 }
 
 Diagnostic& Compiler::diag(DiagCode code, std::string message, std::string_view pass, std::string_view slot,
@@ -84,7 +86,7 @@ std::string Compiler::suggestion(std::string_view word) {
 
 // Writes the per-pass and per-resource results into the plan.
 void Compiler::finish() {
-  for (uint32_t i = 0; i < plan_.order.size(); ++i) plan_.passes[plan_.order[i]].order = static_cast<int>(i);
+  for (uint32_t i = 0; i < plan_.order.size(); ++i) plan_.passes[plan_.order[i].value()].order = StepIndex(i);
   for (uint32_t p = 0; p < nPass_; ++p) {
     PlannedPass& pp = plan_.passes[p];
     if (!(passFlags_[p] & kEnabled)) {
@@ -103,7 +105,7 @@ void Compiler::finish() {
         if (wv >= 0 && vers_[wv].afterOutput) later = out;
       }
       if (!later.empty())
-        pp.reason = "it writes " + q(later) + ", a later version of " + q(resName_[plan_.outputResource]) +
+        pp.reason = "it writes " + q(later) + ", a later version of " + q(resName_[plan_.outputResource.value()]) +
                     " than the output " + q(d_.output) + ", and nothing that reaches the output reads its outputs (" +
                     outs + ")";
       else
@@ -120,9 +122,11 @@ void Compiler::finish() {
     pr.imported = rs.imported;
     pr.extent = rs.extent;
     pr.bytes = rs.bytes;
-    pr.firstPass = rs.first;
-    pr.lastPass = rs.last;
-    pr.physical = rs.physical;
+    if (rs.first >= 0) {
+      pr.firstPass = StepIndex(static_cast<uint32_t>(rs.first));
+      pr.lastPass = StepIndex(static_cast<uint32_t>(rs.last));
+    }
+    if (rs.physical >= 0) pr.physical = PhysicalIndex(static_cast<uint32_t>(rs.physical));
     const uint32_t b = resVersionsBegin_[r], e = resVersionsBegin_[r + 1];
     pr.versions.reserve(e - b);
     for (uint32_t i = b; i < e; ++i) pr.versions.emplace_back(versionName(preorder_[i]));

@@ -45,7 +45,7 @@ void Compiler::lifetimesAndAliasing() {
   std::vector<uint32_t> byFirst;
   byFirst.reserve(nRes_);
   for (uint32_t i = 0; i < plan_.order.size(); ++i) {
-    const uint32_t p = plan_.order[i];
+    const uint32_t p = plan_.order[i].value();
     for (uint32_t f = useBegin_[p]; f < useBegin_[p + 1]; ++f) {
       const int r = u_[f].res;
       if (r < 0) continue;
@@ -101,7 +101,7 @@ void Compiler::lifetimesAndAliasing() {
       }
       plan_.allocatedBytes += pt.bytes;
     }
-    plan_.physical[phys].resources.push_back(r);
+    plan_.physical[phys].resources.push_back(ResourceIndex(r));
     rs.physical = phys;
     if (pool) pool->busy.push({rs.last, phys});
   }

@@ -29,7 +29,7 @@ void Compiler::resolve() {
       Use& u = u_[f];
       const int v = u.writeVer >= 0 ? u.writeVer : u.readVer;
       if (v >= 0 && vers_[v].reachable) u.res = vers_[v].res;
-      bound->resource = u.res;
+      if (u.res >= 0) bound->resource = ResourceIndex(static_cast<uint32_t>(u.res));
       if (u.readVer >= 0 && !vers_[u.readVer].reachable) u.readVer = -1;  // a naming loop, reported already
       if (on && u.readVer >= 0) dependency(u, f, pi);
       if (u.res >= 0) checkUse(u, f, attachments, sampledReads, blitSrc, blitDst);

@@ -103,7 +103,7 @@ void Compiler::cull() {
   }
   plan_.order.reserve(topo_.size());
   for (uint32_t p : topo_)
-    if (needed_[p]) plan_.order.push_back(p);
+    if (needed_[p]) plan_.order.push_back(PassIndex(p));
   // A pass kept for its side effect that writes a later version of the
   // output's resource would overwrite the image before the frame ends.
   if (outputVer_ < 0) return;

@@ -123,7 +123,7 @@ void Compiler::output() {
   outputVer_ = v;
   for (int c = vers_[v].child; c >= 0; c = vers_[c].child) vers_[c].afterOutput = true;
   const int e = vers_[v].eff;
-  plan_.outputResource = vers_[v].res;
+  plan_.outputResource = ResourceIndex(static_cast<uint32_t>(vers_[v].res));
   plan_.outputVersion = versionName(e);
   outputDescriptor();
   const int w = vers_[e].writer;
@@ -141,7 +141,7 @@ void Compiler::output() {
 
 // What the output resource must be for the caller to read it back as an image.
 void Compiler::outputDescriptor() {
-  const int r = plan_.outputResource;
+  const uint32_t r = plan_.outputResource.value();
   const Res& rs = r_[r];
   const std::string of = "output " + q(d_.output) +
                          (d_.output == resName_[r] ? std::string() : " (a version of " + q(resName_[r]) + ")");

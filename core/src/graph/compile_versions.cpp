@@ -37,7 +37,7 @@ void Compiler::sweep() {
     useBegin_[p] = f;
     passFlags_[p] = (pd.enabled ? kEnabled : 0) | (pd.sideEffect ? kSideEffect : 0);
     PlannedPass& pp = plan_.passes[p];
-    pp.decl = p;
+    pp.decl = PassIndex(p);
     pp.name = pd.name;
     pp.type = pd.type;
     auto& bound = plan_.bindings[p];
@@ -50,7 +50,7 @@ void Compiler::sweep() {
       u.write = isWriteAccess(ru.access);
       u.acceptsMultisample = ru.acceptsMultisample;
       if (!u.write) {
-        bound.push_back(BoundUse{ru.slot, ru.access, -1, ru.input, std::string(), false});
+        bound.push_back(BoundUse{ru.slot, ru.access, ResourceIndex(), ru.input, std::string(), false});
         // A name maps to the first id inserted under it, forever: resolving
         // now (while the use is hot) gives what resolving later would.
         if (ru.input.empty())
@@ -59,7 +59,7 @@ void Compiler::sweep() {
         else if ((u.readVer = names_.find(ru.input)) < 0)
           pendingReads.push_back(f);
       } else {
-        bound.push_back(BoundUse{ru.slot, ru.access, -1, ru.input, ru.output, ru.input.empty()});
+        bound.push_back(BoundUse{ru.slot, ru.access, ResourceIndex(), ru.input, ru.output, ru.input.empty()});
         if (!ru.input.empty())
           inPlaceWrite(f);
         else

@@ -47,7 +47,7 @@ std::string toDot(const GraphDesc& desc, const Plan& plan) {
     const PlannedPass* pp = p < plan.passes.size() ? &plan.passes[p] : nullptr;
     std::string label = pd.name;
     if (!pd.type.empty()) label += "\n(" + pd.type + ")";
-    if (pp && pp->order >= 0) label += "\n#" + std::to_string(pp->order);
+    if (pp && pp->order.valid()) label += "\n#" + std::to_string(pp->order.value());
     out += "  p" + std::to_string(p) + " [shape=box, label=";
     if (pp && pp->culled) {
       label += "\nculled: " + pp->reason;
@@ -76,12 +76,12 @@ std::string toDot(const GraphDesc& desc, const Plan& plan) {
         label += "\n(imported)";
         attrs += ", peripheries=2";
       }
-      if (r->physical >= 0) {
-        label += "\nphys #" + std::to_string(r->physical);
+      if (r->physical.valid()) {
+        label += "\nphys #" + std::to_string(r->physical.value());
         attrs += ", style=filled, fillcolor=\"";
-        attrs += kPalette[static_cast<size_t>(r->physical) % kPalette.size()];
+        attrs += kPalette[r->physical.value() % kPalette.size()];
         attrs += "\"";
-      } else if (r->firstPass < 0 && !r->imported) {
+      } else if (!r->firstPass.valid() && !r->imported) {
         attrs += ", style=dotted";
       }
     }

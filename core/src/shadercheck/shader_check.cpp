@@ -603,8 +603,8 @@ Diagnostics ShaderChecker::checkPipeline(const PipelineConfig& pipeline, const P
       if (uses && !bu)
         for (const auto& x : *uses)
           if (x.slot == ru.slot) bu = &x;
-      if (bu && bu->resource >= 0 && static_cast<size_t>(bu->resource) < g.resources.size()) {
-        const ResourceDecl& rd = g.resources[bu->resource];
+      if (bu && bu->resource.valid()) {
+        const ResourceDecl& rd = g.resources[bu->resource.value()];
         if (rd.kind == ResourceKind::texture) {
           b.format = rd.texture.format;
           b.samples = std::max<uint32_t>(1, rd.texture.samples);

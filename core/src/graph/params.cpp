@@ -1,3 +1,6 @@
+// Pass parameter values (ParamSet): with the graph's small utilities, since
+// the config loader, the pass checks and the passes all read them (no
+// registry involved).
 #include "rgraph/params.h"
 
 namespace rgraph {

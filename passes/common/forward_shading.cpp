@@ -1,10 +1,10 @@
-#include "rgraph/gl/forward_shading.h"
+#include "rgraph/passes/forward_shading.h"
 
 #include <GL/glcorearb.h>
 
 #include "rgraph/gl/gpu_scene.h"
-#include "rgraph/gl/lighting_options.h"
 #include "rgraph/gl/shader_library.h"
+#include "rgraph/passes/lighting_options.h"
 #include "rgraph/scene.h"
 
 namespace rgraph::forward {

@@ -52,11 +52,11 @@ struct Folders {
 
 TEST(ShaderPaths, DotDotThatLeavesTheFoldersIsRefused) {
   const std::vector<std::string> dirs = {kTestShaders};
-  // tests/shadercheck/shader_paths_test.cpp exists, one level above the folder.
-  EXPECT_EQ(findShaderFile("../shader_paths_test.cpp", dirs), "");
-  const std::string what = thrown([&] { resolveShaderFile("../shader_paths_test.cpp", dirs); });
-  EXPECT_TRUE(contains(what, "shader file '../shader_paths_test.cpp' resolves to ")) << what;
-  EXPECT_TRUE(contains(what, "shader_paths_test.cpp, outside the shader folders (" + kTestShaders + ")")) << what;
+  // tests/shadercheck/shader_check_test.cpp exists, one level above the folder.
+  EXPECT_EQ(findShaderFile("../shader_check_test.cpp", dirs), "");
+  const std::string what = thrown([&] { resolveShaderFile("../shader_check_test.cpp", dirs); });
+  EXPECT_TRUE(contains(what, "shader file '../shader_check_test.cpp' resolves to ")) << what;
+  EXPECT_TRUE(contains(what, "shader_check_test.cpp, outside the shader folders (" + kTestShaders + ")")) << what;
   EXPECT_TRUE(contains(thrown([&] { loadShaderSource("../../../../../../../../etc/passwd", {}, dirs); }),
                        "resolves to /etc/passwd, outside the shader folders"));
   // `..` that stays inside is fine.

@@ -1,7 +1,8 @@
 // Parameters shared by every pass that shades lights (deferred lighting,
 // light volumes, tiled, forward_lit): one declaration, one meaning, the same
 // shader defines, so that methods compared against each other differ only in
-// how they visit lights.
+// how they visit lights. G-buffer readers take their layout facts from
+// gbuffer_layout.h.
 #pragma once
 
 #include <string>
@@ -15,12 +16,12 @@ namespace rgraph::lighting {
 const std::vector<Format>& hdrFormats();
 // model, attenuation, threshold parameter declarations.
 std::vector<ParamDecl> params(double defaultThreshold = 5.0 / 256.0, bool allowNoCutoff = true);
-// The G-buffer layout parameter (learnopengl, pbr, compact, fp32).
+// The G-buffer layout parameter of a reader: the layouts of gbuffer::layouts().
 ParamDecl layoutParam();
 
 // Shader defines for the lighting model and attenuation of these params.
 std::vector<std::string> defines(const ParamSet& params);
-// GBUFFER_* define of the layout param.
+// GBUFFER_* define of the layout param (gbuffer::Layout::define).
 std::string layoutDefine(const ParamSet& params);
 // Every define a G-buffer writer or reader needs: the layout, and with
 // constant_material, CONSTANT_MATERIAL + CONSTANT_METALLIC/ROUGHNESS values.
@@ -45,7 +46,8 @@ void adaptGBuffer(const SceneFeatures& features, PassAdaptation& adaptation);
 void adaptPointLightShading(const SceneFeatures& features, PassAdaptation& adaptation);
 float threshold(const ParamSet& params);
 
-// Check hook (PassTypeDesc::check): the slots the pass's layout reads are bound.
+// Check hook (PassTypeDesc::check): the slots the pass's layout reads are
+// bound (gbuffer::Layout::readerSlots).
 void checkGBuffer(const PassCheckContext& ctx, PassChecks& checks);
 // What every pass that reads the G-buffer declares alike: name, description,
 // the sampled G-buffer slots (gbufferSlots), the check that its layout's

@@ -1,9 +1,8 @@
-#include "rgraph/gl/lighting_options.h"
-
-#include <GL/glcorearb.h>
+#include "rgraph/passes/lighting_options.h"
 
 #include "rgraph/error.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/gbuffer_layout.h"
 #include "rgraph/scene.h"
 
 namespace rgraph::lighting {
@@ -30,9 +29,8 @@ std::vector<ParamDecl> params(double defaultThreshold, bool allowNoCutoff) {
 }
 
 ParamDecl layoutParam() {
-  return decl::param("layout", ParamType::enumeration, std::string("pbr"),
-                     "G-buffer layout it reads: learnopengl, pbr, compact, fp32",
-                     {"learnopengl", "pbr", "compact", "fp32"});
+  return decl::param("layout", ParamType::enumeration, std::string(gbuffer::kDefaultLayout),
+                     "G-buffer layout it reads: " + gbuffer::nameList(false), gbuffer::names());
 }
 
 std::vector<std::string> defines(const ParamSet& p) {
@@ -48,13 +46,7 @@ std::vector<std::string> defines(const ParamSet& p) {
           p.getString("attenuation", "classic") == "smooth" ? "ATTENUATION_SMOOTH" : "ATTENUATION_CLASSIC"};
 }
 
-std::string layoutDefine(const ParamSet& p) {
-  const std::string layout = p.getString("layout", "pbr");
-  if (layout == "learnopengl") return "GBUFFER_LEARNOPENGL";
-  if (layout == "compact") return "GBUFFER_COMPACT";
-  if (layout == "fp32") return "GBUFFER_FP32";
-  return "GBUFFER_PBR";
-}
+std::string layoutDefine(const ParamSet& p) { return gbuffer::of(p).define; }
 
 std::vector<std::string> gbufferDefines(const ParamSet& p) {
   std::vector<std::string> d = {layoutDefine(p)};
@@ -89,8 +81,9 @@ std::vector<ParamDecl> constantMaterialParams() {
 }
 
 void adaptGBuffer(const SceneFeatures& f, PassAdaptation& a) {
-  const std::string layout = a.params.getString("layout", "pbr");
-  if (f.metallicRoughnessVariation || layout == "learnopengl" || a.params.getBool("constant_material", false)) return;
+  if (f.metallicRoughnessVariation || !gbuffer::of(a.params).writes("material") ||
+      a.params.getBool("constant_material", false))
+    return;
   a.params.set("constant_material", true);
   a.params.set("metallic", static_cast<double>(f.metallic));
   a.params.set("roughness", static_cast<double>(f.roughness));
@@ -110,18 +103,10 @@ void adaptPointLightShading(const SceneFeatures& f, PassAdaptation& a) {
 float threshold(const ParamSet& p) { return static_cast<float>(p.getNumber("threshold", 5.0 / 256.0)); }
 
 void checkGBuffer(const PassCheckContext& ctx, PassChecks& checks) {
-  const std::string layout = ctx.params().getString("layout", "pbr");
-  std::vector<std::string> needed = {"normal", "albedo"};
-  const bool material = !ctx.params().getBool("constant_material", false);
-  if (layout == "compact") {
-    needed.push_back("depth");
-    if (material) needed.push_back("material");
-  } else {
-    needed.push_back("position");
-    if (layout != "learnopengl" && material) needed.push_back("material");
-  }
-  for (const auto& slot : needed)
-    if (!ctx.bound(slot)) checks.slotError(slot, "input '" + slot + "' is required by layout '" + layout + "' but not bound");
+  const gbuffer::Layout& layout = gbuffer::of(ctx.params());
+  for (const auto& slot : layout.readerSlots(ctx.params().getBool("constant_material", false)))
+    if (!ctx.bound(slot))
+      checks.slotError(slot, "input '" + slot + "' is required by layout '" + layout.name + "' but not bound");
 }
 
 std::vector<std::string> materialSamplers() {

@@ -1,0 +1,102 @@
+#include "rgraph/passes/gbuffer_layout.h"
+
+#include <algorithm>
+
+namespace rgraph::gbuffer {
+
+const std::vector<Layout>& layouts() {
+  static const std::vector<Layout> table = {
+      {"learnopengl",
+       "GBUFFER_LEARNOPENGL",
+       "",
+       {{"position", Format::rgba16f, "world position xyz, w 1 where covered"},
+        {"normal", Format::rgba16f, "world normal xyz, w 1 where covered"},
+        {"albedo", Format::rgba8, "albedo rgb, specular intensity a"}},
+       Format::depth24_stencil8,
+       3,
+       false},
+      {"pbr",
+       "GBUFFER_PBR",
+       "4x rgba16f",
+       {{"position", Format::rgba16f, "world position xyz, w 1 where covered"},
+        {"normal", Format::rgba16f, "world normal xyz, w 1 where covered"},
+        {"albedo", Format::rgba16f, "albedo rgb, specular intensity a"},
+        {"material", Format::rgba16f, "metallic, roughness, ambient occlusion"}},
+       Format::depth24_stencil8,
+       3,
+       false},
+      {"compact",
+       "GBUFFER_COMPACT",
+       "no position, octahedral normal",
+       {{"normal", Format::rg16f, "world normal, octahedral rg"},
+        {"albedo", Format::rgba8, "albedo rgb, specular intensity a"},
+        {"material", Format::rg8, "metallic, roughness"}},
+       Format::depth32f,
+       2,
+       true},
+      {"fp32",
+       "GBUFFER_FP32",
+       "",
+       {{"position", Format::rgba32f, "world position xyz, w 1 where covered"},
+        {"normal", Format::rgba32f, "world normal xyz, w 1 where covered"},
+        {"albedo", Format::rgba32f, "albedo rgb, specular intensity a"},
+        {"material", Format::rgba32f, "metallic, roughness, ambient occlusion"}},
+       Format::depth32f,
+       3,
+       false},
+  };
+  return table;
+}
+
+const Target* Layout::target(std::string_view slot) const {
+  for (const auto& t : targets)
+    if (t.slot == slot) return &t;
+  return nullptr;
+}
+
+uint32_t Layout::bytesPerPixel() const {
+  uint32_t bytes = formatInfo(depth).bytesPerPixel;
+  for (const auto& t : targets) bytes += formatInfo(t.format).bytesPerPixel;
+  return bytes;
+}
+
+std::vector<std::string> Layout::readerSlots(bool constantMaterial) const {
+  std::vector<std::string> slots = {"normal", "albedo", positionSlot()};
+  if (writes("material") && !constantMaterial) slots.push_back("material");
+  return slots;
+}
+
+const Layout& find(std::string_view name) {
+  const auto& table = layouts();
+  for (const auto& l : table)
+    if (l.name == name) return l;
+  return name == kDefaultLayout ? table.front() : find(kDefaultLayout);
+}
+
+const Layout& of(const ParamSet& params) { return find(params.getString("layout", std::string(kDefaultLayout))); }
+
+std::vector<std::string> names() {
+  std::vector<std::string> out;
+  for (const auto& l : layouts()) out.push_back(l.name);
+  return out;
+}
+
+std::string nameList(bool withSummaries) {
+  std::string out;
+  for (const auto& l : layouts()) {
+    if (!out.empty()) out += ", ";
+    out += l.name;
+    if (withSummaries && !l.summary.empty()) out += " (" + l.summary + ")";
+  }
+  return out;
+}
+
+std::vector<std::string> colorSlots() {
+  std::vector<std::string> out;
+  for (const auto& l : layouts())
+    for (const auto& t : l.targets)
+      if (std::find(out.begin(), out.end(), t.slot) == out.end()) out.push_back(t.slot);
+  return out;
+}
+
+}  // namespace rgraph::gbuffer

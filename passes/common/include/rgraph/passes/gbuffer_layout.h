@@ -1,0 +1,65 @@
+// The G-buffer layouts: the one table of what each layout stores, in which
+// formats, at how many bytes per pixel and under which shader define. The
+// geometry pass (what it must write), the G-buffer readers (what they need
+// bound and compile with: lighting_options.h, the ssao plugin) and rgraph bench
+// (the targets its pipelines declare) read it instead of restating layouts.
+// Its GLSL side is shaders/include/gbuffer.glsl and shaders/gbuffer.frag.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rgraph/pass.h"
+
+namespace rgraph::gbuffer {
+
+// One colour target of a layout. A layout's targets are in the geometry
+// pass's slot order, which is gbuffer.frag's output location order.
+struct Target {
+  std::string slot;    // the geometry pass's output slot, the readers' input slot
+  Format format;       // the format rgraph bench declares (geometry accepts others)
+  std::string stores;  // what gbuffer.frag writes there
+};
+
+struct Layout {
+  std::string name;             // the value of the passes' "layout" param
+  std::string define;           // GBUFFER_* define of gbuffer.frag and include/gbuffer_read.glsl
+  std::string summary;          // a short note in the geometry pass's param description ("": none)
+  std::vector<Target> targets;  // colour targets, slot order
+  Format depth;                 // the depth format rgraph bench declares
+  uint32_t normalComponents;    // components the normal target needs at least
+  bool positionFromDepth;       // no position target: readers rebuild position from depth
+
+  const Target* target(std::string_view slot) const;
+  bool writes(std::string_view slot) const { return target(slot) != nullptr; }
+  // The targets' and the depth's bytes per pixel, one sample each.
+  uint32_t bytesPerPixel() const;
+  // Where a reader gets the position: "position", or "depth" to rebuild it.
+  std::string positionSlot() const { return positionFromDepth ? "depth" : "position"; }
+  // The slots a reader of this layout needs bound, in the order their errors
+  // are reported: normal, albedo, positionSlot(), and material when the layout
+  // writes one and the material is not constant.
+  std::vector<std::string> readerSlots(bool constantMaterial) const;
+};
+
+inline constexpr std::string_view kDefaultLayout = "pbr";
+
+// Every layout, in the order the "layout" params list them.
+const std::vector<Layout>& layouts();
+// The layout called `name`; the default layout for a name the table lacks
+// (params are checked against names() before any pass reads them).
+const Layout& find(std::string_view name);
+// The layout of a pass's "layout" param (default: kDefaultLayout).
+const Layout& of(const ParamSet& params);
+// Layout names in table order (the "layout" params' choices).
+std::vector<std::string> names();
+// "learnopengl, pbr (4x rgba16f), ...": names joined by ", ", each with its
+// summary in parentheses when withSummaries.
+std::string nameList(bool withSummaries);
+// Every colour slot any layout writes, in slot order (position, normal,
+// albedo, material): the geometry pass's colour slots.
+std::vector<std::string> colorSlots();
+
+}  // namespace rgraph::gbuffer
