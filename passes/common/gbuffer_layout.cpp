@@ -4,49 +4,35 @@
 
 namespace rgraph::gbuffer {
 
+namespace {
+// What gbuffer.frag writes to each target, once for every layout that has it.
+constexpr const char* kPosition = "world position xyz, w 1 where covered";
+constexpr const char* kNormal = "world normal xyz, w 1 where covered";
+constexpr const char* kAlbedo = "albedo rgb, specular intensity a";
+constexpr const char* kMaterial = "metallic, roughness, ambient occlusion";
+}  // namespace
+
+// clang-format off
+// One row per layout: name, define, summary, targets in slot order, depth,
+// normal components, position rebuilt from depth.
 const std::vector<Layout>& layouts() {
   static const std::vector<Layout> table = {
-      {"learnopengl",
-       "GBUFFER_LEARNOPENGL",
-       "",
-       {{"position", Format::rgba16f, "world position xyz, w 1 where covered"},
-        {"normal", Format::rgba16f, "world normal xyz, w 1 where covered"},
-        {"albedo", Format::rgba8, "albedo rgb, specular intensity a"}},
-       Format::depth24_stencil8,
-       3,
-       false},
-      {"pbr",
-       "GBUFFER_PBR",
-       "4x rgba16f",
-       {{"position", Format::rgba16f, "world position xyz, w 1 where covered"},
-        {"normal", Format::rgba16f, "world normal xyz, w 1 where covered"},
-        {"albedo", Format::rgba16f, "albedo rgb, specular intensity a"},
-        {"material", Format::rgba16f, "metallic, roughness, ambient occlusion"}},
-       Format::depth24_stencil8,
-       3,
-       false},
-      {"compact",
-       "GBUFFER_COMPACT",
-       "no position, octahedral normal",
-       {{"normal", Format::rg16f, "world normal, octahedral rg"},
-        {"albedo", Format::rgba8, "albedo rgb, specular intensity a"},
-        {"material", Format::rg8, "metallic, roughness"}},
-       Format::depth32f,
-       2,
-       true},
-      {"fp32",
-       "GBUFFER_FP32",
-       "",
-       {{"position", Format::rgba32f, "world position xyz, w 1 where covered"},
-        {"normal", Format::rgba32f, "world normal xyz, w 1 where covered"},
-        {"albedo", Format::rgba32f, "albedo rgb, specular intensity a"},
-        {"material", Format::rgba32f, "metallic, roughness, ambient occlusion"}},
-       Format::depth32f,
-       3,
-       false},
+      {"learnopengl", "GBUFFER_LEARNOPENGL", "",
+       {{"position", Format::rgba16f, kPosition}, {"normal", Format::rgba16f, kNormal},
+        {"albedo", Format::rgba8, kAlbedo}}, Format::depth24_stencil8, 3, false},
+      {"pbr", "GBUFFER_PBR", "4x rgba16f",
+       {{"position", Format::rgba16f, kPosition}, {"normal", Format::rgba16f, kNormal},
+        {"albedo", Format::rgba16f, kAlbedo}, {"material", Format::rgba16f, kMaterial}}, Format::depth24_stencil8, 3, false},
+      {"compact", "GBUFFER_COMPACT", "no position, octahedral normal",
+       {{"normal", Format::rg16f, "world normal, octahedral rg"}, {"albedo", Format::rgba8, kAlbedo},
+        {"material", Format::rg8, "metallic, roughness"}}, Format::depth32f, 2, true},
+      {"fp32", "GBUFFER_FP32", "",
+       {{"position", Format::rgba32f, kPosition}, {"normal", Format::rgba32f, kNormal},
+        {"albedo", Format::rgba32f, kAlbedo}, {"material", Format::rgba32f, kMaterial}}, Format::depth32f, 3, false},
   };
   return table;
 }
+// clang-format on
 
 const Target* Layout::target(std::string_view slot) const {
   for (const auto& t : targets)
