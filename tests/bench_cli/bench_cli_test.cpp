@@ -3,7 +3,6 @@
 // chart module it draws with.
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,25 +13,15 @@
 
 #include "../../apps/rgraph/bench_chart.h"
 
+#include "support/run_command.h"
+
 namespace {
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exitCode = -1;
-  std::string out;  // stdout and stderr
-};
-
+// stdout and stderr
+using RunResult = rgraph::testsupport::CommandResult;
 RunResult run(const std::string& args) {
-  RunResult r;
-  const std::string cmd = std::string(RGRAPH_CLI) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(p);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return rgraph::testsupport::runCommand(std::string(RGRAPH_CLI) + " " + args + " 2>&1");
 }
 
 std::string slurp(const fs::path& p) {

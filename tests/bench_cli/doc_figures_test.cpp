@@ -7,7 +7,6 @@
 // printed; scripts/update-bench-figures.py regenerates the run and the blocks.
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -17,6 +16,8 @@
 #include <sstream>
 #include <string>
 #include <unistd.h>
+
+#include "support/run_command.h"
 
 namespace {
 namespace fs = std::filesystem;
@@ -30,14 +31,10 @@ std::string slurp(const fs::path& p) {
 }
 
 int runCli(const std::string& args, std::string& out) {
-  const std::string cmd = std::string(RGRAPH_CLI) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return -1;
-  std::array<char, 4096> buf{};
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
-  const int status = pclose(p);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  const rgraph::testsupport::CommandResult r =
+      rgraph::testsupport::runCommand(std::string(RGRAPH_CLI) + " " + args + " 2>&1");
+  out += r.out;
+  return r.exitCode;
 }
 
 // name -> block text between <!-- bench-figures:NAME --> and <!-- /bench-figures:NAME -->.

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +13,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "support/run_command.h"
 
 namespace {
 
@@ -31,14 +32,10 @@ struct CliRun {
 CliRun run(const std::string& args) {
   const std::string cache = (fs::temp_directory_path() / "rgraph-pass-checks-test-cache").string();
   const std::string cmd = "cd '" + kDir + "' && RGRAPH_CACHE_DIR='" + cache + "' " + RGRAPH_CLI + " " + args + " 2>&1";
+  const rgraph::testsupport::CommandResult c = rgraph::testsupport::runCommand(cmd);
   CliRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(p);
-  r.exit = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.exit = c.exitCode;
+  r.out = c.out;
   return r;
 }
 

@@ -3,25 +3,20 @@
 // of the longest name (constant_material once ran into its type: "constant_materialbool").
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
 
+#include "support/run_command.h"
+
 namespace {
 
 std::string run(const std::string& args, int* exitCode) {
-  std::string out;
-  FILE* p = popen((std::string(RGRAPH_CLI) + " " + args + " 2>/dev/null").c_str(), "r");
-  if (!p) return out;
-  std::array<char, 4096> buf{};
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
-  const int status = pclose(p);
-  *exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return out;
+  auto r = rgraph::testsupport::runCommand(std::string(RGRAPH_CLI) + " " + args + " 2>/dev/null");
+  *exitCode = r.exitCode;
+  return r.out;
 }
 
 TEST(CliPassesText, NamesTypesAndAccessesStandInAlignedColumns) {

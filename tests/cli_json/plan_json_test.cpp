@@ -1,29 +1,17 @@
 // Runs `rgraph plan --json` / `validate --json` and checks the parsed output.
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "support/run_command.h"
+
 namespace {
 
-struct RunResult {
-  int exitCode = -1;
-  std::string out;
-};
-
+using RunResult = rgraph::testsupport::CommandResult;
 RunResult run(const std::string& args) {
-  RunResult r;
-  std::string cmd = std::string(RGRAPH_CLI) + " " + args + " 2>/dev/null";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  int status = pclose(p);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return rgraph::testsupport::runCommand(std::string(RGRAPH_CLI) + " " + args + " 2>/dev/null");
 }
 
 const std::string kPipelines = std::string(RGRAPH_SOURCE_DIR) + "/pipelines/";

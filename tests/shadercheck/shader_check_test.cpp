@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -14,6 +13,8 @@
 #include "rgraph/config.h"
 #include "rgraph/registry.h"
 #include "rgraph/shader_check.h"
+
+#include "support/run_command.h"
 
 namespace fs = std::filesystem;
 using namespace rgraph;
@@ -102,20 +103,9 @@ std::string rgraphCli() {
   return fs::is_regular_file(cli, ec) ? cli.string() : std::string();
 }
 
-struct RunResult {
-  int exitCode = -1;
-  std::string out;
-};
+using RunResult = rgraph::testsupport::CommandResult;
 RunResult run(const std::string& command) {
-  RunResult r;
-  FILE* p = popen((command + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  int status = pclose(p);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return rgraph::testsupport::runCommand(command + " 2>&1");
 }
 
 std::vector<std::string> shippedPipelines() {
