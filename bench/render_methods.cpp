@@ -34,6 +34,7 @@
 #include "rgraph/adapt.h"
 #include "rgraph/config.h"
 #include "rgraph/error.h"
+#include "rgraph/pipeline_load.h"
 #include "rgraph/gl/context.h"
 #include "rgraph/gl/executor.h"
 #include "rgraph/gl/shader_library.h"
@@ -136,15 +137,7 @@ World& world() {
   for (const Method& m : kMethods) {
     const std::string path = std::string(RGRAPH_SOURCE_DIR) + "/pipelines/" + m.file;
     if (!std::filesystem::exists(path)) continue;
-    Diagnostics diags;
-    ConfigDocument doc = ConfigDocument::parseFile(path, diags);
-    PipelineConfig cfg;
-    if (doc.ok()) cfg = doc.build(PassRegistry::builtins(), diags);
-    if (!doc.ok() || hasErrors(diags)) {
-      std::string msg = path + " has errors:";
-      for (const auto& d : diags) msg += "\n  " + formatDiagnostic(d);
-      throw RuntimeError(msg);
-    }
+    PipelineConfig cfg = loadPipelineFileOrThrow(path);
     if (m.fp32Position)
       for (auto& r : cfg.graph.resources)
         if (r.name == "gPosition") r.texture.format = Format::rgba32f;

@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "bench.h"
+#include "rgraph/pipeline_load.h"
 #include "rgraph/adapt.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/context.h"
@@ -111,20 +112,7 @@ double estimateFrameMs(const Config& c) {
 // ---------------------------------------------------------------- shipped pipelines
 
 namespace {
-
-PipelineConfig loadShipped(const std::string& path) {
-  Diagnostics diags;
-  ConfigDocument doc = ConfigDocument::parseFile(path, diags);
-  PipelineConfig cfg;
-  if (doc.ok()) cfg = doc.build(PassRegistry::builtins(), diags);
-  if (!doc.ok() || hasErrors(diags)) {
-    std::string msg = path + " has errors:";
-    for (const auto& d : diags) msg += "\n  " + formatDiagnostic(d);
-    throw RuntimeError(msg);
-  }
-  return cfg;
-}
-
+PipelineConfig loadShipped(const std::string& path) { return loadPipelineFileOrThrow(path); }
 }  // namespace
 
 std::vector<ShippedResult> measureShipped(const std::string& pipelineDir, const Scene& scene, Extent size,

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "bench.h"
+#include "rgraph/pipeline_load.h"
 #include "rgraph/error.h"
 #include "rgraph/passes/gbuffer_layout.h"
 #include "rgraph/registry.h"
@@ -162,16 +163,7 @@ std::string pipelineJson(const Config& c, bool reference) {
 }
 
 PipelineConfig buildPipeline(const std::string& text, const std::string& name) {
-  Diagnostics diags;
-  ConfigDocument doc = ConfigDocument::parseText(text, name, diags);
-  PipelineConfig cfg;
-  if (doc.ok()) cfg = doc.build(PassRegistry::builtins(), diags);
-  if (!doc.ok() || hasErrors(diags)) {
-    std::string msg = "bench pipeline " + name + " has errors:";
-    for (const auto& d : diags) msg += "\n  " + formatDiagnostic(d);
-    throw RuntimeError(msg);
-  }
-  return cfg;
+  return loadPipelineTextOrThrow(text, "bench pipeline " + name);
 }
 
 const std::vector<ShippedMethod> kShippedMethods = {

@@ -6,19 +6,14 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "rgraph/pipeline_load.h"
 #include "rgraph/plugin.h"
-#include "rgraph/registry.h"
 #include "rgraph/shader_check.h"
-#include "rgraph/shader_check_cache.h"
 
 namespace rgraph::cli {
 
 namespace {
-// One loader for the process: plugin libraries stay loaded until exit.
-PluginLoader& pluginLoader() {
-  static PluginLoader loader(PassRegistry::builtins());
-  return loader;
-}
+PluginLoader& pluginLoader() { return processPluginLoader(); }
 }  // namespace
 
 void addPluginSearchDirectory(const std::string& dir) { pluginLoader().addSearchDirectory(dir); }
@@ -38,28 +33,7 @@ bool loadPlugins(const std::vector<std::string>& namesOrPaths) {
 }
 
 std::optional<PipelineConfig> loadPipeline(const std::string& path, Diagnostics& diags) {
-  ConfigDocument doc = ConfigDocument::parseFile(path, diags);
-  if (!doc.ok() || hasErrors(diags)) return std::nullopt;
-  // Plugins before the pass types are checked; a path in "plugins" is
-  // relative to the config file's folder.
-  const std::vector<std::string> plugins = doc.plugins();
-  if (!plugins.empty()) {
-    std::error_code ec;
-    const std::string base = std::filesystem::absolute(path, ec).parent_path().string();
-    for (size_t i = 0; i < plugins.size(); ++i) {
-      std::string error;
-      if (pluginLoader().load(plugins[i], base, error)) continue;
-      Diagnostic d;
-      d.code = DiagCode::plugin_error;
-      d.message = error;
-      d.where = doc.pluginLocation(i);
-      diags.push_back(std::move(d));
-    }
-    if (hasErrors(diags)) return std::nullopt;
-  }
-  PipelineConfig pipeline = doc.build(PassRegistry::builtins(), diags);
-  if (hasErrors(diags)) return std::nullopt;
-  return pipeline;
+  return loadPipelineFile(path, {}, diags);
 }
 
 bool addShaderPaths(const std::vector<std::string>& dirs) {
@@ -89,22 +63,10 @@ CompileOptions compileOptions(uint32_t width, uint32_t height, uint32_t maxTextu
 
 Plan checkPipeline(const PipelineConfig& pipeline, const CompileOptions& options, ShaderChecks shaders,
                    Diagnostics& diags, std::optional<bool> scenePresent) {
-  Plan plan = compile(pipeline.graph, options);
-  diags.insert(diags.end(), plan.diagnostics.begin(), plan.diagnostics.end());
-  PassCheckOptions checkOptions;
-  checkOptions.scenePresent = scenePresent;
-  Diagnostics passDiags = runPassChecks(pipeline, plan, PassRegistry::builtins(), checkOptions);
-  diags.insert(diags.end(), passDiags.begin(), passDiags.end());
-  // Shader checks need no GL context: glslang compiles and reflects what each
-  // enabled pass would build. They run even when the graph has errors (those
-  // are already listed; bindings it could not resolve only skip the format checks).
-  if (shaders != ShaderChecks::skip) {
-    ShaderChecker checker(defaultShaderSearchDirectories());
-    const std::string cacheDir = shaders == ShaderChecks::cached ? defaultShaderCheckCacheDir() : std::string();
-    CachedShaderCheck checked = checkPipelineCached(checker, pipeline, plan, PassRegistry::builtins(), cacheDir);
-    diags.insert(diags.end(), checked.diagnostics.begin(), checked.diagnostics.end());
-  }
-  return plan;
+  PipelineCheckOptions checks;
+  checks.shaders = shaders;
+  checks.scenePresent = scenePresent;
+  return rgraph::checkPipeline(pipeline, options, checks, diags);
 }
 
 void printDiagnostics(const Diagnostics& diags) {

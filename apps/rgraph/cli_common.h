@@ -9,6 +9,7 @@
 #include "rgraph/config.h"
 #include "rgraph/diagnostics.h"
 #include "rgraph/graph.h"
+#include "rgraph/pipeline_check.h"
 
 namespace rgraph::cli {
 
@@ -49,7 +50,9 @@ CompileOptions compileOptions(uint32_t width, uint32_t height, uint32_t maxTextu
 // unless skipped, the glslang shader checks (rgraph/shader_check.h; `cached`
 // remembers their results on disk, rgraph/shader_check_cache.h). Appends every
 // diagnostic to diags and returns the plan.
-enum class ShaderChecks { skip, run, cached };
+// The body is rgraph::checkPipeline (rgraph/pipeline_check.h), shared with
+// rgraph/testing.h; this adds the built-in registry and the CLI's defaults.
+using ShaderChecks = ShaderCheckMode;
 Plan checkPipeline(const PipelineConfig& pipeline, const CompileOptions& options, ShaderChecks shaders,
                    Diagnostics& diags, std::optional<bool> scenePresent = std::nullopt);
 

@@ -1,6 +1,9 @@
 // `rgraph render`: run a pipeline headless and write its output image.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <optional>
+#include <sstream>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -9,13 +12,10 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "rgraph/adapt.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/context.h"
-#include "rgraph/gl/executor.h"
-#include "rgraph/gl/shader_library.h"
 #include "rgraph/image.h"
-#include "rgraph/registry.h"
+#include "rgraph/renderer.h"
 #include "rgraph/scene.h"
 
 namespace rgraph::cli {
@@ -45,39 +45,69 @@ void writeStats(const std::string& path, const std::vector<double>& frameMs,
   f << stats.dump(2) << "\n";
 }
 
+// "px,py,pz,tx,ty,tz[,fovDeg]": the camera at (px,py,pz) looking at (tx,ty,tz).
+std::optional<Camera> parseCamera(const std::string& text, Camera camera, std::string& error) {
+  std::vector<float> v;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    char* end = nullptr;
+    const float f = std::strtof(item.c_str(), &end);
+    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(f)) {
+      error = "--camera '" + text + "': '" + item + "' is not a number (expected px,py,pz,tx,ty,tz[,fovDeg])";
+      return std::nullopt;
+    }
+    v.push_back(f);
+  }
+  if (v.size() != 6 && v.size() != 7) {
+    error = "--camera '" + text + "': expected 6 or 7 numbers (px,py,pz,tx,ty,tz[,fovDeg]), got " +
+            std::to_string(v.size());
+    return std::nullopt;
+  }
+  camera.position = glm::vec3(v[0], v[1], v[2]);
+  camera.target = glm::vec3(v[3], v[4], v[5]);
+  if (v.size() == 7) {
+    if (!(v[6] > 0.0f && v[6] < 180.0f)) {
+      error = "--camera '" + text + "': the field of view must be between 0 and 180 degrees";
+      return std::nullopt;
+    }
+    camera.fovY = v[6];
+  }
+  return camera;
+}
+
 }  // namespace
 
+// Everything through the public renderer API (rgraph/renderer.h), as a
+// program embedding rgraph would: this command only adds the context, the
+// PNG and the statistics.
 int runRender(const RenderOptions& options) {
   const std::string pipelinePath = options.pipeline.empty() ? defaultPipelinePath() : options.pipeline;
+  RendererOptions rendererOptions;
+  rendererOptions.size = Extent{options.size.width, options.size.height};
+  rendererOptions.maxTextureSize = options.size.maxTextureSize;
+  rendererOptions.maxTextureSizeOrigin = compileOptions(0, 0, options.size.maxTextureSize).maxTextureSizeOrigin;
+  rendererOptions.runChecks = options.checks;
   Diagnostics diags;
-  auto pipeline = loadPipeline(pipelinePath, diags);
-  printDiagnostics(diags);
-  if (!pipeline) return kExitFailure;
+  std::unique_ptr<Renderer> renderer = Renderer::fromFile(pipelinePath, rendererOptions, diags);
   // Render refuses what validate refuses, before any GL work: the graph at
-  // this size (an explicit --max-texture-size included; the device's own
-  // limit is checked when the executor compiles), the pass types' checks on
-  // the config as written, and the shader checks (cached on disk). With a
-  // config validate accepts, this prints nothing.
-  if (options.checks) {
-    CompileOptions compile = compileOptions(options.size.width, options.size.height, options.size.maxTextureSize);
-    // Without --max-texture-size the device's own limit decides (the executor
-    // checks it), not the OpenGL 4.5 minimum validate assumes.
-    if (options.size.maxTextureSize == 0) compile.maxTextureSize = 0;
-    Diagnostics checks;
-    checkPipeline(*pipeline, compile, ShaderChecks::cached, checks, /*scenePresent=*/true);
-    if (hasErrors(checks)) {
-      printDiagnostics(checks);
-      return kExitFailure;
-    }
-  }
+  // this size (the device's own texture limit is checked when it is built),
+  // the pass types' checks and the shader checks (cached on disk).
+  printDiagnostics(diags);
+  if (!renderer) return kExitFailure;
 
   try {
-    std::unique_ptr<Scene> scene;
     const std::string sceneSpec = options.scene.empty() ? std::string("learnopengl:overview") : options.scene;
-    scene = std::make_unique<Scene>(loadSceneAny(sceneSpec));
-    // Model no more than the scene needs (no point lights: no light volumes...).
-    for (const auto& note : adaptToScene(*pipeline, PassRegistry::builtins(), sceneFeatures(*scene)).notes)
-      spdlog::info("{}", note);
+    std::shared_ptr<RenderScene> scene = RenderScene::load(sceneSpec);
+    std::optional<Camera> camera;
+    if (!options.camera.empty()) {
+      std::string error;
+      camera = parseCamera(options.camera, scene->scene().camera, error);
+      if (!camera) {
+        std::cerr << "error: " << error << "\n";
+        return kExitFailure;
+      }
+    }
 
     ContextOptions ctxOptions;
     ctxOptions.window = options.window;
@@ -86,9 +116,9 @@ int runRender(const RenderOptions& options) {
     auto context = GlContext::create(ctxOptions);
     spdlog::info("OpenGL {} on {}", context->version(), context->renderer());
 
-    ShaderLibrary shaders;
-    Executor executor(*pipeline, PassRegistry::builtins(), shaders, scene.get());
-    executor.resize(Extent{options.size.width, options.size.height});
+    renderer->setScene(scene);
+    if (camera) renderer->setCamera(*camera);
+    renderer->setSize(Extent{options.size.width, options.size.height});
 
     std::vector<double> frameMs;
     std::map<std::string, std::vector<double>> passMs;
@@ -96,22 +126,30 @@ int runRender(const RenderOptions& options) {
     const uint32_t frames = std::max<uint32_t>(1, options.frames);
     for (uint32_t i = 0; i < frames; ++i) {
       auto t0 = std::chrono::steady_clock::now();
-      executor.renderFrame();
+      renderer->render();
       auto t1 = std::chrono::steady_clock::now();
+      if (i == 0)  // "Model no more than the scene needs": what the adaptation changed.
+        for (const auto& note : renderer->adaptNotes()) spdlog::info("{}", note);
       frameMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-      for (const auto& t : executor.timings()) {
+      for (const auto& t : renderer->timings()) {
         if (!passMs.count(t.name)) passOrder.push_back(t.name);
         passMs[t.name].push_back(t.ms);
+      }
+      if (context->hasWindow()) {  // show it: the output copied into the window
+        const Extent fb = context->windowFramebufferSize();
+        renderer->render(0, Viewport{0, 0, fb.width, fb.height});
+        context->swapBuffers();
+        context->pollEvents();
       }
     }
     if (context->debugErrorCount() > 0)
       spdlog::warn("{} OpenGL errors were reported while rendering", context->debugErrorCount());
 
-    const Extent extent = executor.outputExtent();
-    writePng(options.out, extent.width, extent.height, executor.readOutputRGBA8());
+    const Extent extent = renderer->outputExtent();
+    writePng(options.out, extent.width, extent.height, renderer->readOutputRGBA8());
     std::cout << "wrote " << options.out << " (" << extent.width << "x" << extent.height << ", " << frames
               << (frames == 1 ? " frame" : " frames") << ", median " << median(frameMs) << " ms)\n";
-    if (!options.stats.empty()) writeStats(options.stats, frameMs, passMs, passOrder, executor.plan());
+    if (!options.stats.empty()) writeStats(options.stats, frameMs, passMs, passOrder, renderer->plan());
   } catch (const RuntimeError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return kExitFailure;

@@ -26,6 +26,7 @@ struct RenderOptions {
   std::string out;        // PNG path
   std::string scene;      // scene file, .gltf/.glb, or a procedural name
   std::string stats;      // stats JSON path (optional)
+  std::string camera;     // "px,py,pz,tx,ty,tz[,fovDeg]"; empty: the scene's camera
   SizeOptions size;
   uint32_t frames = 1;
   bool window = false;

@@ -111,6 +111,10 @@ CLI::App* addRender(CLI::App& app, Options& o) {
       "scene file (.json), glTF (.gltf/.glb), learnopengl, learnopengl:overview (default) or many-lights:N");
   cmd->add_option("--frames", r.frames, "frames to render (timings are medians)")->check(CLI::Range(1u, 100000u));
   cmd->add_option("--stats", r.stats, "write frame and pass timings and memory as JSON");
+  cmd->add_option("--camera", r.camera,
+                  "camera at px,py,pz looking at tx,ty,tz, optionally with a vertical field of view in degrees "
+                  "(default: the scene's camera; near, far and up stay the scene's)")
+      ->type_name("px,py,pz,tx,ty,tz[,fov]");
   cmd->add_flag("--window", r.window, "render in a GLFW window instead of headless EGL");
   cmd->add_flag("!--no-checks", r.checks,
                 "skip what validate checks before rendering (graph, pass checks, glslang shader checks; "

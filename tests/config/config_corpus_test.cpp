@@ -60,6 +60,7 @@ const std::map<std::string, DiagCode>& expectedCodes() {
       {"size_width_huge", DiagCode::config_schema},
       {"bad_clear", DiagCode::config_schema},
       {"bad_clear_element", DiagCode::config_schema},
+      {"bad_imported", DiagCode::config_schema},
       {"bad_enum", DiagCode::param_range},
       {"bad_mips", DiagCode::config_schema},
       {"bad_resource_type", DiagCode::config_schema},

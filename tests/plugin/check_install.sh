@@ -14,6 +14,8 @@ need "$libdir/cmake/rgraph/rgraphTargets.cmake"
 need "$libdir/cmake/rgraph/rgraphPlugin.cmake"
 need include/rgraph/plugin.h
 need include/rgraph/pass.h
+need include/rgraph/testing.h
+need include/rgraph/pipeline_check.h
 need include/rgraph/gl/shader_library.h
 need include/rgraph/gl/fullscreen.h
 need include/rgraph/passes/gbuffer_layout.h

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "rgraph/error.h"
+#include "rgraph/pipeline_load.h"
 #include "rgraph/registry.h"
 
 namespace rgraph::testsupport {
@@ -31,16 +32,14 @@ class GlEnvironment : public ::testing::Environment {
 };
 [[maybe_unused]] ::testing::Environment* const gEnv = ::testing::AddGlobalTestEnvironment(new GlEnvironment);
 
-PipelineConfig buildOrThrow(ConfigDocument doc, Diagnostics diags, const std::string& name, const std::string& context) {
-  PipelineConfig cfg;
-  if (doc.ok()) cfg = doc.build(PassRegistry::builtins(), diags);
-  if (!doc.ok() || hasErrors(diags)) {
-    std::string msg = "pipeline " + name + " has errors:";
-    for (const auto& d : diags) msg += "\n  " + formatDiagnostic(d);
-    if (!context.empty()) msg += "\n" + context;
-    throw RuntimeError(msg);
+// With the caller's context (what the test was doing) after the diagnostics.
+PipelineConfig withContext(const std::function<PipelineConfig()>& load, const std::string& context) {
+  try {
+    return load();
+  } catch (const RuntimeError& e) {
+    if (context.empty()) throw;
+    throw RuntimeError(std::string(e.what()) + "\n" + context);
   }
-  return cfg;
 }
 
 }  // namespace
@@ -55,16 +54,10 @@ bool hasSharedGlContext() { return contextSlot() != nullptr; }
 
 void destroyBeforeContext(std::function<void()> fn) { teardowns().push_back(std::move(fn)); }
 
-PipelineConfig loadPipelineOrThrow(const std::string& path) {
-  Diagnostics diags;
-  ConfigDocument doc = ConfigDocument::parseFile(path, diags);
-  return buildOrThrow(std::move(doc), std::move(diags), path, {});
-}
+PipelineConfig loadPipelineOrThrow(const std::string& path) { return loadPipelineFileOrThrow(path); }
 
 PipelineConfig buildPipelineOrThrow(const std::string& text, const std::string& name, const std::string& context) {
-  Diagnostics diags;
-  ConfigDocument doc = ConfigDocument::parseText(text, name, diags);
-  return buildOrThrow(std::move(doc), std::move(diags), name, context);
+  return withContext([&] { return loadPipelineTextOrThrow(text, "pipeline " + name); }, context);
 }
 
 }  // namespace rgraph::testsupport

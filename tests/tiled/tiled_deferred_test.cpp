@@ -89,14 +89,7 @@ PipelineConfig pipeline(const Options& o) {
   passes.push_back({{"name", "tonemap"}, {"type", "tonemap"}, {"params", {{"operator", "none"}, {"gamma", 1.0}}},
                     {"inputs", {{"hdr", lit}}}, {"outputs", {{"output", "output"}}}});
   const json doc = {{"version", 1}, {"resources", res}, {"passes", passes}, {"output", "output"}};
-  Diagnostics diags;
-  ConfigDocument d = ConfigDocument::parseText(doc.dump(), "<tiled test>", diags);
-  PipelineConfig cfg;
-  if (d.ok()) cfg = d.build(PassRegistry::builtins(), diags);
-  std::string msg;
-  for (const auto& diag : diags) msg += formatDiagnostic(diag) + "\n";
-  if (!d.ok() || hasErrors(diags)) throw RuntimeError("test pipeline has errors:\n" + msg);
-  return cfg;
+  return testsupport::buildPipelineOrThrow(doc.dump(), "<tiled test>");
 }
 
 std::vector<float> renderHdr(const Options& o, const Scene& scene, Extent size) {

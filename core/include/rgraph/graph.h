@@ -12,8 +12,9 @@
 //    from names; write-after-read order follows from versions: the pass that
 //    produces version k+1 runs after every reader of version k.
 //  * compile() validates, orders passes topologically (ties keep declaration
-//    order), culls passes that feed no output and have no side effect (the
-//    output is one version: writers of its later versions are culled too),
+//    order), culls passes that feed no output, write no caller's texture
+//    (imported with content) and have no side effect (the output is one
+//    version: writers of its later versions are culled too),
 //    computes lifetimes over the order, and aliases transient textures whose
 //    descriptors match and whose lifetimes do not overlap.
 #pragma once
@@ -69,8 +70,9 @@ struct ResourceDecl {
   TextureDesc texture;          // kind == texture
   uint64_t bufferBytes = 0;     // kind == buffer
   bool imported = false;        // owned outside the graph (the output image, caller textures)
-  // Imported resources usually arrive with content (version 0 is readable);
-  // the output image does not.
+  // Imported resources usually arrive with content (version 0 is readable):
+  // the caller's textures, whose writers are never culled (the caller sees
+  // what they write). The output image does not.
   bool importedHasContent = true;
   SourceLocation where;
 };

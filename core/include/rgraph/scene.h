@@ -276,6 +276,13 @@ struct Scene {
   void validate() const;
 };
 
+// The checks validate() makes on one light or the camera, for edits made
+// after loading (rgraph/renderer.h). Throw RuntimeError "<where>: point light
+// <index>: ..." and the like.
+void validatePointLight(const PointLight& light, size_t index, const std::string& where);
+void validateDirectionalLight(const DirectionalLight& light, size_t index, const std::string& where);
+void validateCamera(const Camera& camera, const std::string& where);
+
 struct SceneFeatures;  // rgraph/pass.h
 // What this scene needs from a pipeline (point lights, blending, normal maps,
 // metallic/roughness variation), for PassTypeDesc::adapt hooks.

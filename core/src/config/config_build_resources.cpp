@@ -13,7 +13,8 @@ namespace rgraph::config_detail {
 namespace {
 
 const std::vector<std::string> kResourceKeys = {"type", "format", "size",         "samples",
-                                                "mips", "clear",  "buffer_bytes", "description"};
+                                                "mips", "clear",  "buffer_bytes", "description",
+                                                "imported"};
 
 }  // namespace
 
@@ -61,6 +62,14 @@ bool Builder::checkResource(const Json& res, const std::string& pointer, Resourc
     if (!type->is_string() || (*type != "texture" && *type != "buffer")) return false;
   }
   if (const Json* d = member("description"); d && !d->is_string()) typeError(sub("description"), "a string", *d);
+  // The caller's own texture or buffer (rgraph/renderer.h importTexture): it
+  // arrives with content, is never aliased, and its writers are never culled.
+  if (const Json* imported = member("imported")) {
+    if (imported->is_boolean())
+      r.imported = imported->get<bool>();
+    else
+      typeError(sub("imported"), "true or false", *imported);
+  }
 
   if (r.kind == ResourceKind::buffer) {
     for (const char* key : {"format", "size", "samples", "mips", "clear"})

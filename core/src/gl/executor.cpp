@@ -8,43 +8,25 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <optional>
 
 #include "memory_barriers.h"
-#include "pass_programs.h"
+#include "executor_internal.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/format.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/objects.h"
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/registry.h"
+#include "rgraph/scene.h"
 
 namespace rgraph {
 
+using exec_detail::PassRun;
+using exec_detail::ResourceObject;
+using exec_detail::SlotBinding;
+
 namespace {
-
-struct SlotBinding {
-  std::string slot;
-  Access access = Access::sampled;
-  ResourceIndex resource;
-  uint32_t texture = 0, buffer = 0;
-  Format format = Format::rgba8;
-  Extent extent;
-  uint32_t samples = 1;
-  uint32_t mips = 1;
-  bool loads = false;
-  bool firstWrite = false;
-  int colorIndex = -1;    // GL_COLOR_ATTACHMENT0 + colorIndex
-  bool depthAttachment = false;
-};
-
-struct ResourceObject {
-  gl::Texture ownTexture;
-  gl::Buffer ownBuffer;
-  uint32_t texture = 0, buffer = 0;
-  Format format = Format::rgba8;
-  Extent extent;
-  uint32_t samples = 1, mips = 1;
-};
 
 std::string statusName(GLenum s) {
   switch (s) {
@@ -80,120 +62,6 @@ bool isSoftwareRenderer() {
 
 }  // namespace
 
-// ------------------------------------------------------------------ pass runs
-
-namespace {
-class PassRun final : public PassContext {
- public:
-  std::string name;
-  std::string typeName;
-  PassIndex decl;
-  ParamSet paramSet;
-  std::vector<SlotBinding> slots;
-  gl::Framebuffer fbo;
-  Extent fbExtent;
-  gl::Query query;
-  std::unique_ptr<PassInstance> instance;
-  ShaderLibrary* shaderLib = nullptr;
-  const Scene* scenePtr = nullptr;
-  GpuScene* gpuScenePtr = nullptr;
-  Extent output;
-  bool readOnlyDepth = false;
-  uint32_t memoryBarrier = 0;  // glMemoryBarrier bits before execute (memory_barriers.h)
-  const PassTypeDesc* type = nullptr;
-  PassPrograms programs;  // built from type->programs(paramSet) before setup
-
-  const SlotBinding* find(std::string_view slot) const {
-    for (const auto& s : slots)
-      if (s.slot == slot) return &s;
-    return nullptr;
-  }
-
-  const std::string& passName() const override { return name; }
-  const ParamSet& params() const override { return paramSet; }
-  Extent outputExtent() const override { return output; }
-  bool bound(std::string_view slot) const override { return find(slot) != nullptr; }
-  uint32_t texture(std::string_view slot) const override {
-    const SlotBinding* s = find(slot);
-    return s ? s->texture : 0;
-  }
-  uint32_t buffer(std::string_view slot) const override {
-    const SlotBinding* s = find(slot);
-    return s ? s->buffer : 0;
-  }
-  Format format(std::string_view slot) const override {
-    const SlotBinding* s = find(slot);
-    return s ? s->format : Format::rgba8;
-  }
-  Extent extent(std::string_view slot) const override {
-    const SlotBinding* s = find(slot);
-    return s ? s->extent : Extent{};
-  }
-  uint32_t samples(std::string_view slot) const override {
-    const SlotBinding* s = find(slot);
-    return s ? s->samples : 0;
-  }
-  bool loads(std::string_view slot) const override {
-    const SlotBinding* s = find(slot);
-    return s && s->loads;
-  }
-  uint32_t framebuffer() const override { return fbo.id(); }
-  Extent framebufferExtent() const override { return fbExtent; }
-  ShaderLibrary& shaders() override { return *shaderLib; }
-  const Scene* scene() const override { return scenePtr; }
-  GpuScene* gpuScene() override { return gpuScenePtr; }
-  uint32_t program(size_t index) const override { return programs.program(index, name); }
-  size_t programCount() const override { return programs.count(); }
-};
-}  // namespace
-
-struct Executor::Impl {
-  PipelineConfig pipeline;
-  const PassRegistry& registry;
-  ShaderLibrary& shaders;
-  const Scene* scene;
-  std::unique_ptr<GpuScene> gpuScene;  // created once per executor when there is a scene
-  bool software = false;
-
-  bool built = false;
-  Extent size;
-  Plan plan;
-  std::vector<gl::Texture> physicalTextures;
-  std::vector<gl::Buffer> physicalBuffers;
-  std::vector<ResourceObject> resources;
-  std::map<std::string, ResourceIndex, std::less<>> byName;  // resource and version names
-  std::vector<std::unique_ptr<PassRun>> runs;      // execution order
-  std::vector<PassTiming> timings;
-  std::vector<BuiltProgram> builtPrograms;  // what passes asked the ShaderLibrary for, in order
-  uint32_t frameEndBarrier = 0;  // glMemoryBarrier bits after the last pass
-
-  Impl(const PipelineConfig& p, const PassRegistry& r, ShaderLibrary& s, const Scene* sc)
-      : pipeline(p), registry(r), shaders(s), scene(sc) {}
-
-  void teardown() {
-    runs.clear();  // pass instances first: they may hold GL objects of their own
-    resources.clear();
-    physicalTextures.clear();
-    physicalBuffers.clear();
-    byName.clear();
-    timings.clear();
-    builtPrograms.clear();
-    frameEndBarrier = 0;
-    built = false;
-  }
-
-  void build(Extent output);
-  void createResources();
-  std::unique_ptr<PassRun> createRun(PassIndex pass, Extent output);
-  void applyClears(PassRun& run);
-  void resetState(const PassRun& run);
-  void assignMemoryBarriers();
-
-  ResourceIndex resourceIndex(std::string_view name) const {
-    auto it = byName.find(name);
-    return it == byName.end() ? ResourceIndex() : it->second;
-  }
-};
 
 // The plan is ok: every resource a pass uses has a physical or is imported
 // (rgraph/graph.h), and Plan::resources matches the config's resources.
@@ -232,8 +100,14 @@ void Executor::Impl::createResources() {
         obj.samples = std::max<uint32_t>(1, p.samples);
         obj.mips = p.mips;
       } else if (pr.imported) {  // used or not; an unused transient gets nothing
-        obj.ownTexture = gl::createTexture2D(obj.format, obj.extent, obj.mips, obj.samples);
-        obj.texture = obj.ownTexture.id();
+        if (auto it = imports.find(pr.name); it != imports.end()) {
+          const std::string mismatch = gl::checkImportedTexture(pr.name, declaredShape(ResourceIndex(r)), it->second);
+          if (!mismatch.empty()) throw RuntimeError(mismatch);
+          obj.texture = it->second;
+        } else {
+          obj.ownTexture = gl::createTexture2D(obj.format, obj.extent, obj.mips, obj.samples);
+          obj.texture = obj.ownTexture.id();
+        }
       }
       if (obj.mips == 0) obj.mips = gl::fullMipCount(obj.extent);
       if (obj.texture) {
@@ -266,7 +140,7 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(PassIndex pass, Extent output
   run->decl = pass;
   run->shaderLib = &shaders;
   run->scenePtr = scene;
-  run->gpuScenePtr = gpuScene.get();
+  run->gpuScenePtr = gpuScene;
   run->output = output;
   run->paramSet = defaultParams(type->params);
   if (pass.value() < pipeline.params.size())
@@ -401,9 +275,22 @@ void Executor::Impl::build(Extent output) {
     throw RuntimeError(msg);
   }
 
-  if (scene && !gpuScene) gpuScene = std::make_unique<GpuScene>(*scene);
+  if (scene && !gpuScene) {
+    ownGpuScene = std::make_unique<GpuScene>(*scene);
+    gpuScene = ownGpuScene.get();
+  }
+  size = output;
   createResources();
-  for (PassIndex pass : plan.order) runs.push_back(createRun(pass, output));
+  createRuns();
+  built = true;
+}
+
+// Framebuffers, pass instances and their programs over the resources as they
+// are now (again after an import changes a texture).
+void Executor::Impl::createRuns() {
+  runs.clear();
+  builtPrograms.clear();
+  for (PassIndex pass : plan.order) runs.push_back(createRun(pass, size));
   assignMemoryBarriers();
   for (auto& run : runs) {
     try {
@@ -423,8 +310,10 @@ void Executor::Impl::build(Extent output) {
                          run->typeName + "'" + at + ")");
     }
   }
-  size = output;
-  built = true;
+}
+
+gl::TextureShape Executor::Impl::declaredShape(ResourceIndex r) const {
+  return gl::declaredShape(pipeline.graph.resources[r.value()], plan.resources[r.value()].extent);
 }
 
 void Executor::Impl::resetState(const PassRun& run) {
@@ -505,6 +394,16 @@ Executor::Executor(const PipelineConfig& pipeline, const PassRegistry& registry,
   impl_->software = isSoftwareRenderer();
 }
 
+Executor::Executor(const PipelineConfig& pipeline, const PassRegistry& registry, ShaderLibrary& shaders,
+                   GpuScene& gpuScene)
+    : impl_(std::make_unique<Impl>(pipeline, registry, shaders, &gpuScene.scene())) {
+  impl_->gpuScene = &gpuScene;
+  impl_->software = isSoftwareRenderer();
+}
+
+void Executor::setCamera(const Camera& camera) { impl_->camera = camera; }
+
+
 Executor::~Executor() {
   if (impl_) impl_->teardown();
 }
@@ -527,7 +426,12 @@ void Executor::renderFrame() {
   if (!im.built) throw RuntimeError("Executor::renderFrame: call resize() first");
   im.timings.assign(im.runs.size(), PassTiming{});
   using Clock = std::chrono::steady_clock;
-  if (im.gpuScene) im.gpuScene->updateFrame(im.size);
+  if (im.gpuScene) {
+    if (im.camera)
+      im.gpuScene->updateFrame(im.size, *im.camera);
+    else
+      im.gpuScene->updateFrame(im.size);
+  }
   if (im.software) glFinish();
   for (size_t i = 0; i < im.runs.size(); ++i) {
     PassRun& run = *im.runs[i];
@@ -579,92 +483,8 @@ std::vector<uint32_t> Executor::memoryBarriers() const {
   return bits;
 }
 uint32_t Executor::frameEndMemoryBarrier() const { return impl_->frameEndBarrier; }
-GpuScene* Executor::gpuScene() const { return impl_->gpuScene.get(); }
+GpuScene* Executor::gpuScene() const { return impl_->gpuScene; }
 const std::vector<Executor::PassTiming>& Executor::timings() const { return impl_->timings; }
 bool Executor::cpuTimed() const { return impl_->software; }
-
-uint32_t Executor::outputTexture() const {
-  if (!impl_->built) return 0;
-  return impl_->resources[impl_->plan.outputResource.value()].texture;
-}
-
-Extent Executor::outputExtent() const {
-  if (!impl_->built) return {};
-  return impl_->resources[impl_->plan.outputResource.value()].extent;
-}
-
-Format Executor::outputFormat() const {
-  if (!impl_->built) return Format::rgba8;
-  return impl_->resources[impl_->plan.outputResource.value()].format;
-}
-
-namespace {
-template <typename T>
-void flipRows(std::vector<T>& data, size_t rowElems, size_t rows) {
-  for (size_t y = 0; y < rows / 2; ++y)
-    std::swap_ranges(data.begin() + static_cast<std::ptrdiff_t>(y * rowElems),
-                     data.begin() + static_cast<std::ptrdiff_t>((y + 1) * rowElems),
-                     data.begin() + static_cast<std::ptrdiff_t>((rows - 1 - y) * rowElems));
-}
-}  // namespace
-
-std::vector<uint8_t> Executor::readOutputRGBA8() const {
-  if (!impl_->built) throw RuntimeError("Executor::readOutputRGBA8: nothing rendered (call resize() first)");
-  const ResourceObject& obj = impl_->resources[impl_->plan.outputResource.value()];
-  if (obj.samples > 1) throw RuntimeError("the output image is multisampled and cannot be read back directly");
-  if (gl::isDepth(obj.format)) throw RuntimeError("the output image has a depth format");
-  size_t w = obj.extent.width, h = obj.extent.height;
-  std::vector<uint8_t> data(w * h * 4);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glGetTextureImage(obj.texture, 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(data.size()), data.data());
-  flipRows(data, w * 4, h);
-  return data;
-}
-
-std::vector<float> Executor::readTextureRGBA32F(const std::string& name) const {
-  const ResourceIndex r = impl_->resourceIndex(name);
-  if (!impl_->built || !r.valid())
-    throw RuntimeError("readTextureRGBA32F: no live resource or version named '" + name + "'");
-  const ResourceObject& obj = impl_->resources[r.value()];
-  if (!obj.texture) throw RuntimeError("readTextureRGBA32F: resource '" + name + "' has no texture");
-  if (obj.samples > 1) throw RuntimeError("readTextureRGBA32F: resource '" + name + "' is multisampled");
-  size_t w = obj.extent.width, h = obj.extent.height;
-  std::vector<float> data(w * h * 4);
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  if (gl::isDepth(obj.format)) {
-    std::vector<float> depth(w * h);
-    glGetTextureImage(obj.texture, 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(depth.size() * sizeof(float)),
-                      depth.data());
-    for (size_t i = 0; i < w * h; ++i) {
-      data[i * 4 + 0] = depth[i];
-      data[i * 4 + 1] = 0.0f;
-      data[i * 4 + 2] = 0.0f;
-      data[i * 4 + 3] = 1.0f;
-    }
-  } else {
-    glGetTextureImage(obj.texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(data.size() * sizeof(float)), data.data());
-  }
-  flipRows(data, w * 4, h);
-  return data;
-}
-
-uint32_t Executor::textureOf(const std::string& name) const {
-  const ResourceIndex r = impl_->resourceIndex(name);
-  return impl_->built && r.valid() ? impl_->resources[r.value()].texture : 0;
-}
-
-uint32_t Executor::bufferOf(const std::string& name) const {
-  const ResourceIndex r = impl_->resourceIndex(name);
-  return impl_->built && r.valid() ? impl_->resources[r.value()].buffer : 0;
-}
-
-size_t Executor::ownedObjects() const {
-  size_t n = 0;
-  for (const auto& t : impl_->physicalTextures) n += t ? 1 : 0;
-  for (const auto& b : impl_->physicalBuffers) n += b ? 1 : 0;
-  for (const auto& r : impl_->resources) n += (r.ownTexture ? 1 : 0) + (r.ownBuffer ? 1 : 0);
-  for (const auto& run : impl_->runs) n += (run->fbo ? 1 : 0) + (run->query ? 1 : 0);
-  return n;
-}
 
 }  // namespace rgraph

@@ -161,10 +161,12 @@ GpuScene::GpuMesh GpuScene::upload(const MeshData& mesh, bool tangents) const {
   return g;
 }
 
-void GpuScene::updateFrame(Extent viewport) {
+void GpuScene::updateFrame(Extent viewport) { updateFrame(viewport, scene_.camera); }
+
+void GpuScene::updateFrame(Extent viewport, const Camera& cam) {
   const float w = static_cast<float>(std::max(viewport.width, 1u));
   const float h = static_cast<float>(std::max(viewport.height, 1u));
-  const Camera& cam = scene_.camera;
+  eye_ = cam.position;
   FrameBlock f{};
   f.view = cam.view();
   f.proj = cam.projection(w / h);
@@ -206,24 +208,31 @@ std::vector<float> GpuScene::pointLightRadii(float threshold) const {
 }
 
 uint32_t GpuScene::pointLightBuffer(float threshold) {
-  auto it = lightBuffers_.find(threshold);
-  if (it != lightBuffers_.end()) return it->second.id();
+  LightBuffer& slot = lightBuffers_[threshold];
+  if (slot.buffer && slot.version == lightsVersion_) return slot.buffer.id();
   const std::vector<float> radii = pointLightRadii(threshold);
   std::vector<GpuPointLight> lights;
-  lights.reserve(radii.size());
+  lights.reserve(std::max<size_t>(radii.size(), 1));
   for (size_t i = 0; i < radii.size(); ++i) {
     const PointLight& l = scene_.pointLights[i];
     lights.push_back({glm::vec4(l.position, radii[i]), glm::vec4(l.color * l.intensity, 1.0f),
                       glm::vec4(l.constant, l.linear, l.quadratic, 0.0f)});
   }
-  gl::Buffer b = gl::createBuffer();
   // An empty SSBO binding is an error in GL: keep at least one (unused) light.
-  const GpuPointLight none{};
-  glNamedBufferStorage(b.id(), std::max<size_t>(lights.size(), 1) * sizeof(GpuPointLight),
-                       lights.empty() ? &none : lights.data(), 0);
-  const uint32_t id = b.id();
-  lightBuffers_.emplace(threshold, std::move(b));
-  return id;
+  if (lights.empty()) lights.push_back(GpuPointLight{});
+  if (!slot.buffer || slot.capacity < lights.size()) {
+    // Room for growth, so that adding a light now and then reuses the buffer.
+    size_t capacity = 16;
+    while (capacity <= lights.size()) capacity *= 2;  // always room for one more
+    slot.buffer = gl::createBuffer();
+    slot.capacity = capacity;
+    glNamedBufferStorage(slot.buffer.id(), static_cast<GLsizeiptr>(capacity * sizeof(GpuPointLight)), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+  }
+  glNamedBufferSubData(slot.buffer.id(), 0, static_cast<GLsizeiptr>(lights.size() * sizeof(GpuPointLight)),
+                       lights.data());
+  slot.version = lightsVersion_;
+  return slot.buffer.id();
 }
 
 void GpuScene::bindPointLights(float threshold) {
@@ -295,7 +304,7 @@ void GpuScene::drawPrimitives(uint32_t program, const DrawOptions& options) cons
     if (options.filter == Filter::all || (options.filter == Filter::blend) == blend) order.push_back(i);
   }
   if (options.backToFront) {
-    const glm::vec3 eye = scene_.camera.position;
+    const glm::vec3 eye = eye_;
     auto dist = [&](size_t i) { return glm::length(scene_.primitives[i].bounds.center() - eye); };
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return dist(a) > dist(b); });
   }

@@ -8,6 +8,7 @@
 namespace rgraph::gl {
 namespace {
 std::array<std::atomic<int64_t>, static_cast<size_t>(ObjectKind::count_)> gLive{};
+std::array<std::atomic<int64_t>, static_cast<size_t>(ObjectKind::count_)> gCreated{};
 }
 
 const char* objectKindName(ObjectKind k) {
@@ -27,6 +28,14 @@ const char* objectKindName(ObjectKind k) {
 
 int64_t liveObjects(ObjectKind k) { return gLive[static_cast<size_t>(k)].load(); }
 
+int64_t createdObjects(ObjectKind k) { return gCreated[static_cast<size_t>(k)].load(); }
+
+int64_t createdObjectsTotal() {
+  int64_t n = 0;
+  for (const auto& c : gCreated) n += c.load();
+  return n;
+}
+
 int64_t liveObjectsTotal() {
   int64_t n = 0;
   for (const auto& c : gLive) n += c.load();
@@ -34,7 +43,10 @@ int64_t liveObjectsTotal() {
 }
 
 namespace detail {
-void countCreated(ObjectKind k) { gLive[static_cast<size_t>(k)].fetch_add(1); }
+void countCreated(ObjectKind k) {
+  gLive[static_cast<size_t>(k)].fetch_add(1);
+  gCreated[static_cast<size_t>(k)].fetch_add(1);
+}
 
 void destroy(ObjectKind k, uint32_t id) {
   switch (k) {

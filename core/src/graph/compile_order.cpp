@@ -96,6 +96,17 @@ void Compiler::cull() {
   mark(outputWriter_);
   for (uint32_t p = 0; p < nPass_; ++p)
     if (passFlags_[p] & kSideEffect) mark(static_cast<int>(p));
+  // What a pass writes into a caller's texture (imported, arriving with
+  // content; not the output image's resource, whose later versions would
+  // overwrite the image) is seen by the caller who owns it: such writers
+  // are roots, like the output's.
+  const int outputRes = outputVer_ >= 0 ? vers_[outputVer_].res : -1;
+  for (uint32_t p = 0; p < nPass_; ++p)
+    for (uint32_t f = useBegin_[p]; f < useBegin_[p + 1]; ++f) {
+      const int wv = u_[f].write ? u_[f].writeVer : -1;
+      if (wv < 0 || vers_[wv].res < 0 || vers_[wv].res == outputRes) continue;
+      if (r_[vers_[wv].res].imported && r_[vers_[wv].res].hasContent) mark(static_cast<int>(p));
+    }
   while (!stack.empty()) {
     const uint32_t p = stack.back();
     stack.pop_back();

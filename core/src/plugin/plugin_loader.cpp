@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <filesystem>
 #include <spdlog/spdlog.h>
 
@@ -188,7 +189,8 @@ PluginLoader::PluginLoader(PassRegistry& registry) : registry_(registry) {}
 PluginLoader::~PluginLoader() = default;
 
 void PluginLoader::addSearchDirectory(const std::string& dir) {
-  if (!dir.empty()) dirs_.push_back(dir);
+  // Front ends add their folders on every load: keep each once.
+  if (!dir.empty() && std::find(dirs_.begin(), dirs_.end(), dir) == dirs_.end()) dirs_.push_back(dir);
 }
 
 std::vector<std::string> PluginLoader::searchDirectories() const {

@@ -234,14 +234,18 @@ std::string vecText(const glm::vec3& v) {
   std::snprintf(b, sizeof b, "(%g, %g, %g)", double(v.x), double(v.y), double(v.z));
   return b;
 }
+std::string limitText() {
+  char limit[32];
+  std::snprintf(limit, sizeof limit, "%g", double(kMaxWorldCoordinate));
+  return limit;
+}
 
 // Finite inputs can still overflow on the way (a large vertex under a large
 // scale): checked on the results, which is what the renderer reads.
 void validateNumbers(const Scene& s) {
   const std::string where = s.source.empty() ? std::string("scene") : s.source;
   auto fail = [&](const std::string& msg) { throw RuntimeError(where + ": " + msg); };
-  char limit[32];
-  std::snprintf(limit, sizeof limit, "%g", double(kMaxWorldCoordinate));
+  const std::string limit = limitText();
   const Bounds none;
   for (size_t i = 0; i < s.primitives.size(); ++i) {
     const glm::mat4& m = s.primitives[i].transform;
@@ -256,31 +260,42 @@ void validateNumbers(const Scene& s) {
            " to " + vecText(b.max) + " exceed +-" + limit +
            " units (the most supported; a huge vertex position or transform?)");
   }
-  for (size_t i = 0; i < s.pointLights.size(); ++i) {
-    const PointLight& l = s.pointLights[i];
-    if (!inWorld(l.position))
-      fail("point light " + std::to_string(i) + ": position " + vecText(l.position) + " exceeds +-" + limit + " units");
-    // (An infinite radius is a light without falloff: callers cap it, see lightRadius.)
-    if (!finiteVec(l.color) || !std::isfinite(l.intensity) || !std::isfinite(l.constant) || !std::isfinite(l.linear) ||
-        !std::isfinite(l.quadratic) || std::isnan(l.radius))
-      fail("point light " + std::to_string(i) + ": colour, intensity or attenuation is not finite");
-  }
-  for (size_t i = 0; i < s.directionalLights.size(); ++i) {
-    const DirectionalLight& l = s.directionalLights[i];
-    if (!finiteVec(l.direction) || !finiteVec(l.color) || !std::isfinite(l.intensity))
-      fail("directional light " + std::to_string(i) + ": direction, colour or intensity is not finite");
-  }
+  for (size_t i = 0; i < s.pointLights.size(); ++i) validatePointLight(s.pointLights[i], i, where);
+  for (size_t i = 0; i < s.directionalLights.size(); ++i) validateDirectionalLight(s.directionalLights[i], i, where);
   if (!finiteVec(s.ambient)) fail("the ambient light is not finite");
   if (!s.hasCamera) return;  // the caller frames the scene: finite within the bounds above
-  if (!inWorld(s.camera.position) || !inWorld(s.camera.target))
-    fail("camera position or target exceeds +-" + std::string(limit) + " units");
-  const glm::mat4 vp = s.camera.viewProjection(1.0f);
-  for (int c = 0; c < 4; ++c)
-    if (!finiteVec(glm::vec3(vp[c])) || !std::isfinite(vp[c].w))
-      fail("camera: its view and projection are not finite (near " + std::to_string(s.camera.near) + ", far " +
-           std::to_string(s.camera.far) + ", fov " + std::to_string(s.camera.fovY) + ")");
+  validateCamera(s.camera, where);
 }
 }  // namespace
+
+void validatePointLight(const PointLight& l, size_t index, const std::string& where) {
+  auto fail = [&](const std::string& msg) {
+    throw RuntimeError(where + ": point light " + std::to_string(index) + ": " + msg);
+  };
+  if (!inWorld(l.position))
+    fail("position " + vecText(l.position) + " exceeds +-" + limitText() + " units");
+  // (An infinite radius is a light without falloff: callers cap it, see lightRadius.)
+  if (!finiteVec(l.color) || !std::isfinite(l.intensity) || !std::isfinite(l.constant) || !std::isfinite(l.linear) ||
+      !std::isfinite(l.quadratic) || std::isnan(l.radius))
+    fail("colour, intensity or attenuation is not finite");
+}
+
+void validateDirectionalLight(const DirectionalLight& l, size_t index, const std::string& where) {
+  if (!finiteVec(l.direction) || !finiteVec(l.color) || !std::isfinite(l.intensity))
+    throw RuntimeError(where + ": directional light " + std::to_string(index) +
+                       ": direction, colour or intensity is not finite");
+}
+
+void validateCamera(const Camera& camera, const std::string& where) {
+  auto fail = [&](const std::string& msg) { throw RuntimeError(where + ": " + msg); };
+  if (!inWorld(camera.position) || !inWorld(camera.target))
+    fail("camera position or target exceeds +-" + limitText() + " units");
+  const glm::mat4 vp = camera.viewProjection(1.0f);
+  for (int c = 0; c < 4; ++c)
+    if (!finiteVec(glm::vec3(vp[c])) || !std::isfinite(vp[c].w))
+      fail("camera: its view and projection are not finite (near " + std::to_string(camera.near) + ", far " +
+           std::to_string(camera.far) + ", fov " + std::to_string(camera.fovY) + ")");
+}
 
 void Scene::validate() const {
   const std::string where = source.empty() ? std::string("scene") : source;

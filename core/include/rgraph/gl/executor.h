@@ -25,6 +25,7 @@ namespace rgraph {
 
 class PassRegistry;
 class GpuScene;
+struct Camera;
 
 class Executor {
  public:
@@ -32,6 +33,11 @@ class Executor {
   // (they must outlive the executor). Needs a current GL 4.5 context.
   Executor(const PipelineConfig& pipeline, const PassRegistry& registry, ShaderLibrary& shaders,
            const Scene* scene = nullptr);
+  // Draws a scene already uploaded (shared with other executors: each writes
+  // its own camera into the scene's Frame block at the start of its frame).
+  // `gpuScene` must outlive the executor.
+  Executor(const PipelineConfig& pipeline, const PassRegistry& registry, ShaderLibrary& shaders,
+           GpuScene& gpuScene);
   ~Executor();
   Executor(const Executor&) = delete;
   Executor& operator=(const Executor&) = delete;
@@ -44,6 +50,20 @@ class Executor {
   // Executes every planned pass in order (clears first-written resources that
   // have a clear value, then Pass::execute). Times each pass.
   void renderFrame();
+
+  // The camera of the following frames (default: the scene's own camera).
+  void setCamera(const Camera& camera);
+
+  // The caller's GL texture for a resource declared imported (rgraph/renderer.h):
+  // used from now on instead of a texture the executor creates. Throws
+  // RuntimeError when the resource is unknown, not imported, or not a texture,
+  // and when the texture does not match the declaration at the current size
+  // (checked now when built, else at resize(); the message names the resource
+  // and both descriptions). Rebuilds framebuffers and pass instances when
+  // built (programs and other textures are kept).
+  void importTexture(const std::string& resource, uint32_t texture);
+  // Back to a texture the executor owns (no-op when none was imported).
+  void releaseTexture(const std::string& resource);
 
   const Plan& plan() const;
   // Every program a pass asked the ShaderLibrary for (each once per pass, in

@@ -19,12 +19,15 @@
 #include <memory>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "rgraph/gl/objects.h"
 #include "rgraph/graph.h"
 
 namespace rgraph {
 
 struct Scene;
+struct Camera;
 
 class GpuScene {
  public:
@@ -35,8 +38,16 @@ class GpuScene {
 
   const Scene& scene() const { return scene_; }
 
-  // Fills the Frame block for this viewport (camera aspect) and binds it at 0.
+  // Fills the Frame block for this viewport (camera aspect) and binds it at 0:
+  // the scene's camera, or `camera` (renderers sharing one GpuScene each have
+  // their own; the block is rewritten at the start of each one's frame).
   void updateFrame(Extent viewport);
+  void updateFrame(Extent viewport, const Camera& camera);
+  // The scene's lights or ambient changed (same Scene object): light buffers
+  // are rewritten in place at their next use, grown only past their capacity
+  // (a power of two), so that moving, recolouring, adding and removing lights
+  // creates no GL object in the common case.
+  void lightsChanged() { ++lightsVersion_; }
   void bindFrame() const;
 
   // Point lights with radii solved for `threshold` (LearnOpenGL: 5/256 of the
@@ -91,7 +102,14 @@ class GpuScene {
   gl::Texture white_, flatNormal_;
   gl::Sampler defaultSampler_;
   gl::Buffer frame_;
-  std::map<float, gl::Buffer> lightBuffers_;
+  struct LightBuffer {
+    gl::Buffer buffer;
+    size_t capacity = 0;  // lights it can hold
+    uint64_t version = 0;
+  };
+  std::map<float, LightBuffer> lightBuffers_;
+  uint64_t lightsVersion_ = 0;
+  glm::vec3 eye_{0.0f};  // the camera of the current frame (back-to-front sorting)
   mutable std::map<uint32_t, std::unique_ptr<Locations>> locations_;
 };
 

@@ -15,6 +15,11 @@ const char* objectKindName(ObjectKind k);
 int64_t liveObjects(ObjectKind k);
 // Sum over all kinds.
 int64_t liveObjectsTotal();
+// Objects of this kind created through these wrappers since the process
+// started (never decreases), and the sum over all kinds: a frame that creates
+// nothing leaves createdObjectsTotal() unchanged.
+int64_t createdObjects(ObjectKind k);
+int64_t createdObjectsTotal();
 
 namespace detail {
 void countCreated(ObjectKind k);

@@ -1,0 +1,242 @@
+// rgraph inside your own OpenGL program: run a pipeline from a config file in
+// the GL context you made current, into your framebuffer or your textures.
+// rgraph creates no context and no window on this path.
+//
+//   rgraph::Diagnostics diags;
+//   auto renderer = rgraph::Renderer::fromFile("pipelines/default.json", {}, diags);
+//   if (!renderer) { for (auto& d : diags) std::cerr << rgraph::formatDiagnostic(d) << "\n"; return 1; }
+//   auto scene = rgraph::RenderScene::load("learnopengl:overview");
+//   renderer->setScene(scene);
+//   renderer->setSize({1280, 720});
+//   while (running) {
+//     renderer->setCamera(myCamera);                    // every frame, no rebuild
+//     scene->setPointLight(0, movedLight);              // lights too
+//     renderer->render(/*framebuffer=*/0);              // 0 = the window
+//     ... your own drawing; your GL state is as you left it ...
+//   }
+//
+// Imported targets: a resource the config declares with "imported": true can
+// be given one of your GL textures (importTexture); rgraph reads and writes it
+// in place, never aliases it, and never culls a pass that writes it.
+//
+// Several renderers in one context (a main view and an inset, say) may share
+// one RenderScene: the scene is uploaded to the GPU once, lights edited once.
+//
+// Errors. Config problems (JSON, graph, pass checks, shader checks) are
+// Diagnostics with file:line:col and the JSON path, never exceptions: the
+// factories return nullptr, reload() returns false and keeps the last good
+// pipeline. What can only fail on the device (a framebuffer the driver calls
+// incomplete, a shader the driver refuses, a texture over its size limit) and
+// misuse (an imported texture that does not match its declaration, an unknown
+// resource name) throw rgraph::RuntimeError with one clear message.
+//
+// GL state contract. render() (and the read-backs) change GL state while they run and, with
+// RendererOptions::restoreGlState (the default), put back everything they may touch before they return: the draw and
+// read framebuffers, the current program, the vertex array, the buffers bound to GL_ARRAY_BUFFER, GL_UNIFORM_BUFFER,
+// GL_SHADER_STORAGE_BUFFER, GL_PIXEL_PACK_BUFFER and GL_PIXEL_UNPACK_BUFFER, the viewport and scissor box (index 0),
+// the enables (blend per draw buffer, depth test, stencil test, cull face, scissor test, framebuffer sRGB, polygon
+// offset fill, multisample, depth clamp, rasterizer discard, colour logic op, primitive restart, sample alpha to
+// coverage, sample coverage, sample mask), the blend functions, blend equations and colour mask of draw buffers 0-7,
+// the blend colour, depth function, depth mask, stencil functions, masks and operations (front and back), cull face
+// mode, front face, polygon mode, clip control, the active texture unit, the textures (every target) and sampler
+// bound on units 0-15, uniform and shader storage buffer bindings 0-7 with their ranges, image unit bindings 0-7,
+// and the pixel pack and unpack parameters (alignment, row length, image height, skips). For its own work it first
+// resets what a caller may have changed and rgraph relies on (always, restoreGlState or not): polygon mode fill,
+// multisample on, no polygon offset, rasterizer discard, logic op, primitive restart or sample coverage, the default
+// clip control and pixel store, no pixel pack or unpack buffer. Not restored: the contents of rgraph's own objects,
+// viewports and scissor boxes past index 0, draw buffers 8 and up; rgraph never changes clear values, depth range,
+// polygon offset factors, the logic op, the primitive restart index or the sample coverage value. A program the
+// caller deleted while it was current is not made current again. See docs/embedding.md.
+//
+// Threading: use a renderer on the thread whose context is current, and
+// destroy renderers and scenes while that context is still current.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "rgraph/config.h"
+#include "rgraph/diagnostics.h"
+#include "rgraph/graph.h"
+#include "rgraph/scene.h"
+
+namespace rgraph {
+
+class Executor;
+class GpuScene;
+
+// A scene that renderers draw: the CPU data, edits to its lights, and one GPU
+// upload shared by every renderer that draws it in the current context (or
+// its share group).
+class RenderScene {
+ public:
+  // A scene file (.json), a glTF (.gltf/.glb) or a procedural name
+  // (learnopengl:overview, many-lights:N, ...), as `rgraph render --scene`.
+  // Throws RuntimeError naming the file and the problem.
+  static std::shared_ptr<RenderScene> load(const std::string& spec);
+  // A scene built in code. Throws RuntimeError when it breaks Scene::validate().
+  static std::shared_ptr<RenderScene> fromScene(Scene scene);
+  ~RenderScene();
+  RenderScene(const RenderScene&) = delete;
+  RenderScene& operator=(const RenderScene&) = delete;
+
+  const Scene& scene() const;
+
+  // Light edits take effect at the next frame of every renderer drawing the
+  // scene, without rebuilding pipelines; the light buffers are rewritten in
+  // place (they grow only past a power of two). Exception: when the scene
+  // gains its first point light or loses its last one, renderers adapt their
+  // pipeline to it again (no point lights: no light volumes) at their next
+  // frame. A light with a non-finite or out-of-range value throws RuntimeError
+  // and changes nothing.
+  size_t pointLightCount() const;
+  const PointLight& pointLight(size_t index) const;
+  void setPointLight(size_t index, const PointLight& light);
+  size_t addPointLight(const PointLight& light);  // returns its index
+  void removePointLight(size_t index);             // later lights move down by one
+  void setPointLights(std::vector<PointLight> lights);
+  void setDirectionalLights(std::vector<DirectionalLight> lights);
+  void setAmbient(const glm::vec3& ambient);
+  // Increases with every light or ambient edit.
+  uint64_t lightsVersion() const;
+
+  // The GPU copy, uploaded on first use (a GL context must be current).
+  GpuScene& gpu();
+  // How many times the geometry, textures and materials were uploaded: 1 once
+  // any renderer has drawn the scene, however many renderers share it.
+  uint64_t uploadCount() const;
+
+ private:
+  RenderScene();
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+struct RendererOptions {
+  // Folders searched for the plugins the config names, before
+  // $RGRAPH_PLUGIN_PATH, the installed plugin folder and the build tree's.
+  std::vector<std::string> pluginDirectories;
+  // Folders searched for shader files before the built-in shaders.
+  std::vector<std::string> shaderDirectories;
+  // The output size the factories check the graph at (setSize changes it).
+  Extent size{1280, 720};
+  // At creation and reload: what `rgraph validate` checks (graph at `size`,
+  // the pass types' checks, the glslang shader checks, cached on disk as
+  // `rgraph render` caches them). false skips the pass and shader checks.
+  bool runChecks = true;
+  // The texture size limit the checks assume; 0: none before the device's own
+  // GL_MAX_TEXTURE_SIZE, checked when the pipeline is built.
+  uint32_t maxTextureSize = 0;
+  // How messages name that limit (default "RendererOptions::maxTextureSize").
+  std::string maxTextureSizeOrigin;
+  // "Model no more than a scene needs": adapt the pipeline to the scene (no
+  // point lights: no light volumes, ...). Notes go to adaptNotes().
+  bool adaptToScene = true;
+  // The GL state contract (top of this file).
+  bool restoreGlState = true;
+};
+
+// A rectangle of a framebuffer, in pixels from its lower-left corner.
+struct Viewport {
+  int32_t x = 0, y = 0;
+  uint32_t width = 0, height = 0;  // 0: the renderer's size
+};
+
+class Renderer {
+ public:
+  // nullptr when the config has errors (all in diags, warnings too).
+  static std::unique_ptr<Renderer> fromFile(const std::string& pipelinePath, const RendererOptions& options,
+                                            Diagnostics& diags);
+  // From JSON text; messages name `nameForMessages`; plugin paths in it are
+  // relative to `baseDir` ("" = the working directory).
+  static std::unique_ptr<Renderer> fromJson(std::string_view json, const std::string& nameForMessages,
+                                            const RendererOptions& options, Diagnostics& diags,
+                                            const std::string& baseDir = {});
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // The scene to draw (nullptr: none; scene passes then refuse to run). The
+  // camera becomes the scene's camera. Adapts the pipeline at the next frame.
+  void setScene(std::shared_ptr<RenderScene> scene);
+  const std::shared_ptr<RenderScene>& scene() const;
+  // Per frame; no rebuild. Each renderer has its own camera.
+  void setCamera(const Camera& camera);
+  const Camera& camera() const;
+
+  // Output size. Textures are re-created at the next frame when it changes.
+  void setSize(Extent size);
+  Extent size() const;
+
+  // Gives the resource `resource` (declared "imported": true, or the output's)
+  // your texture, from the next frame on. Refused at once with RuntimeError,
+  // naming the resource and both descriptions, when the texture's target,
+  // format, size, sample count (or mip levels, for an immutable texture of a
+  // resource with mips > 1) differs from the declaration at size(); and when
+  // the resource is unknown, not imported, or a buffer. After setSize, import
+  // textures of the new size (one of the old size makes the next render()
+  // throw). Kept across reload() while the reloaded declaration still matches
+  // (else the next frame throws).
+  void importTexture(const std::string& resource, uint32_t glTexture);
+  // Back to a texture rgraph owns.
+  void releaseTexture(const std::string& resource);
+  // Names of the resources the config declares imported (the output included).
+  std::vector<std::string> importableResources() const;
+
+  // Runs the pipeline once. The output stays in outputTexture() (or your
+  // imported texture). Throws RuntimeError on device failures (see top).
+  void render();
+  // The same, then copies the output into `viewport` of `framebuffer`
+  // (0 = the window's), scaled with linear filtering when the sizes differ.
+  // Stored values are copied (an sRGB output's encoded bytes, as a PNG holds).
+  void render(uint32_t framebuffer, const Viewport& viewport = {});
+
+  // Re-reads the pipeline file (or takes new JSON text), checks it as the
+  // factories do and, when it has no errors, replaces the pipeline from the
+  // next frame, keeping the programs that did not change. On errors keeps the
+  // last good pipeline, returns false, and diags says why.
+  bool reload(Diagnostics& diags);
+  bool reloadJson(std::string_view json, Diagnostics& diags);
+
+  // The pipeline as adapted to the scene, and the notes the adaptation made.
+  const PipelineConfig& pipeline() const;
+  const std::vector<std::string>& adaptNotes() const;
+  // The compiled plan of the last frame (before the first frame: compiled
+  // now at size(), GL-free). Memory: Plan::naiveBytes / allocatedBytes.
+  const Plan& plan() const;
+  struct PassTiming {
+    std::string name;
+    double ms = 0.0;
+  };
+  // Per executed pass of the last frame, in execution order.
+  std::vector<PassTiming> timings() const;
+  // true: timings are CPU time around a glFinish per pass (software renderers,
+  // whose timer queries are not trustworthy); false: GL_TIME_ELAPSED queries.
+  bool cpuTimed() const;
+
+  uint32_t outputTexture() const;
+  Extent outputExtent() const;
+  // The output as RGBA8, rows top-down (stored bytes of an sRGB output).
+  std::vector<uint8_t> readOutputRGBA8() const;
+  // Any resource or version as RGBA32F, rows top-down (see Executor).
+  std::vector<float> readResourceRGBA32F(const std::string& name) const;
+
+  // How many times GL objects were (re)built for this renderer: the first
+  // frame, size, scene-feature, import and pipeline changes. Camera and light
+  // changes never add one.
+  uint64_t builds() const;
+  // The engine underneath, for tools and tests (nullptr before the first frame).
+  Executor* executor();
+
+ private:
+  Renderer();
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rgraph

@@ -1,0 +1,175 @@
+// The executor's insides, shared by its two source files: executor.cpp
+// (building the plan's GL objects, running frames) and executor_resources.cpp
+// (imports, readback, what tools query). Not installed.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "imported_texture.h"
+#include "pass_programs.h"
+#include "rgraph/gl/executor.h"
+#include "rgraph/gl/gpu_scene.h"
+#include "rgraph/gl/objects.h"
+#include "rgraph/gl/shader_library.h"
+#include "rgraph/pass.h"
+#include "rgraph/scene.h"
+
+namespace rgraph {
+namespace exec_detail {
+
+struct SlotBinding {
+  std::string slot;
+  Access access = Access::sampled;
+  ResourceIndex resource;
+  uint32_t texture = 0, buffer = 0;
+  Format format = Format::rgba8;
+  Extent extent;
+  uint32_t samples = 1;
+  uint32_t mips = 1;
+  bool loads = false;
+  bool firstWrite = false;
+  int colorIndex = -1;    // GL_COLOR_ATTACHMENT0 + colorIndex
+  bool depthAttachment = false;
+};
+
+struct ResourceObject {
+  gl::Texture ownTexture;
+  gl::Buffer ownBuffer;
+  uint32_t texture = 0, buffer = 0;
+  Format format = Format::rgba8;
+  Extent extent;
+  uint32_t samples = 1, mips = 1;
+};
+
+class PassRun final : public PassContext {
+ public:
+  std::string name;
+  std::string typeName;
+  PassIndex decl;
+  ParamSet paramSet;
+  std::vector<SlotBinding> slots;
+  gl::Framebuffer fbo;
+  Extent fbExtent;
+  gl::Query query;
+  std::unique_ptr<PassInstance> instance;
+  ShaderLibrary* shaderLib = nullptr;
+  const Scene* scenePtr = nullptr;
+  GpuScene* gpuScenePtr = nullptr;
+  Extent output;
+  bool readOnlyDepth = false;
+  uint32_t memoryBarrier = 0;  // glMemoryBarrier bits before execute (memory_barriers.h)
+  const PassTypeDesc* type = nullptr;
+  PassPrograms programs;  // built from type->programs(paramSet) before setup
+
+  const SlotBinding* find(std::string_view slot) const {
+    for (const auto& s : slots)
+      if (s.slot == slot) return &s;
+    return nullptr;
+  }
+
+  const std::string& passName() const override { return name; }
+  const ParamSet& params() const override { return paramSet; }
+  Extent outputExtent() const override { return output; }
+  bool bound(std::string_view slot) const override { return find(slot) != nullptr; }
+  uint32_t texture(std::string_view slot) const override {
+    const SlotBinding* s = find(slot);
+    return s ? s->texture : 0;
+  }
+  uint32_t buffer(std::string_view slot) const override {
+    const SlotBinding* s = find(slot);
+    return s ? s->buffer : 0;
+  }
+  Format format(std::string_view slot) const override {
+    const SlotBinding* s = find(slot);
+    return s ? s->format : Format::rgba8;
+  }
+  Extent extent(std::string_view slot) const override {
+    const SlotBinding* s = find(slot);
+    return s ? s->extent : Extent{};
+  }
+  uint32_t samples(std::string_view slot) const override {
+    const SlotBinding* s = find(slot);
+    return s ? s->samples : 0;
+  }
+  bool loads(std::string_view slot) const override {
+    const SlotBinding* s = find(slot);
+    return s && s->loads;
+  }
+  uint32_t framebuffer() const override { return fbo.id(); }
+  Extent framebufferExtent() const override { return fbExtent; }
+  ShaderLibrary& shaders() override { return *shaderLib; }
+  const Scene* scene() const override { return scenePtr; }
+  GpuScene* gpuScene() override { return gpuScenePtr; }
+  uint32_t program(size_t index) const override { return programs.program(index, name); }
+  size_t programCount() const override { return programs.count(); }
+};
+
+}  // namespace exec_detail
+
+struct Executor::Impl {
+  PipelineConfig pipeline;
+  const PassRegistry& registry;
+  ShaderLibrary& shaders;
+  const Scene* scene;
+  std::unique_ptr<GpuScene> ownGpuScene;  // created once per executor when there is a scene
+  GpuScene* gpuScene = nullptr;           // ownGpuScene, or one shared with other executors
+  std::optional<Camera> camera;           // none: the scene's
+  std::map<std::string, uint32_t, std::less<>> imports;  // resource name -> caller's texture
+  bool software = false;
+
+  bool built = false;
+  Extent size;
+  Plan plan;
+  std::vector<gl::Texture> physicalTextures;
+  std::vector<gl::Buffer> physicalBuffers;
+  std::vector<exec_detail::ResourceObject> resources;
+  std::map<std::string, ResourceIndex, std::less<>> byName;  // resource and version names
+  std::vector<std::unique_ptr<exec_detail::PassRun>> runs;      // execution order
+  std::vector<PassTiming> timings;
+  std::vector<BuiltProgram> builtPrograms;  // what passes asked the ShaderLibrary for, in order
+  uint32_t frameEndBarrier = 0;  // glMemoryBarrier bits after the last pass
+
+  Impl(const PipelineConfig& p, const PassRegistry& r, ShaderLibrary& s, const Scene* sc)
+      : pipeline(p), registry(r), shaders(s), scene(sc) {}
+
+  void teardown() {
+    runs.clear();  // pass instances first: they may hold GL objects of their own
+    resources.clear();
+    physicalTextures.clear();
+    physicalBuffers.clear();
+    byName.clear();
+    timings.clear();
+    builtPrograms.clear();
+    frameEndBarrier = 0;
+    built = false;
+  }
+
+  void build(Extent output);
+  void createRuns();
+  // createRuns() on a built executor; on failure nothing is left half built.
+  void rebuildRuns() {
+    try {
+      createRuns();
+    } catch (...) {
+      teardown();
+      throw;
+    }
+  }
+  void createResources();
+  gl::TextureShape declaredShape(ResourceIndex r) const;
+  std::unique_ptr<exec_detail::PassRun> createRun(PassIndex pass, Extent output);
+  void applyClears(exec_detail::PassRun& run);
+  void resetState(const exec_detail::PassRun& run);
+  void assignMemoryBarriers();
+
+  ResourceIndex resourceIndex(std::string_view name) const {
+    auto it = byName.find(name);
+    return it == byName.end() ? ResourceIndex() : it->second;
+  }
+};
+
+}  // namespace rgraph

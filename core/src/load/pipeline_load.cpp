@@ -1,0 +1,83 @@
+#include "rgraph/pipeline_load.h"
+
+#include <filesystem>
+
+#include "rgraph/error.h"
+#include "rgraph/plugin.h"
+#include "rgraph/registry.h"
+
+namespace rgraph {
+
+PluginLoader& processPluginLoader() {
+  static PluginLoader loader(PassRegistry::builtins());
+  return loader;
+}
+
+namespace {
+
+std::optional<PipelineConfig> finishLoad(const ConfigDocument& doc, const std::string& baseDir,
+                                         const PipelineLoadOptions& options, Diagnostics& diags) {
+  if (!doc.ok() || hasErrors(diags)) return std::nullopt;
+  PassRegistry& registry = options.registry ? *options.registry : PassRegistry::builtins();
+  PluginLoader& loader = options.loader ? *options.loader : processPluginLoader();
+  for (const auto& dir : options.pluginDirectories) loader.addSearchDirectory(dir);
+  // Plugins before the pass types are checked.
+  const std::vector<std::string> plugins = doc.plugins();
+  for (size_t i = 0; i < plugins.size(); ++i) {
+    std::string error;
+    if (loader.load(plugins[i], baseDir, error)) continue;
+    Diagnostic d;
+    d.code = DiagCode::plugin_error;
+    d.message = error;
+    d.where = doc.pluginLocation(i);
+    diags.push_back(std::move(d));
+  }
+  if (hasErrors(diags)) return std::nullopt;
+  PipelineConfig pipeline = doc.build(registry, diags);
+  if (hasErrors(diags)) return std::nullopt;
+  return pipeline;
+}
+
+PipelineConfig orThrow(std::optional<PipelineConfig> pipeline, const Diagnostics& diags, const std::string& name) {
+  if (pipeline) return std::move(*pipeline);
+  std::string msg = name + " has errors:";
+  for (const auto& d : diags) msg += "\n  " + formatDiagnostic(d);
+  throw RuntimeError(msg);
+}
+
+}  // namespace
+
+PipelineConfig loadPipelineFileOrThrow(const std::string& path, const PipelineLoadOptions& options) {
+  Diagnostics diags;
+  std::optional<PipelineConfig> p = loadPipelineFile(path, options, diags);
+  return orThrow(std::move(p), diags, path);
+}
+
+PipelineConfig loadPipelineTextOrThrow(std::string_view json, const std::string& nameForMessages,
+                                       const PipelineLoadOptions& options) {
+  Diagnostics diags;
+  std::optional<PipelineConfig> p = loadPipelineText(json, nameForMessages, {}, options, diags);
+  return orThrow(std::move(p), diags, nameForMessages);
+}
+
+std::optional<PipelineConfig> loadPipelineFile(const std::string& path, const PipelineLoadOptions& options,
+                                               Diagnostics& diags) {
+  ConfigDocument doc = ConfigDocument::parseFile(path, diags);
+  std::error_code ec;
+  const std::string base = std::filesystem::absolute(path, ec).parent_path().string();
+  return finishLoad(doc, base, options, diags);
+}
+
+std::optional<PipelineConfig> loadPipelineText(std::string_view json, const std::string& nameForMessages,
+                                               const std::string& baseDir, const PipelineLoadOptions& options,
+                                               Diagnostics& diags) {
+  ConfigDocument doc = ConfigDocument::parseText(std::string(json), nameForMessages, diags);
+  std::string base = baseDir;
+  if (base.empty()) {
+    std::error_code ec;
+    base = std::filesystem::current_path(ec).string();
+  }
+  return finishLoad(doc, base, options, diags);
+}
+
+}  // namespace rgraph

@@ -1,0 +1,112 @@
+// RenderScene: one scene's CPU data, its light edits and its one GPU upload,
+// shared by every renderer drawing it (rgraph/renderer.h).
+#include "rgraph/error.h"
+#include "rgraph/gl/gpu_scene.h"
+#include "rgraph/renderer.h"
+
+namespace rgraph {
+
+struct RenderScene::Impl {
+  Scene scene;
+  std::unique_ptr<GpuScene> gpu;
+  uint64_t uploads = 0;
+  uint64_t lightsVersion = 0;
+
+  std::string where() const { return scene.source.empty() ? std::string("scene") : scene.source; }
+  void lightsEdited() {
+    ++lightsVersion;
+    if (gpu) gpu->lightsChanged();
+  }
+  void checkIndex(size_t index, const char* what) const {
+    if (index >= scene.pointLights.size())
+      throw RuntimeError(std::string("RenderScene::") + what + ": no point light " + std::to_string(index) + " (the scene has " +
+                         std::to_string(scene.pointLights.size()) + ")");
+  }
+};
+
+RenderScene::RenderScene() : impl_(std::make_unique<Impl>()) {}
+RenderScene::~RenderScene() = default;
+
+std::shared_ptr<RenderScene> RenderScene::load(const std::string& spec) { return fromScene(loadSceneAny(spec)); }
+
+std::shared_ptr<RenderScene> RenderScene::fromScene(Scene scene) {
+  scene.validate();
+  if (scene.pointLights.size() + scene.directionalLights.size() > kMaxSceneLights)
+    throw RuntimeError((scene.source.empty() ? std::string("scene") : scene.source) + ": " +
+                       std::to_string(scene.pointLights.size() + scene.directionalLights.size()) +
+                       " lights, more than the " + std::to_string(kMaxSceneLights) + " a scene may have");
+  std::shared_ptr<RenderScene> s(new RenderScene());
+  s->impl_->scene = std::move(scene);
+  return s;
+}
+
+const Scene& RenderScene::scene() const { return impl_->scene; }
+size_t RenderScene::pointLightCount() const { return impl_->scene.pointLights.size(); }
+
+const PointLight& RenderScene::pointLight(size_t index) const {
+  impl_->checkIndex(index, "pointLight");
+  return impl_->scene.pointLights[index];
+}
+
+void RenderScene::setPointLight(size_t index, const PointLight& light) {
+  impl_->checkIndex(index, "setPointLight");
+  validatePointLight(light, index, impl_->where());
+  impl_->scene.pointLights[index] = light;
+  impl_->lightsEdited();
+}
+
+size_t RenderScene::addPointLight(const PointLight& light) {
+  Scene& s = impl_->scene;
+  const size_t index = s.pointLights.size();
+  if (index + s.directionalLights.size() >= kMaxSceneLights)
+    throw RuntimeError(impl_->where() + ": cannot add a light: the scene has the most a scene may have (" +
+                       std::to_string(kMaxSceneLights) + ")");
+  validatePointLight(light, index, impl_->where());
+  s.pointLights.push_back(light);
+  impl_->lightsEdited();
+  return index;
+}
+
+void RenderScene::removePointLight(size_t index) {
+  impl_->checkIndex(index, "removePointLight");
+  impl_->scene.pointLights.erase(impl_->scene.pointLights.begin() + static_cast<std::ptrdiff_t>(index));
+  impl_->lightsEdited();
+}
+
+void RenderScene::setPointLights(std::vector<PointLight> lights) {
+  if (lights.size() + impl_->scene.directionalLights.size() > kMaxSceneLights)
+    throw RuntimeError(impl_->where() + ": " + std::to_string(lights.size()) + " point lights, more than a scene may have (" +
+                       std::to_string(kMaxSceneLights) + " lights in all)");
+  for (size_t i = 0; i < lights.size(); ++i) validatePointLight(lights[i], i, impl_->where());
+  impl_->scene.pointLights = std::move(lights);
+  impl_->lightsEdited();
+}
+
+void RenderScene::setDirectionalLights(std::vector<DirectionalLight> lights) {
+  if (lights.size() + impl_->scene.pointLights.size() > kMaxSceneLights)
+    throw RuntimeError(impl_->where() + ": too many lights (" + std::to_string(kMaxSceneLights) + " in all)");
+  for (size_t i = 0; i < lights.size(); ++i) validateDirectionalLight(lights[i], i, impl_->where());
+  impl_->scene.directionalLights = std::move(lights);
+  impl_->lightsEdited();
+}
+
+void RenderScene::setAmbient(const glm::vec3& ambient) {
+  if (!std::isfinite(ambient.x) || !std::isfinite(ambient.y) || !std::isfinite(ambient.z))
+    throw RuntimeError(impl_->where() + ": the ambient light is not finite");
+  impl_->scene.ambient = ambient;
+  impl_->lightsEdited();
+}
+
+uint64_t RenderScene::lightsVersion() const { return impl_->lightsVersion; }
+
+GpuScene& RenderScene::gpu() {
+  if (!impl_->gpu) {
+    impl_->gpu = std::make_unique<GpuScene>(impl_->scene);
+    ++impl_->uploads;
+  }
+  return *impl_->gpu;
+}
+
+uint64_t RenderScene::uploadCount() const { return impl_->uploads; }
+
+}  // namespace rgraph

@@ -1,0 +1,340 @@
+// Renderer: a pipeline from a config file run in the caller's GL context
+// (rgraph/renderer.h). It owns the pipeline as loaded, adapts it to the scene,
+// and keeps one Executor, rebuilt only when something the GL objects depend
+// on changes (size, scene features, imports, the pipeline itself).
+#include "rgraph/renderer.h"
+
+#include <GL/glcorearb.h>
+#include <spdlog/spdlog.h>
+
+#include <map>
+#include <optional>
+
+#include "../gl/imported_texture.h"
+#include "rgraph/adapt.h"
+#include "rgraph/error.h"
+#include "rgraph/gl/executor.h"
+#include "rgraph/gl/gl_state.h"
+#include "rgraph/gl/gpu_scene.h"
+#include "rgraph/gl/objects.h"
+#include "rgraph/gl/shader_library.h"
+#include "rgraph/pass.h"
+#include "rgraph/pipeline_check.h"
+#include "rgraph/pipeline_load.h"
+#include "rgraph/registry.h"
+#include "rgraph/shader_check.h"
+
+namespace rgraph {
+
+namespace {
+
+bool sameFeatures(const SceneFeatures& a, const SceneFeatures& b) {
+  return a.pointLights == b.pointLights && a.blendMaterials == b.blendMaterials && a.normalMaps == b.normalMaps &&
+         a.metallicRoughnessVariation == b.metallicRoughnessVariation && a.metallic == b.metallic &&
+         a.roughness == b.roughness;
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  RendererOptions options;
+  // Where the pipeline came from, for reload().
+  std::string path;  // empty: JSON text
+  std::string json, nameForMessages, baseDir;
+
+  PipelineConfig source;   // as loaded
+  PipelineConfig adapted;  // as adapted to the scene (what runs)
+  std::vector<std::string> notes;
+  std::optional<SceneFeatures> adaptedFor;
+
+  std::shared_ptr<RenderScene> scene;
+  uint64_t sceneVersionSeen = 0;
+  Camera camera;
+  Extent size;
+  std::map<std::string, uint32_t> imports;
+
+  ShaderLibrary shaders;  // kept across rebuilds: unchanged programs are reused
+  std::unique_ptr<Executor> executor;
+  bool rebuild = true;  // the executor must be made again before the next frame
+  uint64_t builds = 0;
+  mutable std::optional<Plan> planBeforeFrame;
+  gl::Framebuffer readFramebuffer;  // the output, for blits into the caller's framebuffer
+  uint32_t readAttached = 0;
+
+  class CallerState;
+  // Loads and checks a pipeline; on success it becomes `source`.
+  bool load(const std::optional<std::string>& text, Diagnostics& diags);
+  void adapt();
+  void prepareFrame();
+  void blitOutput(uint32_t framebuffer, const Viewport& viewport);
+};
+
+bool Renderer::Impl::load(const std::optional<std::string>& text, Diagnostics& diags) {
+  PipelineLoadOptions loadOptions;
+  loadOptions.pluginDirectories = options.pluginDirectories;
+  std::optional<PipelineConfig> loaded = text ? loadPipelineText(*text, nameForMessages, baseDir, loadOptions, diags)
+                                              : loadPipelineFile(path, loadOptions, diags);
+  if (!loaded) return false;
+  // What validate checks, before any GL work: a config it refuses never runs.
+  CompileOptions compile;
+  compile.output = options.size;
+  compile.maxTextureSize = options.maxTextureSize;
+  if (options.maxTextureSize > 0)
+    compile.maxTextureSizeOrigin = options.maxTextureSizeOrigin.empty() ? std::string("RendererOptions::maxTextureSize")
+                                                                        : options.maxTextureSizeOrigin;
+  PipelineCheckOptions checks;
+  checks.passChecks = options.runChecks;
+  checks.shaders = options.runChecks ? ShaderCheckMode::cached : ShaderCheckMode::skip;
+  checks.shaderDirectories = options.shaderDirectories;
+  Diagnostics found;
+  checkPipeline(*loaded, compile, checks, found);
+  diags.insert(diags.end(), found.begin(), found.end());
+  if (hasErrors(found)) return false;
+  source = std::move(*loaded);
+  adaptedFor.reset();
+  rebuild = true;
+  planBeforeFrame.reset();
+  return true;
+}
+
+// "Model no more than a scene needs", from the pipeline as loaded each time.
+void Renderer::Impl::adapt() {
+  adapted = source;
+  notes.clear();
+  if (scene && options.adaptToScene) {
+    const SceneFeatures features = sceneFeatures(scene->scene());
+    notes = adaptToScene(adapted, PassRegistry::builtins(), features).notes;
+    adaptedFor = features;
+  } else {
+    adaptedFor.reset();
+  }
+}
+
+void Renderer::Impl::prepareFrame() {
+  if (size.width == 0 || size.height == 0)
+    throw RuntimeError("Renderer::render: no output size (call setSize first)");
+  // Light edits change the pipeline only when they change what the scene needs
+  // (its first point light, or its last one removed).
+  if (scene && scene->lightsVersion() != sceneVersionSeen) {
+    sceneVersionSeen = scene->lightsVersion();
+    if (options.adaptToScene && adaptedFor && !sameFeatures(*adaptedFor, sceneFeatures(scene->scene()))) {
+      spdlog::info("the scene's lights changed what it needs: adapting the pipeline again");
+      rebuild = true;
+    }
+  }
+  if (rebuild || !executor) {
+    executor.reset();  // its objects go before the next one's are made
+    adapt();
+    for (const auto& note : notes) spdlog::debug("{}", note);
+    auto next = scene ? std::make_unique<Executor>(adapted, PassRegistry::builtins(), shaders, scene->gpu())
+                      : std::make_unique<Executor>(adapted, PassRegistry::builtins(), shaders);
+    for (const auto& [name, texture] : imports) next->importTexture(name, texture);
+    next->resize(size);
+    executor = std::move(next);
+    rebuild = false;
+    planBeforeFrame.reset();
+    ++builds;
+  }
+  executor->setCamera(camera);
+}
+
+void Renderer::Impl::blitOutput(uint32_t framebuffer, const Viewport& viewport) {
+  const uint32_t texture = executor->outputTexture();
+  const Extent out = executor->outputExtent();
+  if (!readFramebuffer) readFramebuffer = gl::createFramebuffer();
+  if (readAttached != texture) {
+    glNamedFramebufferTexture(readFramebuffer.id(), GL_COLOR_ATTACHMENT0, texture, 0);
+    glNamedFramebufferReadBuffer(readFramebuffer.id(), GL_COLOR_ATTACHMENT0);
+    readAttached = texture;
+  }
+  const GLint w = static_cast<GLint>(viewport.width ? viewport.width : size.width);
+  const GLint h = static_cast<GLint>(viewport.height ? viewport.height : size.height);
+  const bool scaled = static_cast<uint32_t>(w) != out.width || static_cast<uint32_t>(h) != out.height;
+  // Stored values are copied: no sRGB encoding on the way, no scissor.
+  glDisable(GL_FRAMEBUFFER_SRGB);
+  glDisable(GL_SCISSOR_TEST);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glBlitNamedFramebuffer(readFramebuffer.id(), framebuffer, 0, 0, static_cast<GLint>(out.width),
+                         static_cast<GLint>(out.height), viewport.x, viewport.y, viewport.x + w, viewport.y + h,
+                         GL_COLOR_BUFFER_BIT, scaled ? GL_LINEAR : GL_NEAREST);
+}
+
+// ------------------------------------------------------------------ Renderer
+
+Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
+Renderer::~Renderer() = default;
+
+std::unique_ptr<Renderer> Renderer::fromFile(const std::string& pipelinePath, const RendererOptions& options,
+                                             Diagnostics& diags) {
+  std::unique_ptr<Renderer> r(new Renderer());
+  r->impl_->options = options;
+  r->impl_->path = pipelinePath;
+  r->impl_->size = options.size;
+  for (const auto& dir : options.shaderDirectories) addShaderSearchDirectory(dir);
+  if (!r->impl_->load(std::nullopt, diags)) return nullptr;
+  return r;
+}
+
+std::unique_ptr<Renderer> Renderer::fromJson(std::string_view json, const std::string& nameForMessages,
+                                             const RendererOptions& options, Diagnostics& diags,
+                                             const std::string& baseDir) {
+  std::unique_ptr<Renderer> r(new Renderer());
+  r->impl_->options = options;
+  r->impl_->json = std::string(json);
+  r->impl_->nameForMessages = nameForMessages.empty() ? std::string("<json>") : nameForMessages;
+  r->impl_->baseDir = baseDir;
+  r->impl_->size = options.size;
+  for (const auto& dir : options.shaderDirectories) addShaderSearchDirectory(dir);
+  if (!r->impl_->load(r->impl_->json, diags)) return nullptr;
+  return r;
+}
+
+void Renderer::setScene(std::shared_ptr<RenderScene> scene) {
+  impl_->scene = std::move(scene);
+  impl_->sceneVersionSeen = impl_->scene ? impl_->scene->lightsVersion() : 0;
+  impl_->camera = impl_->scene ? impl_->scene->scene().camera : Camera{};
+  impl_->rebuild = true;
+  impl_->planBeforeFrame.reset();
+}
+
+const std::shared_ptr<RenderScene>& Renderer::scene() const { return impl_->scene; }
+
+void Renderer::setCamera(const Camera& camera) {
+  validateCamera(camera, "Renderer::setCamera");
+  impl_->camera = camera;
+}
+
+const Camera& Renderer::camera() const { return impl_->camera; }
+
+void Renderer::setSize(Extent size) {
+  if (size.width == 0 || size.height == 0)
+    throw RuntimeError("Renderer::setSize: cannot render at " + std::to_string(size.width) + "x" +
+                       std::to_string(size.height));
+  if (size == impl_->size) return;
+  impl_->size = size;
+  // Every texture of the plan changes size: the next frame builds anew
+  // (programs are kept), with the imports given for the new size.
+  impl_->rebuild = true;
+  impl_->planBeforeFrame.reset();
+}
+
+Extent Renderer::size() const { return impl_->size; }
+
+void Renderer::importTexture(const std::string& resource, uint32_t glTexture) {
+  Impl& im = *impl_;
+  if (std::string refusal = gl::checkImportName(im.source.graph, resource); !refusal.empty())
+    throw RuntimeError(refusal);
+  if (im.executor && !im.rebuild) {
+    im.executor->importTexture(resource, glTexture);  // checks, and rebinds at once
+  } else {
+    // Checked now against the declaration at size(), although it is bound
+    // when the next frame builds.
+    const Plan& p = plan();
+    const auto& decls = im.source.graph.resources;
+    for (size_t r = 0; r < decls.size() && r < p.resources.size(); ++r) {
+      if (decls[r].name != resource) continue;
+      const std::string mismatch =
+          gl::checkImportedTexture(resource, gl::declaredShape(decls[r], p.resources[r].extent), glTexture);
+      if (!mismatch.empty()) throw RuntimeError(mismatch);
+    }
+  }
+  im.imports[resource] = glTexture;
+}
+
+void Renderer::releaseTexture(const std::string& resource) {
+  if (impl_->imports.erase(resource) && impl_->executor && !impl_->rebuild) impl_->executor->releaseTexture(resource);
+}
+
+std::vector<std::string> Renderer::importableResources() const {
+  std::vector<std::string> names;
+  for (const auto& r : impl_->source.graph.resources)
+    if (r.imported) names.push_back(r.name);  // the output's resource is imported too
+  return names;
+}
+
+// The GL state contract (renderer.h): the caller's state is saved (unless
+// asked not to), then what rgraph relies on and a caller may have changed
+// (polygon mode, pixel store, clip control, ...) is reset for its own work.
+class Renderer::Impl::CallerState {
+ public:
+  explicit CallerState(bool restore) {
+    if (restore) guard_.emplace();
+    gl::applyRendererDefaults();
+  }
+
+ private:
+  std::optional<gl::GlStateGuard> guard_;
+};
+
+void Renderer::render() {
+  Impl::CallerState state(impl_->options.restoreGlState);
+  impl_->prepareFrame();
+  impl_->executor->renderFrame();
+}
+
+void Renderer::render(uint32_t framebuffer, const Viewport& viewport) {
+  Impl::CallerState state(impl_->options.restoreGlState);
+  impl_->prepareFrame();
+  impl_->executor->renderFrame();
+  impl_->blitOutput(framebuffer, viewport);
+}
+
+bool Renderer::reload(Diagnostics& diags) {
+  if (impl_->path.empty()) return impl_->load(impl_->json, diags);
+  return impl_->load(std::nullopt, diags);
+}
+
+bool Renderer::reloadJson(std::string_view json, Diagnostics& diags) {
+  const std::string text(json);
+  if (!impl_->load(text, diags)) return false;
+  impl_->json = text;
+  impl_->path.clear();
+  return true;
+}
+
+const PipelineConfig& Renderer::pipeline() const {
+  return impl_->executor && !impl_->rebuild ? impl_->adapted : impl_->source;
+}
+
+const std::vector<std::string>& Renderer::adaptNotes() const { return impl_->notes; }
+
+const Plan& Renderer::plan() const {
+  if (impl_->executor && !impl_->rebuild && impl_->executor->plan().output == impl_->size)
+    return impl_->executor->plan();
+  if (!impl_->planBeforeFrame) {
+    CompileOptions compile;
+    compile.output = impl_->size;
+    compile.maxTextureSize = impl_->options.maxTextureSize;
+    const PipelineConfig& p = impl_->executor && !impl_->rebuild ? impl_->adapted : impl_->source;
+    impl_->planBeforeFrame = rgraph::compile(p.graph, compile);
+  }
+  return *impl_->planBeforeFrame;
+}
+
+std::vector<Renderer::PassTiming> Renderer::timings() const {
+  std::vector<PassTiming> out;
+  if (!impl_->executor) return out;
+  for (const auto& t : impl_->executor->timings()) out.push_back({t.name, t.ms});
+  return out;
+}
+
+bool Renderer::cpuTimed() const { return impl_->executor && impl_->executor->cpuTimed(); }
+uint32_t Renderer::outputTexture() const { return impl_->executor ? impl_->executor->outputTexture() : 0; }
+Extent Renderer::outputExtent() const { return impl_->executor ? impl_->executor->outputExtent() : Extent{}; }
+
+std::vector<uint8_t> Renderer::readOutputRGBA8() const {
+  if (!impl_->executor) throw RuntimeError("Renderer::readOutputRGBA8: nothing rendered yet");
+  Impl::CallerState state(impl_->options.restoreGlState);  // the caller's pack state must not apply
+  return impl_->executor->readOutputRGBA8();
+}
+
+std::vector<float> Renderer::readResourceRGBA32F(const std::string& name) const {
+  if (!impl_->executor) throw RuntimeError("Renderer::readResourceRGBA32F: nothing rendered yet");
+  Impl::CallerState state(impl_->options.restoreGlState);
+  return impl_->executor->readTextureRGBA32F(name);
+}
+
+uint64_t Renderer::builds() const { return impl_->builds; }
+Executor* Renderer::executor() { return impl_->executor.get(); }
+
+}  // namespace rgraph

@@ -1,0 +1,56 @@
+// A unit test of this template's own pipeline (vignette.json) with
+// rgraph/testing.h: it is compiled the way `rgraph validate` does it, with
+// the plugin built next door, and no GL context. Build and run:
+//   cmake --build build && ctest --test-dir build
+#include <gtest/gtest.h>
+
+#include "rgraph/testing.h"
+
+namespace rt = rgraph::testing;
+
+namespace {
+
+// The pipeline and where this build puts the plugin and where the installed
+// rgraph keeps its shaders (both passed in by CMakeLists.txt).
+rt::CompiledPipeline compileVignette() {
+  rt::Options options;
+  options.size = {64, 64};
+  options.pluginDirectories = {VIGNETTE_PLUGIN_DIR};
+  options.shaderChecks = true;  // glslang: the plugin's shader against its bindings
+  options.shaderDirectories = {RGRAPH_SHADER_DIR};
+  return rt::compileFile(VIGNETTE_PIPELINE, options);
+}
+
+}  // namespace
+
+TEST(VignettePipeline, CompilesWithoutDiagnostics) {
+  const rt::CompiledPipeline p = compileVignette();
+  ASSERT_TRUE(p.ok()) << p.describe();
+  EXPECT_TRUE(p.diagnostics().empty()) << p.describe();  // no warnings either
+}
+
+TEST(VignettePipeline, VignetteRunsLastAndIsNotCulled) {
+  const rt::CompiledPipeline p = compileVignette();
+  ASSERT_TRUE(p.ok()) << p.describe();
+  EXPECT_EQ(p.order(), (std::vector<std::string>{"gbuffer", "lighting", "tonemap", "vignette"})) << p.describe();
+  EXPECT_FALSE(p.culled("vignette")) << p.cullReason("vignette");
+  EXPECT_TRUE(p.runsBefore("tonemap", "vignette"));
+  // It reads the tone-mapped image and writes the output.
+  EXPECT_EQ(p.binding("vignette", "src").value_or(rt::Binding{}).resource, "ldr");
+  EXPECT_EQ(p.binding("vignette", "dst").value_or(rt::Binding{}).resource, p.outputResource());
+}
+
+TEST(VignettePipeline, Memory) {
+  const rt::CompiledPipeline p = compileVignette();
+  ASSERT_TRUE(p.ok()) << p.describe();
+  // At 64x64: four rgba16f G-buffer targets and hdr (32 KiB each), depth32f
+  // and ldr (16 KiB each); the output is imported. All are alive together
+  // at the lighting pass, so nothing can share memory.
+  EXPECT_EQ(p.naiveBytes(), 5u * 32768u + 2u * 16384u) << p.describe();
+  EXPECT_EQ(p.allocatedBytes(), p.naiveBytes()) << p.describe();
+  // The vignette adds only ldr, alive from tonemap to vignette.
+  const auto ldr = p.lifetime("ldr");
+  ASSERT_TRUE(ldr.has_value());
+  EXPECT_EQ(ldr->firstPass, "tonemap");
+  EXPECT_EQ(ldr->lastPass, "vignette");
+}
