@@ -5,7 +5,12 @@
 #include <GL/glcorearb.h>
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <string>
 
@@ -36,6 +41,12 @@ std::unique_ptr<Renderer> makeRenderer(const std::string& path = kDefault, Exten
   auto r = Renderer::fromFile(path, options, diags);
   EXPECT_TRUE(r) << (diags.empty() ? std::string("no diagnostics") : formatDiagnostic(diags.front()));
   return r;
+}
+
+RendererOptions sized(Extent size) {
+  RendererOptions options;
+  options.size = size;
+  return options;
 }
 
 std::vector<uint8_t> renderOnce(Renderer& r) {
@@ -245,7 +256,7 @@ gl::Texture makeTexture(Format f, Extent e, uint32_t samples = 1) { return gl::c
 
 TEST_F(RendererApi, ImportedTextureIsReadInPlaceAndTheOutputWrittenIntoTheCallers) {
   Diagnostics diags;
-  auto r = Renderer::fromJson(importingPipeline(), "import.json", {.size = {8, 4}}, diags);
+  auto r = Renderer::fromJson(importingPipeline(), "import.json", sized({8, 4}), diags);
   ASSERT_TRUE(r) << (diags.empty() ? "" : formatDiagnostic(diags.front()));
   EXPECT_EQ(r->importableResources(), (std::vector<std::string>{"tint", "output"}));
   gl::Texture tint = makeTexture(Format::rgba16f, {8, 4});
@@ -265,7 +276,7 @@ TEST_F(RendererApi, ImportedTextureIsReadInPlaceAndTheOutputWrittenIntoTheCaller
 
 TEST_F(RendererApi, ImportedTextureMismatchIsRefusedNamingTheResourceAndBothDescriptions) {
   Diagnostics diags;
-  auto r = Renderer::fromJson(importingPipeline(), "import.json", {.size = {8, 4}}, diags);
+  auto r = Renderer::fromJson(importingPipeline(), "import.json", sized({8, 4}), diags);
   ASSERT_TRUE(r);
   gl::Texture good = makeTexture(Format::rgba16f, {8, 4});
   r->importTexture("tint", good.id());
@@ -291,7 +302,7 @@ TEST_F(RendererApi, ImportedTextureMismatchIsRefusedNamingTheResourceAndBothDesc
 
   // A resource the graph owns (it may alias it) cannot be imported.
   Diagnostics d2;
-  auto def = Renderer::fromFile(kDefault, {.size = {8, 4}}, d2);
+  auto def = Renderer::fromFile(kDefault, sized({8, 4}), d2);
   ASSERT_TRUE(def);
   gl::Texture hdr = makeTexture(Format::rgba16f, {8, 4});
   const std::string owned = errorOf([&] { def->importTexture("hdr", hdr.id()); });
@@ -300,7 +311,7 @@ TEST_F(RendererApi, ImportedTextureMismatchIsRefusedNamingTheResourceAndBothDesc
 
 TEST_F(RendererApi, ImportedTextureOfTheOldSizeIsRefusedAfterResize) {
   Diagnostics diags;
-  auto r = Renderer::fromJson(importingPipeline(), "import.json", {.size = {8, 4}}, diags);
+  auto r = Renderer::fromJson(importingPipeline(), "import.json", sized({8, 4}), diags);
   ASSERT_TRUE(r);
   gl::Texture tint = makeTexture(Format::rgba16f, {8, 4});
   r->importTexture("tint", tint.id());
@@ -324,7 +335,7 @@ TEST_F(RendererApi, ImportedTextureOfTheOldSizeIsRefusedAfterResize) {
 
 TEST_F(RendererApi, ImportBeforeTheFirstFrameIsCheckedAtOnce) {
   Diagnostics diags;
-  auto r = Renderer::fromJson(importingPipeline(), "import.json", {.size = {8, 4}}, diags);
+  auto r = Renderer::fromJson(importingPipeline(), "import.json", sized({8, 4}), diags);
   ASSERT_TRUE(r);
   gl::Texture wrong = makeTexture(Format::rgba16f, {4, 4});
   const std::string early = errorOf([&] { r->importTexture("tint", wrong.id()); });
@@ -425,7 +436,7 @@ TEST_F(RendererApi, RenderIntoAFramebufferCopiesTheStoredOutputIntoTheViewport) 
 // Reload: errors keep the last good pipeline; unchanged programs are reused.
 TEST_F(RendererApi, ReloadKeepsTheLastGoodPipelineOnErrorsAndReusesPrograms) {
   Diagnostics diags;
-  auto r = Renderer::fromJson(importingPipeline(), "reload.json", {.size = {8, 4}}, diags);
+  auto r = Renderer::fromJson(importingPipeline(), "reload.json", sized({8, 4}), diags);
   ASSERT_TRUE(r);
   gl::Texture tint = makeTexture(Format::rgba16f, {8, 4});
   const float colour[4] = {0.5f, 0.5f, 0.5f, 1.0f};
@@ -451,6 +462,110 @@ TEST_F(RendererApi, ReloadKeepsTheLastGoodPipelineOnErrorsAndReusesPrograms) {
   EXPECT_EQ(gl::createdObjects(gl::ObjectKind::program) - programs, 0);
   EXPECT_GT(after[0], before[0]) << "gamma 2.2 brightens mid grey";
   EXPECT_EQ(r->builds(), 2u);
+}
+
+}  // namespace
+
+namespace {
+
+// Live reload of shader files: a copy of tonemap.frag in a folder searched
+// first, edited while the renderer runs.
+class RendererShaderReload : public RendererApi {
+ protected:
+  void SetUp() override {
+    RendererApi::SetUp();
+    dir_ = std::filesystem::temp_directory_path() / ("rgraph-reload-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir_);
+    original_ = readText(std::string(RGRAPH_SOURCE_DIR) + "/shaders/tonemap.frag");
+    write(original_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    std::filesystem::remove_all(dir_, ec);  // later tests find the built-in tonemap.frag again
+  }
+  static std::string readText(const std::string& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }
+  void write(const std::string& text) {
+    const auto file = dir_ / "tonemap.frag";
+    const auto before = std::filesystem::exists(file) ? std::filesystem::last_write_time(file)
+                                                      : std::filesystem::file_time_type::min();
+    std::ofstream(file) << text;
+    // Coarse file-system clocks: make the edit visible as a change.
+    std::filesystem::last_write_time(file, std::max(before + std::chrono::seconds(1),
+                                                    std::filesystem::last_write_time(file)));
+  }
+  std::unique_ptr<Renderer> make(bool checks) {
+    RendererOptions options;
+    options.size = {8, 4};
+    options.runChecks = checks;
+    options.shaderDirectories = {dir_.string()};
+    Diagnostics diags;
+    auto r = Renderer::fromJson(importingPipeline(), "reload.json", options, diags);
+    EXPECT_TRUE(r);
+    tint_ = makeTexture(Format::rgba16f, {8, 4});
+    const float colour[4] = {0.5f, 0.5f, 0.5f, 1.0f};
+    glClearTexImage(tint_.id(), 0, GL_RGBA, GL_FLOAT, colour);
+    r->importTexture("tint", tint_.id());
+    return r;
+  }
+  std::filesystem::path dir_;
+  std::string original_;
+  gl::Texture tint_;
+};
+
+TEST_F(RendererShaderReload, AnEditedShaderIsCompiledAgainAndABrokenOneKeepsTheLastGood) {
+  auto r = make(/*checks=*/true);
+  const auto before = renderOnce(*r);
+  const auto watched = r->watchedFiles();
+  EXPECT_NE(std::find(watched.begin(), watched.end(), (dir_ / "tonemap.frag").string()), watched.end())
+      << "the shader copy is watched";
+
+  // Valid edit: the output halved.
+  std::string brighter = original_;
+  const size_t end = brighter.rfind('}');
+  ASSERT_NE(end, std::string::npos);
+  brighter.insert(end, "  outColor.rgb = outColor.rgb * 0.5;\n");
+  write(brighter);
+  Diagnostics diags;
+  const int64_t programs = gl::createdObjects(gl::ObjectKind::program);
+  ASSERT_TRUE(r->reload(diags)) << (diags.empty() ? "" : formatDiagnostic(diags.front()));
+  EXPECT_EQ(gl::createdObjects(gl::ObjectKind::program) - programs, 1) << "only the edited program is rebuilt";
+  const auto edited = renderOnce(*r);
+  EXPECT_LT(edited[0], before[0]);
+
+  // Broken edit: refused by the shader checks, the edited pipeline keeps running.
+  write(original_ + "\nthis is not glsl\n");
+  diags.clear();
+  EXPECT_FALSE(r->reload(diags));
+  ASSERT_FALSE(diags.empty());
+  EXPECT_EQ(diags.front().code, DiagCode::shader_error) << formatDiagnostic(diags.front());
+  EXPECT_EQ(differing(renderOnce(*r), edited), 0u);
+
+  // Fixed again: recovered.
+  write(original_);
+  diags.clear();
+  ASSERT_TRUE(r->reload(diags)) << (diags.empty() ? "" : formatDiagnostic(diags.front()));
+  EXPECT_EQ(differing(renderOnce(*r), before), 0u);
+}
+
+TEST_F(RendererShaderReload, WhatOnlyTheDeviceRefusesIsADeviceErrorAndTheLastGoodKeepsRunning) {
+  auto r = make(/*checks=*/false);  // no glslang: the driver is the first to see the shader
+  const auto before = renderOnce(*r);
+  write(original_ + "\nthis is not glsl\n");
+  Diagnostics diags;
+  const uint64_t builds = r->builds();
+  EXPECT_FALSE(r->reload(diags));
+  ASSERT_EQ(diags.size(), 1u);
+  EXPECT_EQ(diags.front().code, DiagCode::device_error);
+  EXPECT_NE(diags.front().message.find("tonemap.frag"), std::string::npos) << diags.front().message;
+  EXPECT_EQ(r->builds(), builds);
+  EXPECT_EQ(differing(renderOnce(*r), before), 0u) << "the last good pipeline still renders";
+  write(original_);
+  diags.clear();
+  EXPECT_TRUE(r->reload(diags));
+  EXPECT_EQ(differing(renderOnce(*r), before), 0u);
 }
 
 }  // namespace

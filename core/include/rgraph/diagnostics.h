@@ -47,6 +47,7 @@ enum class DiagCode {
   plugin_error,
   pass_check,             // a pass type's check hook refused its bindings or params (rgraph/pass_check.h)
   needs_scene,            // a pass that draws the scene in a pipeline run without one
+  device_error,           // what only the GL device refuses (driver compile error, incomplete framebuffer)
 };
 
 std::string_view diagCodeName(DiagCode c);

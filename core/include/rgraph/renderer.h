@@ -53,6 +53,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -196,12 +197,20 @@ class Renderer {
   // Stored values are copied (an sRGB output's encoded bytes, as a PNG holds).
   void render(uint32_t framebuffer, const Viewport& viewport = {});
 
-  // Re-reads the pipeline file (or takes new JSON text), checks it as the
-  // factories do and, when it has no errors, replaces the pipeline from the
-  // next frame, keeping the programs that did not change. On errors keeps the
-  // last good pipeline, returns false, and diags says why.
+  // Re-reads the pipeline file (or takes new JSON text: its messages name the
+  // file the renderer came from, and plugin paths stay relative to its
+  // folder) and the shader files that changed on disk, checks it as the
+  // factories do and, when nothing is wrong, replaces the pipeline. Once a
+  // frame was drawn the new pipeline is built at once, so that even what only
+  // the device refuses (a device_error diagnostic) leaves the last good
+  // pipeline running. Programs whose shader files did not change are reused.
+  // On errors returns false, diags says why, and nothing changed.
   bool reload(Diagnostics& diags);
   bool reloadJson(std::string_view json, Diagnostics& diags);
+  // The files whose changes reload() picks up: the pipeline file (when the
+  // renderer came from one) and every shader file its programs were compiled
+  // from, includes too (known once a frame was drawn). For live reload.
+  std::vector<std::string> watchedFiles() const;
 
   // The pipeline as adapted to the scene, and the notes the adaptation made.
   const PipelineConfig& pipeline() const;
@@ -225,6 +234,11 @@ class Renderer {
   std::vector<uint8_t> readOutputRGBA8() const;
   // Any resource or version as RGBA32F, rows top-down (see Executor).
   std::vector<float> readResourceRGBA32F(const std::string& name) const;
+
+  // Called after each pass of every frame with its step in plan().order
+  // (GL work recorded, before the next pass): copy a resource out as it was
+  // right after a pass wrote it. Kept across rebuilds and reloads.
+  void setAfterPass(std::function<void(size_t step)> callback);
 
   // How many times GL objects were (re)built for this renderer: the first
   // frame, size, scene-feature, import and pipeline changes. Camera and light

@@ -116,6 +116,7 @@ struct ShaderSource {
   std::string path;                        // the resolved file
   std::string text;                        // after #include expansion and defines
   std::vector<std::string> files;          // display paths: 0 the shader, then included files
+  std::vector<std::string> resolvedFiles;  // the same files as found on disk (for watching them)
   std::vector<std::pair<int, int>> lines;  // expanded line - 1 -> (file index, line in that file)
 };
 

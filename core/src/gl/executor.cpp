@@ -402,6 +402,7 @@ Executor::Executor(const PipelineConfig& pipeline, const PassRegistry& registry,
 }
 
 void Executor::setCamera(const Camera& camera) { impl_->camera = camera; }
+void Executor::setAfterPass(std::function<void(size_t)> callback) { impl_->afterPass = std::move(callback); }
 
 
 Executor::~Executor() {
@@ -456,6 +457,7 @@ void Executor::renderFrame() {
       glFinish();
       im.timings[i].ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     }
+    if (im.afterPass) im.afterPass(i);  // outside the pass's time
   }
   if (im.frameEndBarrier) glMemoryBarrier(im.frameEndBarrier);
   // Leave a neutral state for whoever draws next (e.g. a blit to the window:

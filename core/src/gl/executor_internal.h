@@ -3,6 +3,7 @@
 // (imports, readback, what tools query). Not installed.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -118,6 +119,7 @@ struct Executor::Impl {
   std::unique_ptr<GpuScene> ownGpuScene;  // created once per executor when there is a scene
   GpuScene* gpuScene = nullptr;           // ownGpuScene, or one shared with other executors
   std::optional<Camera> camera;           // none: the scene's
+  std::function<void(size_t)> afterPass;  // Executor::setAfterPass
   std::map<std::string, uint32_t, std::less<>> imports;  // resource name -> caller's texture
   bool software = false;
 

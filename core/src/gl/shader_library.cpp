@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 
 #include "rgraph/error.h"
 #include "rgraph/shader_check.h"
@@ -75,9 +76,13 @@ std::string ShaderLibrary::preprocess(const std::string& file, const std::vector
   return load(file, defines).text;
 }
 
-gl::Shader ShaderLibrary::compileStage(unsigned stage, const std::string& file,
-                                       const std::vector<std::string>& defines) const {
+gl::Shader ShaderLibrary::compileStage(unsigned stage, const std::string& file, const std::vector<std::string>& defines,
+                                       std::vector<WatchedFile>& read) const {
   ShaderSource src = loadShaderSource(file, defines, searchDirectories());
+  for (const auto& path : src.resolvedFiles) {
+    std::error_code ec;
+    read.push_back({path, std::filesystem::last_write_time(path, ec)});
+  }
   gl::Shader shader = gl::createShader(stage);
   const char* text = src.text.c_str();
   glShaderSource(shader.id(), 1, &text, nullptr);
@@ -94,7 +99,8 @@ gl::Shader ShaderLibrary::compileStage(unsigned stage, const std::string& file,
   return shader;
 }
 
-uint32_t ShaderLibrary::link(const std::string& key, std::vector<gl::Shader> stages, const std::string& what) {
+uint32_t ShaderLibrary::link(const std::string& key, std::vector<gl::Shader> stages, std::vector<WatchedFile> read,
+                             const std::string& what) {
   gl::Program program = gl::createProgram();
   for (const auto& s : stages) glAttachShader(program.id(), s.id());
   glLinkProgram(program.id());
@@ -103,7 +109,7 @@ uint32_t ShaderLibrary::link(const std::string& key, std::vector<gl::Shader> sta
   glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
   if (!ok) throw RuntimeError(what + ": error: program failed to link: " + programLog(program.id()));
   uint32_t id = program.id();
-  programs_[key] = std::move(program);
+  programs_[key] = Cached{std::move(program), std::move(read)};
   return id;
 }
 
@@ -121,22 +127,60 @@ uint32_t ShaderLibrary::program(const std::string& vert, const std::string& frag
                                 const std::vector<std::string>& defines) {
   if (log_) log_->push_back({vert, frag, {}, defines});
   std::string key = cacheKey({vert, frag}, defines);
-  if (auto it = programs_.find(key); it != programs_.end()) return it->second.id();
+  if (auto it = programs_.find(key); it != programs_.end()) return it->second.program.id();
   std::vector<gl::Shader> stages;
-  stages.push_back(compileStage(GL_VERTEX_SHADER, vert, defines));
-  stages.push_back(compileStage(GL_FRAGMENT_SHADER, frag, defines));
-  return link(key, std::move(stages), shaderDisplayPath(resolve(vert)) + " + " + shaderDisplayPath(resolve(frag)));
+  std::vector<WatchedFile> read;
+  stages.push_back(compileStage(GL_VERTEX_SHADER, vert, defines, read));
+  stages.push_back(compileStage(GL_FRAGMENT_SHADER, frag, defines, read));
+  return link(key, std::move(stages), std::move(read),
+              shaderDisplayPath(resolve(vert)) + " + " + shaderDisplayPath(resolve(frag)));
 }
 
 uint32_t ShaderLibrary::computeProgram(const std::string& comp, const std::vector<std::string>& defines) {
   if (log_) log_->push_back({{}, {}, comp, defines});
   std::string key = cacheKey({comp}, defines);
-  if (auto it = programs_.find(key); it != programs_.end()) return it->second.id();
+  if (auto it = programs_.find(key); it != programs_.end()) return it->second.program.id();
   std::vector<gl::Shader> stages;
-  stages.push_back(compileStage(GL_COMPUTE_SHADER, comp, defines));
-  return link(key, std::move(stages), shaderDisplayPath(resolve(comp)));
+  std::vector<WatchedFile> read;
+  stages.push_back(compileStage(GL_COMPUTE_SHADER, comp, defines, read));
+  return link(key, std::move(stages), std::move(read), shaderDisplayPath(resolve(comp)));
 }
 
 void ShaderLibrary::clear() { programs_.clear(); }
+
+size_t ShaderLibrary::retireChanged() {
+  size_t retired = 0;
+  for (auto it = programs_.begin(); it != programs_.end();) {
+    const bool changed = std::any_of(it->second.files.begin(), it->second.files.end(), [](const WatchedFile& f) {
+      std::error_code ec;
+      return std::filesystem::last_write_time(f.path, ec) != f.written || ec;
+    });
+    if (changed) {
+      retired_.push_back(std::move(*it));
+      it = programs_.erase(it);
+      ++retired;
+    } else {
+      ++it;
+    }
+  }
+  return retired;
+}
+
+void ShaderLibrary::releaseRetired() { retired_.clear(); }
+
+void ShaderLibrary::restoreRetired() {
+  // A program built since from the same key (the failed attempt's) gives way
+  // to the one still in use.
+  for (auto& [key, cached] : retired_) programs_[key] = std::move(cached);
+  retired_.clear();
+}
+
+std::vector<std::string> ShaderLibrary::files() const {
+  std::vector<std::string> all;
+  for (const auto& [key, cached] : programs_)
+    for (const auto& f : cached.files)
+      if (std::find(all.begin(), all.end(), f.path) == all.end()) all.push_back(f.path);
+  return all;
+}
 
 }  // namespace rgraph

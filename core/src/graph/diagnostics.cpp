@@ -39,6 +39,7 @@ std::string_view diagCodeName(DiagCode c) {
     case DiagCode::plugin_error: return "plugin_error";
     case DiagCode::pass_check: return "pass_check";
     case DiagCode::needs_scene: return "needs_scene";
+    case DiagCode::device_error: return "device_error";
   }
   return "unknown";
 }

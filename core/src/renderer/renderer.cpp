@@ -7,6 +7,8 @@
 #include <GL/glcorearb.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <map>
 #include <optional>
 
@@ -52,8 +54,10 @@ struct Renderer::Impl {
   Camera camera;
   Extent size;
   std::map<std::string, uint32_t> imports;
+  std::function<void(size_t)> afterPass;
 
   ShaderLibrary shaders;  // kept across rebuilds: unchanged programs are reused
+  std::shared_ptr<RenderScene> executorScene;  // what `executor` draws: alive as long as it is
   std::unique_ptr<Executor> executor;
   bool rebuild = true;  // the executor must be made again before the next frame
   uint64_t builds = 0;
@@ -62,19 +66,28 @@ struct Renderer::Impl {
   uint32_t readAttached = 0;
 
   class CallerState;
-  // Loads and checks a pipeline; on success it becomes `source`.
-  bool load(const std::optional<std::string>& text, Diagnostics& diags);
+  // Loads and checks a pipeline (the file, or `text`): nullopt with diags
+  // when validate would refuse it.
+  std::optional<PipelineConfig> load(const std::optional<std::string>& text, Diagnostics& diags) const;
+  // Makes `next` the pipeline: at once when a frame was drawn (building its
+  // GL objects now, so that a failure leaves the last good pipeline running),
+  // else at the first frame. false, with a device_error in diags, on failure.
+  bool replace(PipelineConfig next, Diagnostics& diags);
   void adapt();
+  // A new executor for the current pipeline, scene, size and imports; the old
+  // one is kept until the new one is built.
+  void buildExecutor();
   void prepareFrame();
   void blitOutput(uint32_t framebuffer, const Viewport& viewport);
 };
 
-bool Renderer::Impl::load(const std::optional<std::string>& text, Diagnostics& diags) {
+std::optional<PipelineConfig> Renderer::Impl::load(const std::optional<std::string>& text,
+                                                   Diagnostics& diags) const {
   PipelineLoadOptions loadOptions;
   loadOptions.pluginDirectories = options.pluginDirectories;
   std::optional<PipelineConfig> loaded = text ? loadPipelineText(*text, nameForMessages, baseDir, loadOptions, diags)
                                               : loadPipelineFile(path, loadOptions, diags);
-  if (!loaded) return false;
+  if (!loaded) return std::nullopt;
   // What validate checks, before any GL work: a config it refuses never runs.
   CompileOptions compile;
   compile.output = options.size;
@@ -89,12 +102,38 @@ bool Renderer::Impl::load(const std::optional<std::string>& text, Diagnostics& d
   Diagnostics found;
   checkPipeline(*loaded, compile, checks, found);
   diags.insert(diags.end(), found.begin(), found.end());
-  if (hasErrors(found)) return false;
-  source = std::move(*loaded);
-  adaptedFor.reset();
+  if (hasErrors(found)) return std::nullopt;
+  return loaded;
+}
+
+bool Renderer::Impl::replace(PipelineConfig next, Diagnostics& diags) {
+  // Programs whose shader files changed are compiled again; the others are reused.
+  if (const size_t retired = shaders.retireChanged())
+    spdlog::info("{} program(s) built from changed shader files will be compiled again", retired);
+  PipelineConfig previous = std::move(source);
+  source = std::move(next);
   rebuild = true;
   planBeforeFrame.reset();
-  return true;
+  if (!executor) {
+    shaders.releaseRetired();
+    return true;
+  }
+  try {
+    buildExecutor();
+    shaders.releaseRetired();
+    return true;
+  } catch (const RuntimeError& e) {
+    source = std::move(previous);
+    shaders.restoreRetired();
+    adapt();
+    rebuild = false;
+    Diagnostic d;
+    d.code = DiagCode::device_error;
+    d.message = e.what();
+    d.where.file = path.empty() ? nameForMessages : path;
+    diags.push_back(std::move(d));
+    return false;
+  }
 }
 
 // "Model no more than a scene needs", from the pipeline as loaded each time.
@@ -122,20 +161,23 @@ void Renderer::Impl::prepareFrame() {
       rebuild = true;
     }
   }
-  if (rebuild || !executor) {
-    executor.reset();  // its objects go before the next one's are made
-    adapt();
-    for (const auto& note : notes) spdlog::debug("{}", note);
-    auto next = scene ? std::make_unique<Executor>(adapted, PassRegistry::builtins(), shaders, scene->gpu())
-                      : std::make_unique<Executor>(adapted, PassRegistry::builtins(), shaders);
-    for (const auto& [name, texture] : imports) next->importTexture(name, texture);
-    next->resize(size);
-    executor = std::move(next);
-    rebuild = false;
-    planBeforeFrame.reset();
-    ++builds;
-  }
+  if (rebuild || !executor) buildExecutor();
   executor->setCamera(camera);
+}
+
+void Renderer::Impl::buildExecutor() {
+  adapt();
+  for (const auto& note : notes) spdlog::debug("{}", note);
+  auto next = scene ? std::make_unique<Executor>(adapted, PassRegistry::builtins(), shaders, scene->gpu())
+                    : std::make_unique<Executor>(adapted, PassRegistry::builtins(), shaders);
+  for (const auto& [name, texture] : imports) next->importTexture(name, texture);
+  next->setAfterPass(afterPass);
+  next->resize(size);
+  executor = std::move(next);
+  executorScene = scene;
+  rebuild = false;
+  planBeforeFrame.reset();
+  ++builds;
 }
 
 void Renderer::Impl::blitOutput(uint32_t framebuffer, const Viewport& viewport) {
@@ -170,8 +212,13 @@ std::unique_ptr<Renderer> Renderer::fromFile(const std::string& pipelinePath, co
   r->impl_->options = options;
   r->impl_->path = pipelinePath;
   r->impl_->size = options.size;
+  r->impl_->nameForMessages = pipelinePath;
+  std::error_code ec;
+  r->impl_->baseDir = std::filesystem::absolute(pipelinePath, ec).parent_path().string();
   for (const auto& dir : options.shaderDirectories) addShaderSearchDirectory(dir);
-  if (!r->impl_->load(std::nullopt, diags)) return nullptr;
+  std::optional<PipelineConfig> loaded = r->impl_->load(std::nullopt, diags);
+  if (!loaded) return nullptr;
+  r->impl_->source = std::move(*loaded);
   return r;
 }
 
@@ -185,7 +232,9 @@ std::unique_ptr<Renderer> Renderer::fromJson(std::string_view json, const std::s
   r->impl_->baseDir = baseDir;
   r->impl_->size = options.size;
   for (const auto& dir : options.shaderDirectories) addShaderSearchDirectory(dir);
-  if (!r->impl_->load(r->impl_->json, diags)) return nullptr;
+  std::optional<PipelineConfig> loaded = r->impl_->load(r->impl_->json, diags);
+  if (!loaded) return nullptr;
+  r->impl_->source = std::move(*loaded);
   return r;
 }
 
@@ -280,16 +329,26 @@ void Renderer::render(uint32_t framebuffer, const Viewport& viewport) {
 }
 
 bool Renderer::reload(Diagnostics& diags) {
-  if (impl_->path.empty()) return impl_->load(impl_->json, diags);
-  return impl_->load(std::nullopt, diags);
+  std::optional<PipelineConfig> loaded =
+      impl_->path.empty() ? impl_->load(impl_->json, diags) : impl_->load(std::nullopt, diags);
+  return loaded && impl_->replace(std::move(*loaded), diags);
 }
 
 bool Renderer::reloadJson(std::string_view json, Diagnostics& diags) {
   const std::string text(json);
-  if (!impl_->load(text, diags)) return false;
+  std::optional<PipelineConfig> loaded = impl_->load(text, diags);
+  if (!loaded || !impl_->replace(std::move(*loaded), diags)) return false;
   impl_->json = text;
   impl_->path.clear();
   return true;
+}
+
+std::vector<std::string> Renderer::watchedFiles() const {
+  std::vector<std::string> files;
+  if (!impl_->path.empty()) files.push_back(impl_->path);
+  for (auto& f : impl_->shaders.files())
+    if (std::find(files.begin(), files.end(), f) == files.end()) files.push_back(std::move(f));
+  return files;
 }
 
 const PipelineConfig& Renderer::pipeline() const {
@@ -332,6 +391,11 @@ std::vector<float> Renderer::readResourceRGBA32F(const std::string& name) const 
   if (!impl_->executor) throw RuntimeError("Renderer::readResourceRGBA32F: nothing rendered yet");
   Impl::CallerState state(impl_->options.restoreGlState);
   return impl_->executor->readTextureRGBA32F(name);
+}
+
+void Renderer::setAfterPass(std::function<void(size_t)> callback) {
+  impl_->afterPass = std::move(callback);
+  if (impl_->executor) impl_->executor->setAfterPass(impl_->afterPass);
 }
 
 uint64_t Renderer::builds() const { return impl_->builds; }

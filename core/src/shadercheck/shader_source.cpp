@@ -227,6 +227,7 @@ ShaderSource loadShaderSource(const std::string& file, const std::vector<std::st
   src.path = resolveShaderFile(file, dirs);
   const std::string& path = src.path;
   src.files.push_back(shaderDisplayPath(path));
+  src.resolvedFiles.push_back(path);
   std::vector<std::string> lines = splitLines(readFile(path));
 
   std::string out;
@@ -276,6 +277,7 @@ ShaderSource loadShaderSource(const std::string& file, const std::vector<std::st
       }
       int id = static_cast<int>(src.files.size());
       src.files.push_back(shaderDisplayPath(incPath));
+      src.resolvedFiles.push_back(incPath);
       std::vector<std::string> incLines = splitLines(readFile(incPath));
       for (size_t j = 0; j < incLines.size(); ++j) {
         std::string nested;

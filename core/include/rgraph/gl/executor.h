@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -64,6 +65,12 @@ class Executor {
   void importTexture(const std::string& resource, uint32_t texture);
   // Back to a texture the executor owns (no-op when none was imported).
   void releaseTexture(const std::string& resource);
+
+  // Called after each executed pass with its step (execution-order index,
+  // as timings()), GL work recorded, before the next pass: for tools that copy
+  // a resource out as it was right after a pass wrote it (rgraph view's
+  // inspector). Empty: none. Kept across resize().
+  void setAfterPass(std::function<void(size_t step)> callback);
 
   const Plan& plan() const;
   // Every program a pass asked the ShaderLibrary for (each once per pass, in

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <utility>
@@ -60,6 +61,18 @@ class ShaderLibrary {
 
   // Drops every cached program (e.g. to reload edited shaders). Needs the context current.
   void clear();
+  // Reloading edited shaders, keeping what did not change: retireChanged()
+  // takes the cached programs whose files (the shaders and what they include)
+  // changed on disk since they were compiled, or are gone, out of the cache
+  // (the next program() call compiles them again) but keeps them alive, since
+  // passes still draw with them; releaseRetired() deletes them once nothing
+  // uses them, restoreRetired() puts them back (the reload failed). Returns
+  // how many were retired.
+  size_t retireChanged();
+  void releaseRetired();
+  void restoreRetired();
+  // Every file the cached programs were compiled from (resolved paths, once each).
+  std::vector<std::string> files() const;
   size_t cachedPrograms() const { return programs_.size(); }
 
  private:
@@ -68,12 +81,23 @@ class ShaderLibrary {
     std::vector<std::string> files;  // 0: the shader itself, then included files (display paths)
     std::vector<std::pair<int, int>> lines;  // expanded line - 1 -> (file index, line in that file)
   };
+  struct WatchedFile {
+    std::string path;
+    std::filesystem::file_time_type written;
+  };
+  struct Cached {
+    gl::Program program;
+    std::vector<WatchedFile> files;  // what it was compiled from, as it was then
+  };
   Source load(const std::string& file, const std::vector<std::string>& defines) const;
-  gl::Shader compileStage(unsigned stage, const std::string& file, const std::vector<std::string>& defines) const;
-  uint32_t link(const std::string& key, std::vector<gl::Shader> stages, const std::string& what);
+  gl::Shader compileStage(unsigned stage, const std::string& file, const std::vector<std::string>& defines,
+                          std::vector<WatchedFile>& read) const;
+  uint32_t link(const std::string& key, std::vector<gl::Shader> stages, std::vector<WatchedFile> read,
+                const std::string& what);
 
   std::vector<std::string> extraDirs_;
-  std::map<std::string, gl::Program> programs_;
+  std::map<std::string, Cached> programs_;
+  std::vector<std::pair<std::string, Cached>> retired_;
   std::vector<ProgramRequest>* log_ = nullptr;
 };
 
