@@ -6,7 +6,7 @@ set -euo pipefail
 PACKAGES=(
   cmake g++ make pkg-config git
   libopengl-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
-  libglfw3-dev libglm-dev glslang-dev glslang-tools libtinygltf-dev
+  libglfw3-dev libglm-dev glslang-dev glslang-tools libtinygltf-dev libimgui-dev
   libspdlog-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libstb-dev libcli11-dev
   xvfb xauth

@@ -36,6 +36,17 @@ struct RenderOptions {
 };
 int runRender(const RenderOptions& options);
 
+// `rgraph view` (view/view_main.cpp, docs/viewer.md): an interactive window with live reload.
+struct ViewOptions {
+  std::string pipeline;  // empty: the default pipeline
+  std::string scene;     // as render's --scene
+  std::string script;    // --script FILE: one command per line
+  std::string status;    // --status FILE: one JSON line per load or reload
+  std::string stats;     // --stats FILE: median frame times with the UI on and off
+  SizeOptions size;
+};
+int runView(const ViewOptions& options);
+
 // `rgraph bench`: sweeps lighting methods, light counts, G-buffer layouts,
 // cut-off thresholds and resolutions; writes results.csv, results.json and
 // figures.md and charts (SVG + PNG) under `out` (cmd_bench.cpp, bench.h).

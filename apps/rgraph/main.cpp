@@ -24,6 +24,7 @@ struct Options {
   std::string planScene;                 // plan
   std::vector<std::string> passPlugins;  // passes
   RenderOptions render;
+  ViewOptions view;
   BenchOptions bench;
 };
 
@@ -142,6 +143,22 @@ CLI::App* addBench(CLI::App& app, Options& o) {
   return cmd;
 }
 
+CLI::App* addView(CLI::App& app, Options& o) {
+  ViewOptions& v = o.view;
+  auto* cmd =
+      app.add_subcommand("view", "an interactive window: camera controls, panels, live reload (docs/viewer.md)");
+  cmd->add_option("pipeline", v.pipeline, "pipeline config (default: pipelines/default.json)");
+  cmd->add_option("--scene", v.scene, "as render's --scene; a scene file is reloaded when it changes");
+  cmd->add_option("--script", v.script,
+                  "run these commands (camera, wait, waitfile, screenshot, ui, param, resize, quit)");
+  cmd->add_option("--status", v.status, "append one JSON line per load or reload to this file");
+  cmd->add_option("--stats", v.stats, "write median frame times with the UI on and off (JSON) at exit");
+  addSize(cmd, v.size, "the device's GL_MAX_TEXTURE_SIZE");
+  addPluginPath(cmd, o);
+  addShaderPath(cmd, o);
+  return cmd;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -157,6 +174,7 @@ int main(int argc, char** argv) {
   CLI::App* passes = addPasses(app, o);
   CLI::App* render = addRender(app, o);
   CLI::App* bench = addBench(app, o);
+  CLI::App* view = addView(app, o);
 
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(o.logLevel));
@@ -172,6 +190,7 @@ int main(int argc, char** argv) {
     if (*passes) return loadPlugins(o.passPlugins) ? runPasses(o.json) : kExitFailure;
     if (*render) return runRender(o.render);
     if (*bench) return runBench(o.bench);
+    if (*view) return runView(o.view);
   } catch (const std::exception& e) {
     // Anything a user can cause is reported as a diagnostic or a RuntimeError
     // above; this is the last line of defence against a crash.

@@ -1,0 +1,116 @@
+// rgraph view's panels (issue 12): the plan, parameter editing, the resource
+// inspector. Each draws with Dear ImGui inside a frame the viewer started
+// (view_app.cpp); what is not drawing (editing a pipeline's JSON, copying a
+// resource out after its last write, mapping its values) works without a
+// window and is tested headless.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rgraph/renderer.h"
+#include "view_panels_map.h"
+
+namespace rgraph::view {
+
+// Passes in execution order (culled ones greyed, with their reasons),
+// resources with lifetime bars and the physical texture each uses (aliasing
+// visible), memory allocated vs naive, per-pass times and what they measure
+// (Renderer::cpuTimed()).
+void drawPlanPanel(Renderer& renderer);
+
+// Every pass parameter with a widget from its declaration (type, range, enum
+// values). An edit gives new pipeline JSON text for Renderer::reloadJson; the
+// file is written only by save().
+class ParamEditor {
+ public:
+  // The pipeline file's text, parsed keeping key order. Throws RuntimeError
+  // when it cannot be read or parsed.
+  explicit ParamEditor(std::string pipelinePath);
+  // Re-reads the file (after a reload from disk). false when it cannot be parsed.
+  bool reread();
+  // Draws the widgets; returns the new JSON text when the user changed a value.
+  std::optional<std::string> draw(const Renderer& renderer);
+  // The script command `param PASS NAME JSON-VALUE`: the new JSON text, or
+  // nullopt with `error` set (unknown pass, a parameter the pass type does
+  // not declare, value not JSON). Value types and ranges are checked by
+  // Renderer::reloadJson, which locates them in the text.
+  std::optional<std::string> withParam(const std::string& pass, const std::string& name, const std::string& jsonValue,
+                                       std::string& error);
+  // Takes an edit that the renderer accepted as the current text.
+  void accept(const std::string& text);
+  // An edit the renderer refused: the panel shows `message` (the
+  // diagnostics) until the next accepted edit; the text stays as it was.
+  void reject(const std::string& message);
+  // true after an accepted edit, until the text is saved to the pipeline file or reread.
+  bool modified() const { return modified_; }
+  // Writes the current text (key order kept) to the pipeline file, or to
+  // `path` ("Save as": the pipeline file stays as it was). Throws
+  // RuntimeError naming the file when it cannot be written.
+  void save(const std::string& path = {});
+  const std::string& text() const;
+  const std::string& path() const { return path_; }
+
+ private:
+  // doc_ with passes[passIndex].params[name] = value, as text.
+  std::string edited(size_t passIndex, const std::string& name, const nlohmann::ordered_json& value) const;
+
+  std::string path_;
+  nlohmann::ordered_json doc_;
+  std::string text_;
+  bool modified_ = false;
+  std::string error_;       // the last refused edit's diagnostics
+  std::string saveAsPath_;  // the "Save as" field
+};
+
+// Pick any resource or version (G-buffer targets, aliased transients) and see
+// it as it was right after its last write in this frame: attach() installs a
+// Renderer::setAfterPass hook that copies it out then.
+class ResourceInspector {
+ public:
+  ResourceInspector();
+  ~ResourceInspector();
+  ResourceInspector(const ResourceInspector&) = delete;
+  ResourceInspector& operator=(const ResourceInspector&) = delete;
+
+  // Installs the copy hook (Renderer::setAfterPass) on `renderer`, which
+  // must outlive the inspector or be detach()ed first: the destructor
+  // detaches. Attaching to another renderer leaves the old one's hook inert.
+  void attach(Renderer& renderer);
+  void detach();
+  void select(const std::string& resourceOrVersion);
+  const std::string& selected() const;
+  // Every name select() takes, for the plan of `renderer`: each resource
+  // (meaning its last write), then its later versions (that version's write).
+  static std::vector<std::string> selectableNames(const Plan& plan);
+  // The execution step after which `name` is copied: the last executed pass
+  // that writes the resource (or, for a later version name, the pass that
+  // writes that version); invalid when no executed pass writes it.
+  static StepIndex captureStep(const Plan& plan, const std::string& name);
+  // The copy made this frame (0 before one was made); RGBA32F readback of it,
+  // rows top-down, depth in R (G = B = 0, A = 1), as Renderer::readResourceRGBA32F.
+  uint32_t capturedTexture() const;
+  Extent capturedExtent() const;
+  std::vector<float> readCaptured() const;
+  // One texel of the copy (x from the left, y from the top), as readCaptured().
+  glm::vec4 readCapturedTexel(uint32_t x, uint32_t yTop) const;
+  // The display: the copy drawn through mapping() into an RGBA8 texture of
+  // its size (0 when nothing was copied). draw() shows it.
+  ValueMapping& mapping();
+  uint32_t renderDisplay();
+  // How many frames copied the selection (tests: one copy per frame).
+  uint64_t captureCount() const;
+  // How many times the copy texture was (re)created: only when the selection's format or size changes.
+  uint64_t textureCreations() const;
+  void draw(Renderer& renderer);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rgraph::view

@@ -1,0 +1,146 @@
+#!/usr/bin/env bash
+# `rgraph view` in a GLFW window under Xvfb, driven by --script:
+#   view_test.sh CASE RGRAPH PNG_COMPARE XVFB_RUN SOURCE_DIR OUT_DIR
+# CASE:
+#   matches_render  a scripted screenshot (UI off) equals `rgraph render --camera` of the same pose within
+#                   1/255, and differs from the scene's own camera (so the comparison can fail)
+#   reload_pipeline a copy of a pipeline edited valid -> broken JSON -> broken graph -> valid while the viewer
+#                   runs: status lines ok, error (FILE:LINE:COL), error, ok; the viewer exits 0 at `quit`
+#   reload_shader   a copy of tonemap.frag (--shader-path) broken then fixed: error naming it with its line, then ok
+#   reload_leak     50 reloads (valid and broken alternating): the last ok line's gl_objects equals the first's
+#   resize          `resize 200 150` then a screenshot: the PNG is 200x150
+#   script_errors   an unknown command, a bad number, a missing script: FILE:LINE error, exit 1, no window
+set -uo pipefail
+case_=$1; rgraph=$2; compare=$3; xvfb=$4; src=$5; out=$6/view-$1
+unset RGRAPH_PLUGIN_PATH RGRAPH_SHADER_DIR RGRAPH_PIPELINE_DIR
+rm -rf "$out"; mkdir -p "$out"
+viewer=
+fail() {
+  echo "FAIL: $*" >&2
+  # A viewer left running would write into the next run's files: its script quits once "done" exists.
+  [[ -n "$viewer" ]] && { touch "$out/done"; wait "$viewer"; }
+  for f in "$out/xvfb-errors.log" "$out/view.log" "$out/status.jsonl"; do
+    [[ -s "$f" ]] && { echo "--- $f:" >&2; cat "$f" >&2; }
+  done
+  exit 1
+}
+# Our own auth file: without one, xvfb-run's temporary folder clean-up can fail
+# (exit 5) after the command and hide its status (as tests/embed/embed_test.sh).
+run_x() { "$xvfb" -a -f "$out/Xauthority" -e "$out/xvfb-errors.log" -s '-screen 0 1280x1024x24' "$@"; }
+png_size() { python3 -c "import struct,sys; d=open(sys.argv[1],'rb').read(24); print(*struct.unpack('>II', d[16:24]))" "$1"; }
+
+# Waits (up to 60 s) until the status file has N lines; the viewer polls files every 250 ms.
+wait_lines() {
+  local n=$1
+  for _ in $(seq 600); do
+    [[ -f "$out/status.jsonl" && $(wc -l <"$out/status.jsonl") -ge $n ]] && return 0
+    kill -0 "$viewer" 2>/dev/null || fail "the viewer exited while waiting for status line $n"
+    sleep 0.1
+  done
+  fail "no status line $n within 60 s"
+}
+# Replaces a file in one step (a half-written file is never read) with a new modification time.
+put() { cat >"$1.tmp" && mv "$1.tmp" "$1"; }
+# The viewer in the background until the test creates $out/done; sets $viewer.
+start_viewer() {
+  printf 'waitfile %s\nquit\n' "$out/done" >"$out/script.txt"
+  run_x "$rgraph" view "$@" --width 160 --height 120 --script "$out/script.txt" --status "$out/status.jsonl" \
+    >"$out/view.log" 2>&1 &
+  viewer=$!
+  wait_lines 1
+}
+stop_viewer() {
+  touch "$out/done"
+  wait "$viewer"; local rc=$?
+  [[ $rc -eq 0 ]] || fail "the viewer exited $rc (expected 0 at quit)"
+}
+line() { sed -n "${1}p" "$out/status.jsonl"; }
+expect_line() {  # N REGEX
+  local l; l=$(line "$1")
+  [[ "$l" =~ $2 ]] || fail "status line $1 is '$l', expected /$2/"
+}
+
+case "$case_" in
+matches_render)
+  cam="1.5,2.5,5.5,0,0.5,0"
+  printf 'camera %s\nwait 2\nscreenshot %s\nquit\n' "${cam//,/ }" "$out/view.png" >"$out/script.txt"
+  run_x "$rgraph" view --width 256 --height 192 --script "$out/script.txt" >"$out/view.log" 2>&1 ||
+    fail "rgraph view exited $?"
+  [[ "$(png_size "$out/view.png")" == "256 192" ]] || fail "screenshot size $(png_size "$out/view.png")"
+  "$rgraph" render --camera "$cam" --width 256 --height 192 --out "$out/render.png" || fail "rgraph render: exit $?"
+  "$compare" "$out/view.png" "$out/render.png" 1 || fail "the viewer's screenshot differs from rgraph render's"
+  "$rgraph" render --width 256 --height 192 --out "$out/unmoved.png" || fail "rgraph render: exit $?"
+  "$compare" "$out/view.png" "$out/unmoved.png" 1; rc=$?
+  [[ $rc -eq 2 ]] || fail "the screenshot should differ from the scene camera's image (compare exit $rc)"
+  echo "ok: view's screenshot matches rgraph render --camera $cam within 1/255" ;;
+reload_pipeline)
+  p="$out/pipeline.json"; cp "$src/pipelines/default.json" "$p"
+  start_viewer "$p"
+  expect_line 1 '"event":"load".*"result":"ok"'
+  sed 's/"gamma": 1.0/"gamma": 1.2/' "$src/pipelines/default.json" | put "$p"; wait_lines 2
+  expect_line 2 '"event":"reload".*"result":"ok"'
+  { cat "$src/pipelines/default.json"; echo '}'; } | put "$p"; wait_lines 3
+  expect_line 3 '"diagnostics":\[".*pipeline\.json:[0-9]+:[0-9]+: error'
+  expect_line 3 '"result":"error"'
+  sed 's/"inputs": { "hdr": "hdr_forward" }/"inputs": { "hdr": "no_such_resource" }/' "$src/pipelines/default.json" |
+    put "$p"; wait_lines 4
+  expect_line 4 '"diagnostics":\[".*pipeline\.json:[0-9]+:[0-9]+: error: /passes/5/inputs/hdr: .*no_such_resource'
+  expect_line 4 '"result":"error"'
+  cp "$src/pipelines/default.json" "$p.tmp" && mv "$p.tmp" "$p"; wait_lines 5
+  expect_line 5 '"event":"reload".*"result":"ok"'
+  stop_viewer
+  echo "ok: ok, error (JSON), error (graph), ok; exit 0 at quit" ;;
+reload_shader)
+  mkdir -p "$out/shaders"; cp -r "$src/shaders/." "$out/shaders/"
+  f="$out/shaders/tonemap.frag"
+  start_viewer --shader-path "$out/shaders"
+  { cat "$src/shaders/tonemap.frag"; echo 'this is not glsl;'; } | put "$f"; wait_lines 2
+  # glslang reports a line, no column: FILE:LINE: error.
+  expect_line 2 '"diagnostics":\[".*shaders/tonemap\.frag:[0-9]+: error: pass .tonemap.'
+  expect_line 2 '"result":"error"'
+  cp "$src/shaders/tonemap.frag" "$f.tmp" && mv "$f.tmp" "$f"; wait_lines 3
+  expect_line 3 '"event":"reload".*"result":"ok"'
+  stop_viewer
+  echo "ok: a broken shader is reported with FILE:LINE and survived" ;;
+reload_leak)
+  p="$out/pipeline.json"; cp "$src/pipelines/default.json" "$p"
+  start_viewer "$p"
+  for i in $(seq 1 50); do
+    if ((i % 2)); then
+      sed "s/\"gamma\": 1.0/\"gamma\": 1.$i/" "$src/pipelines/default.json" | put "$p"
+    else
+      { cat "$src/pipelines/default.json"; echo '}'; } | put "$p"
+    fi
+    wait_lines $((i + 1))
+  done
+  stop_viewer
+  oks=$(grep '"result":"ok"' "$out/status.jsonl" | grep -o '"gl_objects":[0-9]*' | cut -d: -f2)
+  [[ $(grep -c '"result":"error"' "$out/status.jsonl") -eq 25 ]] || fail "expected 25 error lines"
+  first=$(sed -n 2p <<<"$oks"); last=$(tail -n 1 <<<"$oks")  # line 1 is the load; 2 the first reload
+  [[ -n "$first" && "$first" == "$last" ]] || fail "gl_objects went from $first to $last over 50 reloads"
+  echo "ok: gl_objects $first after the first reload and $last after the last" ;;
+resize)
+  printf 'wait 1\nresize 200 150\nwait 3\nscreenshot %s\nquit\n' "$out/small.png" >"$out/script.txt"
+  run_x "$rgraph" view --width 320 --height 240 --script "$out/script.txt" >"$out/view.log" 2>&1 ||
+    fail "rgraph view exited $?"
+  [[ "$(png_size "$out/small.png")" == "200 150" ]] || fail "screenshot size $(png_size "$out/small.png"), expected 200 150"
+  "$rgraph" render --width 200 --height 150 --out "$out/render.png" || fail "rgraph render: exit $?"
+  "$compare" "$out/small.png" "$out/render.png" 1 || fail "the resized frame differs from rgraph render at 200x150"
+  echo "ok: resized to 200x150" ;;
+script_errors)
+  check() {  # SCRIPT-TEXT EXPECTED-REGEX
+    printf '%b' "$1" >"$out/bad.txt"
+    # No DISPLAY: a script error must be reported before any window is opened.
+    env -u DISPLAY "$rgraph" view --script "$out/bad.txt" >"$out/view.log" 2>&1; local rc=$?
+    [[ $rc -eq 1 ]] || fail "script '$1': exit $rc, expected 1"
+    grep -qE "$2" "$out/view.log" || fail "script '$1': expected /$2/ in: $(cat "$out/view.log")"
+  }
+  check 'wait 1\nfly away\n' "bad\.txt:2: error: unknown command 'fly'"
+  check '# a comment\n\ncamera 1 2 x 4 5 6\n' "bad\.txt:3: error: 'camera': 'x' is not a number"
+  check 'wait 2.5\n' "bad\.txt:1: error: 'wait' needs whole numbers"
+  check 'resize 100\n' "bad\.txt:1: error: 'resize' expects W H"
+  env -u DISPLAY "$rgraph" view --script "$out/missing.txt" >"$out/view.log" 2>&1; rc=$?
+  [[ $rc -eq 1 ]] && grep -q "missing.txt: error: cannot read" "$out/view.log" || fail "a missing script: exit $rc"
+  echo "ok: script errors exit 1 with FILE:LINE" ;;
+*) fail "unknown case $case_" ;;
+esac
