@@ -569,3 +569,48 @@ TEST_F(RendererShaderReload, WhatOnlyTheDeviceRefusesIsADeviceErrorAndTheLastGoo
 }
 
 }  // namespace
+
+namespace {
+
+std::string fileText(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// A reload builds the pipeline again but keeps what did not change: programs
+// (ShaderLibrary) and textures of the same description (Executor::reuseTextures).
+TEST_F(RendererApi, ReloadReusesTexturesAndProgramsThatDidNotChange) {
+  auto scene = RenderScene::load("learnopengl:overview");
+  auto r = makeRenderer();
+  r->setScene(scene);
+  const auto before = renderOnce(*r);
+  std::string text = fileText(kDefault);
+  const size_t gamma = text.find("\"gamma\": 1.0");
+  ASSERT_NE(gamma, std::string::npos);
+  text.replace(gamma, 12, "\"gamma\": 2.2");
+  Diagnostics diags;
+  const int64_t textures = gl::createdObjects(gl::ObjectKind::texture);
+  const int64_t programs = gl::createdObjects(gl::ObjectKind::program);
+  ASSERT_TRUE(r->reloadJson(text, diags)) << (diags.empty() ? "" : formatDiagnostic(diags.front()));
+  EXPECT_EQ(gl::createdObjects(gl::ObjectKind::texture) - textures, 0) << "every texture kept its description";
+  EXPECT_EQ(gl::createdObjects(gl::ObjectKind::program) - programs, 0);
+  const auto after = renderOnce(*r);
+  EXPECT_GT(differing(after, before), 100u) << "the new gamma shows";
+
+  // One resource changes format: exactly one texture is made; the frame is
+  // that of a renderer made from the new text directly.
+  const size_t hdr = text.find("\"hdr\":          { \"format\": \"rgba16f\"");
+  ASSERT_NE(hdr, std::string::npos);
+  text.replace(text.find("rgba16f", hdr), 7, "rgba32f");
+  diags.clear();
+  const int64_t textures2 = gl::createdObjects(gl::ObjectKind::texture);
+  ASSERT_TRUE(r->reloadJson(text, diags)) << (diags.empty() ? "" : formatDiagnostic(diags.front()));
+  EXPECT_EQ(gl::createdObjects(gl::ObjectKind::texture) - textures2, 1);
+  Diagnostics d2;
+  auto fresh = Renderer::fromJson(text, "fresh.json", sized(kSize), d2);
+  ASSERT_TRUE(fresh);
+  fresh->setScene(scene);
+  EXPECT_EQ(differing(renderOnce(*r), renderOnce(*fresh)), 0u);
+}
+
+}  // namespace

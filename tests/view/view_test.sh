@@ -73,6 +73,22 @@ matches_render)
   "$compare" "$out/view.png" "$out/unmoved.png" 1; rc=$?
   [[ $rc -eq 2 ]] || fail "the screenshot should differ from the scene camera's image (compare exit $rc)"
   echo "ok: view's screenshot matches rgraph render --camera $cam within 1/255" ;;
+param)
+  # The script's `param` edits a pass parameter live (as the panel does): the
+  # frame equals rgraph render of the pipeline with that value written in.
+  p="$out/pipeline.json"; cp "$src/pipelines/default.json" "$p"
+  printf 'param tonemap gamma 2.2\nwait 2\nscreenshot %s\nquit\n' "$out/view.png" >"$out/script.txt"
+  run_x "$rgraph" view "$p" --width 160 --height 120 --script "$out/script.txt" --status "$out/status.jsonl" \
+    >"$out/view.log" 2>&1 || fail "rgraph view exited $?"
+  grep -q '"event":"param".*"result":"ok"' "$out/status.jsonl" || fail "no param ok line in the status file"
+  sed 's/"gamma": 1.0/"gamma": 2.2/' "$src/pipelines/default.json" >"$out/gamma.json"
+  "$rgraph" render "$out/gamma.json" --width 160 --height 120 --out "$out/render.png" || fail "rgraph render: exit $?"
+  "$compare" "$out/view.png" "$out/render.png" 1 || fail "the edited frame differs from rgraph render of the edit"
+  "$rgraph" render "$p" --width 160 --height 120 --out "$out/unedited.png" || fail "rgraph render: exit $?"
+  "$compare" "$out/view.png" "$out/unedited.png" 1; rc=$?
+  [[ $rc -eq 2 ]] || fail "the edit should change the frame (compare exit $rc)"
+  cmp -s "$p" "$src/pipelines/default.json" || fail "a live edit must not write the file (only Save does)"
+  echo "ok: param tonemap gamma 2.2 applied live, equals rgraph render of the edited pipeline" ;;
 reload_pipeline)
   p="$out/pipeline.json"; cp "$src/pipelines/default.json" "$p"
   start_viewer "$p"

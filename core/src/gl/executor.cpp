@@ -63,6 +63,15 @@ bool isSoftwareRenderer() {
 }  // namespace
 
 
+exec_detail::SharedTexture Executor::Impl::takeTexture(Format format, Extent extent, uint32_t mips, uint32_t samples) {
+  auto same = std::find_if(reusable.begin(), reusable.end(), [&](const SharedTexture& t) {
+    return t.texture && t.format == format && t.extent == extent && t.mips == mips && t.samples == samples;
+  });
+  if (same != reusable.end()) return std::exchange(*same, SharedTexture{});
+  return SharedTexture{std::make_shared<gl::Texture>(gl::createTexture2D(format, extent, mips, samples)), format,
+                       extent, mips, samples};
+}
+
 // The plan is ok: every resource a pass uses has a physical or is imported
 // (rgraph/graph.h), and Plan::resources matches the config's resources.
 void Executor::Impl::createResources() {
@@ -71,7 +80,7 @@ void Executor::Impl::createResources() {
   for (size_t i = 0; i < plan.physical.size(); ++i) {
     const PhysicalTexture& p = plan.physical[i];
     if (p.kind == ResourceKind::texture) {
-      physicalTextures[i] = gl::createTexture2D(p.format, p.extent, p.mips, p.samples);
+      physicalTextures[i] = takeTexture(p.format, p.extent, p.mips, p.samples);
     } else {
       physicalBuffers[i] = gl::createBuffer();
       glNamedBufferStorage(physicalBuffers[i].id(), static_cast<GLsizeiptr>(std::max<uint64_t>(p.bytes, 4)), nullptr,
@@ -105,7 +114,7 @@ void Executor::Impl::createResources() {
           if (!mismatch.empty()) throw RuntimeError(mismatch);
           obj.texture = it->second;
         } else {
-          obj.ownTexture = gl::createTexture2D(obj.format, obj.extent, obj.mips, obj.samples);
+          obj.ownTexture = takeTexture(obj.format, obj.extent, obj.mips, obj.samples);
           obj.texture = obj.ownTexture.id();
         }
       }
@@ -281,6 +290,7 @@ void Executor::Impl::build(Extent output) {
   }
   size = output;
   createResources();
+  reusable.clear();  // what was not taken is the previous executor's alone again
   createRuns();
   built = true;
 }

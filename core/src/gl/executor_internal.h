@@ -22,6 +22,17 @@
 namespace rgraph {
 namespace exec_detail {
 
+// A texture the executor made, shared so that a pipeline rebuilt from this
+// one (Executor::reuseTextures) takes over those whose descriptions did not change.
+struct SharedTexture {
+  std::shared_ptr<gl::Texture> texture;
+  Format format = Format::rgba8;
+  Extent extent;
+  uint32_t mips = 1, samples = 1;
+  uint32_t id() const { return texture ? texture->id() : 0; }
+  explicit operator bool() const { return texture != nullptr; }
+};
+
 struct SlotBinding {
   std::string slot;
   Access access = Access::sampled;
@@ -38,7 +49,7 @@ struct SlotBinding {
 };
 
 struct ResourceObject {
-  gl::Texture ownTexture;
+  SharedTexture ownTexture;  // an imported resource the caller gave no texture
   gl::Buffer ownBuffer;
   uint32_t texture = 0, buffer = 0;
   Format format = Format::rgba8;
@@ -126,7 +137,9 @@ struct Executor::Impl {
   bool built = false;
   Extent size;
   Plan plan;
-  std::vector<gl::Texture> physicalTextures;
+  using SharedTexture = exec_detail::SharedTexture;
+  std::vector<SharedTexture> physicalTextures;
+  std::vector<SharedTexture> reusable;  // offered by the executor this one replaces; used by the next build only
   std::vector<gl::Buffer> physicalBuffers;
   std::vector<exec_detail::ResourceObject> resources;
   std::map<std::string, ResourceIndex, std::less<>> byName;  // resource and version names
@@ -162,6 +175,8 @@ struct Executor::Impl {
     }
   }
   void createResources();
+  // A reusable texture of this description, else a new one.
+  SharedTexture takeTexture(Format format, Extent extent, uint32_t mips, uint32_t samples);
   gl::TextureShape declaredShape(ResourceIndex r) const;
   std::unique_ptr<exec_detail::PassRun> createRun(PassIndex pass, Extent output);
   void applyClears(exec_detail::PassRun& run);

@@ -23,7 +23,7 @@ void Executor::importTexture(const std::string& resource, uint32_t texture) {
     const std::string mismatch = gl::checkImportedTexture(resource, im.declaredShape(r), texture);
     if (!mismatch.empty()) throw RuntimeError(mismatch);
     ResourceObject& obj = im.resources[r.value()];
-    obj.ownTexture.reset();
+    obj.ownTexture = {};
     obj.texture = texture;
     im.imports[resource] = texture;
     im.rebuildRuns();
@@ -38,7 +38,7 @@ void Executor::releaseTexture(const std::string& resource) {
   const ResourceIndex r = im.resourceIndex(resource);
   if (!r.valid()) return;
   ResourceObject& obj = im.resources[r.value()];
-  obj.ownTexture = gl::createTexture2D(obj.format, obj.extent, obj.mips, obj.samples);
+  obj.ownTexture = im.takeTexture(obj.format, obj.extent, obj.mips, obj.samples);
   obj.texture = obj.ownTexture.id();
   im.rebuildRuns();
 }
@@ -118,11 +118,18 @@ uint32_t Executor::bufferOf(const std::string& name) const {
   return impl_->built && r.valid() ? impl_->resources[r.value()].buffer : 0;
 }
 
+void Executor::reuseTextures(const Executor& previous) {
+  impl_->reusable = previous.impl_->physicalTextures;
+  for (const auto& r : previous.impl_->resources)
+    if (r.ownTexture) impl_->reusable.push_back(r.ownTexture);
+}
+
 size_t Executor::ownedObjects() const {
   size_t n = 0;
-  for (const auto& t : impl_->physicalTextures) n += t ? 1 : 0;
+  auto own = [](const exec_detail::SharedTexture& t) { return t.texture && t.texture.use_count() == 1 ? 1 : 0; };
+  for (const auto& t : impl_->physicalTextures) n += own(t);
   for (const auto& b : impl_->physicalBuffers) n += b ? 1 : 0;
-  for (const auto& r : impl_->resources) n += (r.ownTexture ? 1 : 0) + (r.ownBuffer ? 1 : 0);
+  for (const auto& r : impl_->resources) n += own(r.ownTexture) + (r.ownBuffer ? 1 : 0);
   for (const auto& run : impl_->runs) n += (run->fbo ? 1 : 0) + (run->query ? 1 : 0);
   return n;
 }

@@ -172,6 +172,7 @@ void Renderer::Impl::buildExecutor() {
                     : std::make_unique<Executor>(adapted, PassRegistry::builtins(), shaders);
   for (const auto& [name, texture] : imports) next->importTexture(name, texture);
   next->setAfterPass(afterPass);
+  if (executor) next->reuseTextures(*executor);  // what did not change is kept
   next->resize(size);
   executor = std::move(next);
   executorScene = scene;

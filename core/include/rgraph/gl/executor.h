@@ -63,6 +63,13 @@ class Executor {
   // and both descriptions). Rebuilds framebuffers and pass instances when
   // built (programs and other textures are kept).
   void importTexture(const std::string& resource, uint32_t texture);
+  // Offers `previous`'s transient textures to this executor's next resize():
+  // a physical texture of the same format, size, mips and samples is shared
+  // instead of created (a rebuilt pipeline keeps what did not change). Both
+  // may hold them until `previous` is destroyed; contents are not kept
+  // meaningful (transients are written before they are read each frame).
+  void reuseTextures(const Executor& previous);
+
   // Back to a texture the executor owns (no-op when none was imported).
   void releaseTexture(const std::string& resource);
 
