@@ -89,6 +89,21 @@ param)
   [[ $rc -eq 2 ]] || fail "the edit should change the frame (compare exit $rc)"
   cmp -s "$p" "$src/pipelines/default.json" || fail "a live edit must not write the file (only Save does)"
   echo "ok: param tonemap gamma 2.2 applied live, equals rgraph render of the edited pipeline" ;;
+reload_scene)
+  # The scene file edited while the viewer runs: valid (ambient raised), broken, valid again.
+  sc="$out/scene.json"; cp "$src/scenes/learnopengl.json" "$sc"
+  start_viewer --scene "$sc"
+  expect_line 1 '"event":"load".*"result":"ok"'
+  python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d['ambient']=0.4; json.dump(d, sys.stdout)" "$sc" |
+    put "$sc"; wait_lines 2
+  expect_line 2 '"event":"reload".*"result":"ok"'
+  { cat "$src/scenes/learnopengl.json"; echo '}'; } | put "$sc"; wait_lines 3
+  expect_line 3 '"diagnostics":\[".*scene\.json:[0-9]+:[0-9]+: invalid JSON'
+  expect_line 3 '"result":"error"'
+  cp "$src/scenes/learnopengl.json" "$sc.tmp" && mv "$sc.tmp" "$sc"; wait_lines 4
+  expect_line 4 '"event":"reload".*"result":"ok"'
+  stop_viewer
+  echo "ok: scene file ok, error, ok; exit 0 at quit" ;;
 reload_pipeline)
   p="$out/pipeline.json"; cp "$src/pipelines/default.json" "$p"
   start_viewer "$p"

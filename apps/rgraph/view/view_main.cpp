@@ -170,7 +170,9 @@ void Viewer::reloadPipeline() {
 void Viewer::reloadScene() {
   try {
     auto scene = RenderScene::load(sceneFile_);
+    const Camera camera = renderer_->camera();  // an edit of the scene does not move the viewer's camera
     renderer_->setScene(scene);
+    renderer_->setCamera(camera);
     scene_ = scene;
     report("reload", true, {});
   } catch (const std::exception& e) {  // the old scene keeps rendering
