@@ -614,3 +614,36 @@ TEST_F(RendererApi, ReloadReusesTexturesAndProgramsThatDidNotChange) {
 }
 
 }  // namespace
+
+namespace {
+
+// The viewer's "profile" toggle: with CPU timing, passes are timed (a
+// glFinish after each) only while it is on; the image never depends on it.
+TEST_F(RendererApi, CpuPassTimingCanBeTurnedOffWithoutChangingTheFrame) {
+  auto scene = RenderScene::load("learnopengl:overview");
+  auto r = makeRenderer();
+  r->setScene(scene);
+  const auto timed = renderOnce(*r);
+  if (!r->cpuTimed()) {  // a GPU with timer queries: the toggle changes nothing
+    r->setCpuPassTiming(false);
+    EXPECT_EQ(differing(renderOnce(*r), timed), 0u);
+    return;
+  }
+  auto sum = [&] {
+    double total = 0.0;
+    for (const auto& t : r->timings()) total += t.ms;
+    return total;
+  };
+  EXPECT_GT(sum(), 0.0);
+  r->setCpuPassTiming(false);
+  EXPECT_EQ(differing(renderOnce(*r), timed), 0u);
+  EXPECT_EQ(sum(), 0.0) << "no pass timed while profiling is off";
+  r->setCpuPassTiming(true);
+  r->setSize({48, 32});  // kept across a rebuild
+  r->setCpuPassTiming(false);
+  r->render();
+  EXPECT_EQ(sum(), 0.0);
+  EXPECT_FALSE(r->cpuPassTiming());
+}
+
+}  // namespace

@@ -24,10 +24,18 @@ std::string megabytes(uint64_t bytes) {
   return buf;
 }
 
-void drawPasses(const Renderer& renderer, const Plan& plan) {
+void drawPasses(Renderer& renderer, const Plan& plan) {
   const std::vector<Renderer::PassTiming> timings = renderer.timings();
-  ImGui::TextDisabled("%s", renderer.cpuTimed() ? "time: CPU time, glFinish after each pass"
-                                                : "time: GPU timer queries (GL_TIME_ELAPSED)");
+  if (renderer.cpuTimed()) {
+    // Software renderer: pass times need a glFinish after each pass, which
+    // stalls the frame; "profile" turns that on.
+    bool profile = renderer.cpuPassTiming();
+    if (ImGui::Checkbox("profile", &profile)) renderer.setCpuPassTiming(profile);
+    ImGui::SameLine();
+  }
+  ImGui::TextDisabled("%s", !renderer.cpuTimed() ? "time: GPU timer queries (GL_TIME_ELAPSED)"
+                            : renderer.cpuPassTiming() ? "time: CPU time, glFinish after each pass"
+                                                       : "time: off (profile to time each pass)");
   if (!ImGui::BeginTable("passes", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) return;
   ImGui::TableSetupColumn("step");
   ImGui::TableSetupColumn("pass");

@@ -227,6 +227,10 @@ class Renderer {
   // true: timings are CPU time around a glFinish per pass (software renderers,
   // whose timer queries are not trustworthy); false: GL_TIME_ELAPSED queries.
   bool cpuTimed() const;
+  // With CPU timing: time each pass (a glFinish after each, the default) or
+  // not (timings() then all 0, frames without the stalls). Kept across rebuilds.
+  void setCpuPassTiming(bool on);
+  bool cpuPassTiming() const;
 
   uint32_t outputTexture() const;
   Extent outputExtent() const;

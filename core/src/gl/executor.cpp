@@ -412,6 +412,7 @@ Executor::Executor(const PipelineConfig& pipeline, const PassRegistry& registry,
 }
 
 void Executor::setCamera(const Camera& camera) { impl_->camera = camera; }
+void Executor::setCpuPassTiming(bool on) { impl_->cpuPassTiming = on; }
 void Executor::setAfterPass(std::function<void(size_t)> callback) { impl_->afterPass = std::move(callback); }
 
 
@@ -443,7 +444,10 @@ void Executor::renderFrame() {
     else
       im.gpuScene->updateFrame(im.size);
   }
-  if (im.software) glFinish();
+  // Software renderers: CPU time around a glFinish per pass, only when asked
+  // (setCpuPassTiming): each finish stalls the pipeline the driver keeps.
+  const bool cpuTiming = im.software && im.cpuPassTiming;
+  if (cpuTiming) glFinish();
   for (size_t i = 0; i < im.runs.size(); ++i) {
     PassRun& run = *im.runs[i];
     im.timings[i].name = run.name;
@@ -463,7 +467,7 @@ void Executor::renderFrame() {
       throw RuntimeError(std::string(e.what()) + "\n  (in pass '" + run.name + "' of type '" + run.typeName + "')");
     }
     if (run.query) glEndQuery(GL_TIME_ELAPSED);
-    if (im.software) {
+    if (cpuTiming) {
       glFinish();
       im.timings[i].ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     }

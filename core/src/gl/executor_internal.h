@@ -131,6 +131,7 @@ struct Executor::Impl {
   GpuScene* gpuScene = nullptr;           // ownGpuScene, or one shared with other executors
   std::optional<Camera> camera;           // none: the scene's
   std::function<void(size_t)> afterPass;  // Executor::setAfterPass
+  bool cpuPassTiming = true;              // Executor::setCpuPassTiming
   std::map<std::string, uint32_t, std::less<>> imports;  // resource name -> caller's texture
   bool software = false;
 

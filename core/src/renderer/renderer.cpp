@@ -55,6 +55,7 @@ struct Renderer::Impl {
   Extent size;
   std::map<std::string, uint32_t> imports;
   std::function<void(size_t)> afterPass;
+  bool cpuPassTiming = true;
 
   ShaderLibrary shaders;  // kept across rebuilds: unchanged programs are reused
   std::shared_ptr<RenderScene> executorScene;  // what `executor` draws: alive as long as it is
@@ -172,6 +173,7 @@ void Renderer::Impl::buildExecutor() {
                     : std::make_unique<Executor>(adapted, PassRegistry::builtins(), shaders);
   for (const auto& [name, texture] : imports) next->importTexture(name, texture);
   next->setAfterPass(afterPass);
+  next->setCpuPassTiming(cpuPassTiming);
   if (executor) next->reuseTextures(*executor);  // what did not change is kept
   next->resize(size);
   executor = std::move(next);
@@ -393,6 +395,13 @@ std::vector<float> Renderer::readResourceRGBA32F(const std::string& name) const 
   Impl::CallerState state(impl_->options.restoreGlState);
   return impl_->executor->readTextureRGBA32F(name);
 }
+
+void Renderer::setCpuPassTiming(bool on) {
+  impl_->cpuPassTiming = on;
+  if (impl_->executor) impl_->executor->setCpuPassTiming(on);
+}
+
+bool Renderer::cpuPassTiming() const { return impl_->cpuPassTiming; }
 
 void Renderer::setAfterPass(std::function<void(size_t)> callback) {
   impl_->afterPass = std::move(callback);

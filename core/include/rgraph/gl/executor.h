@@ -110,6 +110,10 @@ class Executor {
   // Whether timings come from the CPU clock around glFinish (software renderers)
   // rather than GL_TIME_ELAPSED queries.
   bool cpuTimed() const;
+  // Software renderers only: whether each pass is timed with a glFinish after
+  // it (default true). Off, passes are not timed (their ms stay 0) and the
+  // frame runs without the stalls. GPU timer queries are unaffected.
+  void setCpuPassTiming(bool on);
 
   uint32_t outputTexture() const;
   Extent outputExtent() const;
