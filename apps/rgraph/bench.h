@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "median.h"
 #include "rgraph/config.h"
 #include "rgraph/graph.h"
 #include "rgraph/scene.h"
@@ -100,7 +101,7 @@ struct ImageError {
 };
 constexpr double kPsnrCap = 100.0;
 
-double median(std::vector<double> v);
+using cli::median;  // median.h
 // Builds the pipeline, adapts it to the scene as `rgraph render` does, renders
 // warm-up and timed frames within the budget, reads the output back.
 Measured measure(const std::string& pipelineText, const std::string& name, const Scene& scene, Extent size,

@@ -25,13 +25,6 @@ namespace rgraph::cli::bench {
 
 using Clock = std::chrono::steady_clock;
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 Measured measure(const std::string& pipelineText, const std::string& name, const Scene& scene, Extent size,
                  ShaderLibrary& shaders, GlContext& context, const FrameBudget& budget) {
   return measure(buildPipeline(pipelineText, name), scene, size, shaders, context, budget);

@@ -12,6 +12,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "median.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/context.h"
 #include "rgraph/image.h"
@@ -20,13 +21,6 @@
 
 namespace rgraph::cli {
 namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 void writeStats(const std::string& path, const std::vector<double>& frameMs,
                 const std::map<std::string, std::vector<double>>& passMs, const std::vector<std::string>& passOrder,

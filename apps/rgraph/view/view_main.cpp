@@ -19,6 +19,7 @@
 
 #include "../cli_common.h"
 #include "../commands.h"
+#include "../median.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/objects.h"
 #include "rgraph/image.h"
@@ -72,12 +73,6 @@ struct Window {
     if (glfwStarted) glfwTerminate();
   }
 };
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
 // The back buffer (the frame as it will be shown, UI included when on) as a PNG.
 void screenshot(const std::string& path, int w, int h) {
