@@ -3,6 +3,7 @@
 
     scripts/update-bench-figures.py build            # timed `rgraph bench --quick` into docs/images/bench
     scripts/update-bench-figures.py build --replot   # no rendering: tables and charts from the committed run
+    scripts/update-bench-figures.py build --aa-only  # timed `rgraph bench --quick --only aa`, merged into the run
 
 The timed run writes docs/images/bench/{results.csv,results.json,figures.md}
 and the charts; then every `<!-- bench-figures:NAME -->` ...
@@ -14,6 +15,10 @@ tests/bench_cli/doc_figures_test.cpp fails while a block or the committed run
 differs from what the code produces.
 """
 import argparse
+import csv
+import json
+import shutil
+import tempfile
 import pathlib
 import re
 import subprocess
@@ -29,11 +34,17 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("build_dir", help="CMake build folder holding bin/rgraph")
     ap.add_argument("--replot", action="store_true", help="redraw from the committed results.json, render nothing")
+    ap.add_argument("--aa-only", action="store_true",
+                    help="rerun only the aa axis and replace its rows in the committed run (the rest is kept)")
     args = ap.parse_args()
     rgraph = pathlib.Path(args.build_dir) / "bin" / "rgraph"
     if not rgraph.exists():
         print(f"error: {rgraph} not found (build first)", file=sys.stderr)
         return 1
+    if args.aa_only:
+        if merge_aa_run(rgraph) != 0:
+            return 1
+        args.replot = True
     cmd = [str(rgraph), "bench", "--out", str(BENCH_DIR)]
     cmd += ["--replot", str(BENCH_DIR / "results.json")] if args.replot else ["--quick"]
     if subprocess.call(cmd) != 0:
@@ -49,6 +60,31 @@ def main() -> int:
     PAGE.write_text(page)
     print(f"updated {PAGE.relative_to(ROOT)} from {(BENCH_DIR / 'figures.md').relative_to(ROOT)}")
     return 0 if quoted <= set(tables) else 1
+
+
+def merge_aa_run(rgraph: pathlib.Path) -> int:
+    """Runs the aa axis alone and puts its rows into the committed results.json and results.csv."""
+    with tempfile.TemporaryDirectory() as tmp:
+        if subprocess.call([str(rgraph), "bench", "--quick", "--only", "aa", "--out", tmp]) != 0:
+            return 1
+        fresh = json.loads((pathlib.Path(tmp) / "results.json").read_text())
+        run = json.loads((BENCH_DIR / "results.json").read_text())
+        run["aa"] = fresh["aa"]
+        run["aa_reference"] = fresh["aa_reference"]
+        run["checks"] = {k: v for k, v in run["checks"].items() if not k.startswith("aa_")}
+        run["checks"].update({k: v for k, v in fresh["checks"].items() if k.startswith("aa_")})
+        (BENCH_DIR / "results.json").write_text(json.dumps(run, indent=2) + "\n")
+        with open(pathlib.Path(tmp) / "results.csv", newline="") as f:
+            fresh_rows = list(csv.reader(f))
+        with open(BENCH_DIR / "results.csv", newline="") as f:
+            rows = [r for r in csv.reader(f) if r and r[0] != "aa"]
+        header = fresh_rows[0]  # with the aa columns
+        rows = [header] + [r + [""] * (len(header) - len(r)) for r in rows[1:]] + [r for r in fresh_rows[1:] if r[0] == "aa"]
+        with open(BENCH_DIR / "results.csv", "w", newline="") as f:
+            csv.writer(f, lineterminator="\n").writerows(rows)
+        for ext in ("svg", "png"):
+            shutil.copy(pathlib.Path(tmp) / f"aa_ms_vs_error.{ext}", BENCH_DIR)
+    return 0
 
 
 if __name__ == "__main__":

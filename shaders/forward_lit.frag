@@ -1,7 +1,8 @@
 #version 450 core
 // Forward shading: every light per fragment, straight from the material (the
 // classic forward renderer; also how blended surfaces are lit). Defines: one
-// LIGHTING_*, one ATTENUATION_*, optionally HAS_NORMAL_MAPS.
+// LIGHTING_*, one ATTENUATION_*, optionally HAS_NORMAL_MAPS and HAS_VELOCITY
+// (motion vectors at location 1, as the geometry pass writes them).
 #include "include/frame.glsl"
 #include "include/gbuffer.glsl"
 #include "include/material.glsl"
@@ -11,6 +12,11 @@ layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
 uniform int u_pointLightCount;
 uniform int u_blendPass;  // 1: blended surfaces (alpha kept), 0: opaque (alpha 1)
 layout(location = 0) out vec4 outColor;
+#if defined(HAS_VELOCITY)
+layout(location = 1) out vec2 outVelocity;
+in vec4 vs_clipNow;
+in vec4 vs_clipPrev;
+#endif
 
 void main() {
   vec3 V = safeNormal(u_cameraPos.xyz - fs.worldPos, vec3(0.0, 0.0, 1.0));
@@ -18,6 +24,9 @@ void main() {
   bool discarded;
   Surface s = materialSurface(V, alpha, discarded);
   if (discarded) discard;
+#if defined(HAS_VELOCITY)
+  outVelocity = screenVelocity(vs_clipNow, vs_clipPrev);
+#endif
   vec3 color = ambientTerm(s) + shadeDirectionalLight(s, V);
   for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(lights[i], s, V);
   outColor = vec4(color, u_blendPass != 0 ? alpha : 1.0);

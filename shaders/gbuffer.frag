@@ -25,11 +25,30 @@ layout(location = 3) out vec4 outMaterial;  // metallic, roughness, ao
 #endif
 #endif
 
+#if defined(HAS_VELOCITY)
+// The velocity target comes after the layout's colour targets (the geometry
+// pass declares its slot last): uv_now - uv_prev, unjittered.
+#if defined(GBUFFER_LEARNOPENGL) || (defined(GBUFFER_COMPACT) && !defined(CONSTANT_MATERIAL)) || \
+    (!defined(GBUFFER_COMPACT) && defined(CONSTANT_MATERIAL))
+#define VELOCITY_LOCATION 3
+#elif defined(GBUFFER_COMPACT)
+#define VELOCITY_LOCATION 2
+#else
+#define VELOCITY_LOCATION 4
+#endif
+layout(location = VELOCITY_LOCATION) out vec2 outVelocity;
+in vec4 vs_clipNow;
+in vec4 vs_clipPrev;
+#endif
+
 void main() {
   float alpha;
   bool discarded;
   Surface s = materialSurface(normalize(u_cameraPos.xyz - fs.worldPos), alpha, discarded);
   if (discarded) discard;
+#if defined(HAS_VELOCITY)
+  outVelocity = screenVelocity(vs_clipNow, vs_clipPrev);
+#endif
 #if defined(GBUFFER_COMPACT)
   outNormal = encodeOctahedral(s.normal);
   outAlbedo = vec4(s.albedo, s.specular);

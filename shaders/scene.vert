@@ -11,6 +11,14 @@ layout(location = 3) in vec4 a_tangent;
 uniform mat4 u_model;
 uniform mat3 u_normalMatrix;
 
+#if defined(HAS_VELOCITY)
+// Motion vectors: this frame's and the previous frame's unjittered clip
+// positions (the velocity target is uv_now - uv_prev, jitter excluded).
+uniform mat4 u_prevModel;
+out vec4 vs_clipNow;
+out vec4 vs_clipPrev;
+#endif
+
 out VS_OUT {
   vec3 worldPos;
   vec3 normal;
@@ -25,4 +33,8 @@ void main() {
   vs.uv = a_uv;
   vs.tangent = vec4(mat3(u_model) * a_tangent.xyz, a_tangent.w);
   gl_Position = u_viewProj * world;
+#if defined(HAS_VELOCITY)
+  vs_clipNow = u_viewProjNoJitter * world;
+  vs_clipPrev = u_prevViewProj * (u_prevModel * vec4(a_position, 1.0));
+#endif
 }

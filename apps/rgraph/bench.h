@@ -18,6 +18,7 @@
 #include "rgraph/scene.h"
 
 namespace rgraph {
+class Executor;
 class GlContext;
 class ShaderLibrary;
 }  // namespace rgraph
@@ -108,6 +109,11 @@ Measured measure(const std::string& pipelineText, const std::string& name, const
                  ShaderLibrary& shaders, GlContext& context, const FrameBudget& budget);
 Measured measure(PipelineConfig pipeline, const Scene& scene, Extent size, ShaderLibrary& shaders, GlContext& context,
                  const FrameBudget& budget);
+// The executor measure() renders with: `cfg` adapted to the scene as
+// `rgraph render` does, built and sized. Throws RuntimeError.
+std::unique_ptr<Executor> makeExecutor(PipelineConfig& cfg, const Scene& scene, Extent size, ShaderLibrary& shaders);
+// One frame, wall clock around renderFrame() + glFinish(), in ms.
+double timedFrame(Executor& exec);
 ImageError compareImages(const std::vector<uint8_t>& a, const std::vector<uint8_t>& ref);
 // A rough cost model (ms at 640x360 on llvmpipe), for the ETA only.
 double estimateFrameMs(const Config& c);
@@ -153,9 +159,51 @@ struct Point {
 // configuration once, with every axis it belongs to; cheap points first.
 std::vector<Point> planSweep(const Config& def, const Scenes& scenes, bool quick, bool smoke);
 
+// ---------------------------------------------------------------- the aa axis
+
+// Anti-aliasing methods (bench_aa.cpp) on scenes with edges that alias,
+// against a 16-sample reference: the method's own pipeline at 4x the width
+// and height, jitter off, one frame after a camera cut, box-filtered 4x4
+// down in its stored 8-bit values (bench_aa_metrics.h).
+struct AaPlan {
+  Extent size{640, 360};
+  int warm = 2;            // untimed frames first (non-temporal methods)
+  int timedFrames = 5;     // non-temporal methods
+  int taaFrames = 32;      // static camera: frames before the image is read (all timed)
+  int orbitWarm = 8;       // orbit: frames before the first scored one
+  int orbitFrames = 16;    // orbit: scored frames (each against its own reference)
+  float orbitDegrees = 1;  // orbit: camera turn per frame about the target's vertical axis
+};
+AaPlan aaPlan(bool quick);
+
+struct AaRow {
+  std::string scene;     // loadSceneAny spec
+  std::string aa;        // none, fxaa, taa, taa_orbit, msaa4
+  std::string pipeline;  // file under pipelines/
+  Extent size;
+  int frames = 0;  // rendered before (the last) image was read
+  std::vector<double> frameMs;
+  double psnr = 0.0, edgePsnr = 0.0;  // dB (taa_orbit: mean over scored frames)
+  size_t edgePixels = 0;              // of the reference (taa_orbit: mean)
+  int maxAbs = 0;                     // 8-bit (taa_orbit: over scored frames)
+  std::string error;                  // non-empty: the row failed (message)
+  bool ok() const { return error.empty(); }
+};
+extern const std::vector<std::string> kAaScenes;  // learnopengl:overview, thin
+std::vector<AaRow> planAa(const AaPlan& plan);
+// Renders every row; returns the number that failed. timed false: no frame
+// times kept (--figures-only); the images are the same either way.
+size_t runAa(std::vector<AaRow>& rows, const AaPlan& plan, const std::string& pipelineDir, ShaderLibrary& shaders,
+             bool timed);
+nlohmann::json aaJson(const AaRow& r);
+AaRow aaFromJson(const nlohmann::json& j);
+// The chart aa_ms_vs_error (figureTables() gives the rows' table "aa").
+void drawAaChart(const std::string& dir, const std::vector<AaRow>& rows, const std::string& machine);
+
 // ---------------------------------------------------------------- results
 
-void writeCsv(const std::string& path, const std::vector<Point>& points);
+// Sweep points, then aa rows (their own columns scene, aa, edge_psnr_db, edge_pixels; empty on points).
+void writeCsv(const std::string& path, const std::vector<Point>& points, const std::vector<AaRow>& aa);
 nlohmann::json pointJson(const Point& p);
 Point pointFromJson(const nlohmann::json& j, const Config& def);
 Config defaultPointFromJson(const nlohmann::json& results);
@@ -169,7 +217,8 @@ nlohmann::json headlineChecks(const std::vector<Point>& points, const Config& de
 // bytes per pixel, allocated/naive texture bytes), the blocks docs quote
 // between `<!-- bench-figures:NAME -->` markers. name -> table text.
 std::map<std::string, std::string> figureTables(const std::vector<Point>& points, const Config& def,
-                                                const std::vector<ShippedResult>& shipped);
+                                                const std::vector<ShippedResult>& shipped,
+                                                const std::vector<AaRow>& aa);
 
 void drawCharts(const std::string& dir, const std::vector<Point>& points, const Config& def, const std::string& machine,
                 const std::string& sceneText);

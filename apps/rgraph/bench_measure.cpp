@@ -30,6 +30,20 @@ Measured measure(const std::string& pipelineText, const std::string& name, const
   return measure(buildPipeline(pipelineText, name), scene, size, shaders, context, budget);
 }
 
+std::unique_ptr<Executor> makeExecutor(PipelineConfig& cfg, const Scene& scene, Extent size, ShaderLibrary& shaders) {
+  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));  // as `rgraph render` does
+  auto exec = std::make_unique<Executor>(cfg, PassRegistry::builtins(), shaders, &scene);
+  exec->resize(size);
+  return exec;
+}
+
+double timedFrame(Executor& exec) {
+  const auto t0 = Clock::now();
+  exec.renderFrame();
+  glFinish();
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
 Measured measure(PipelineConfig cfg, const Scene& scene, Extent size, ShaderLibrary& shaders, GlContext& context,
                  const FrameBudget& budget) {
   const auto start = Clock::now();
@@ -40,20 +54,14 @@ Measured measure(PipelineConfig cfg, const Scene& scene, Extent size, ShaderLibr
     const Plan declared = compile(cfg.graph, opts);
     m.gbufferBytes = gbufferBytesPerPixel(cfg, declared, PassRegistry::builtins());
   }
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));  // as `rgraph render` does
   const uint64_t errorsBefore = context.debugErrorCount();
-  Executor exec(cfg, PassRegistry::builtins(), shaders, &scene);
-  exec.resize(size);
+  const std::unique_ptr<Executor> owned = makeExecutor(cfg, scene, size, shaders);
+  Executor& exec = *owned;
   m.gbufferBytesAdapted = gbufferBytesPerPixel(cfg, exec.plan(), PassRegistry::builtins());
   m.allocatedBytes = exec.plan().allocatedBytes;
   m.naiveBytes = exec.plan().naiveBytes;
 
-  auto frame = [&]() {
-    const auto t0 = Clock::now();
-    exec.renderFrame();
-    glFinish();
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-  };
+  auto frame = [&]() { return timedFrame(exec); };
   for (int i = 0; i < budget.warm; ++i) {
     // The first frame compiles shaders; a dear point needs no second warm-up.
     if (frame() > budget.budgetMs / 3) break;

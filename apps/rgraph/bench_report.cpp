@@ -29,13 +29,13 @@ std::string joined(const std::vector<std::string>& v, const char* sep) {
 
 }  // namespace
 
-void writeCsv(const std::string& path, const std::vector<Point>& points) {
+void writeCsv(const std::string& path, const std::vector<Point>& points, const std::vector<AaRow>& aa) {
   std::ofstream f(path);
   if (!f) throw RuntimeError("cannot write '" + path + "'");
   f << "axes,method,layout,threshold,lights,width,height,frames,median_ms,min_"
        "ms,max_ms,psnr_db,max_abs_error,"
        "share_over_1,gbuffer_bytes_per_pixel,gbuffer_bytes_per_pixel_adapted,"
-       "allocated_bytes,naive_bytes,status\n";
+       "allocated_bytes,naive_bytes,status,scene,aa,edge_psnr_db,edge_pixels\n";
   char buf[64];
   auto n = [&](double v, const char* fmt = "%.4f") {
     std::snprintf(buf, sizeof buf, fmt, v);
@@ -50,7 +50,18 @@ void writeCsv(const std::string& path, const std::vector<Point>& points) {
       << fr.size() << "," << n(median(fr)) << "," << n(mn) << "," << n(mx) << "," << n(p.err.psnr, "%.3f") << ","
       << p.err.maxAbs << "," << n(p.err.over1, "%.6f") << "," << p.m.gbufferBytes << "," << p.m.gbufferBytesAdapted
       << "," << p.m.allocatedBytes << "," << p.m.naiveBytes << "," << csvEscape(p.ok() ? "ok" : "error: " + p.error)
-      << "\n";
+      << ",,,,\n";
+  }
+  // aa rows: the pipeline file in the method column, the scene's point lights
+  // unknown here (empty), no G-buffer figures.
+  for (const auto& r : aa) {
+    const auto& fr = r.frameMs;
+    const double mn = fr.empty() ? 0 : *std::min_element(fr.begin(), fr.end());
+    const double mx = fr.empty() ? 0 : *std::max_element(fr.begin(), fr.end());
+    f << "aa," << csvEscape(r.pipeline) << ",,,," << r.size.width << "," << r.size.height << "," << fr.size() << ","
+      << n(median(fr)) << "," << n(mn) << "," << n(mx) << "," << n(r.psnr, "%.3f") << "," << r.maxAbs << ",,,,,,"
+      << csvEscape(r.ok() ? "ok" : "error: " + r.error) << "," << csvEscape(r.scene) << "," << r.aa << ","
+      << n(r.edgePsnr, "%.3f") << "," << r.edgePixels << "\n";
   }
   if (!f) throw RuntimeError("cannot write '" + path + "'");
 }
@@ -366,6 +377,22 @@ std::string pointsTable(const std::vector<Point>& points) {
   return t;
 }
 
+// The aa axis: two decimals, the methods differ by tenths of a dB on some scenes.
+std::string aaTable(const std::vector<AaRow>& rows) {
+  auto db = [](double v) { return v >= kPsnrCap ? std::string("100 dB (cap)") : fmt("%.2f dB", v); };
+  std::string t = row({"scene", "aa", "pipeline", "size", "frames", "PSNR", "edge PSNR", "edge pixels"}) +
+                  row({"---", "---", "---", "---", "---:", "---:", "---:", "---:"});
+  for (const auto& r : rows) {
+    if (!r.ok()) {
+      t += row({r.scene, r.aa, r.pipeline, sizeText(r.size), "", "failed", "", ""});
+      continue;
+    }
+    t += row({r.scene, r.aa, r.pipeline, sizeText(r.size), std::to_string(r.frames), db(r.psnr), db(r.edgePsnr),
+              std::to_string(r.edgePixels)});
+  }
+  return t;
+}
+
 // The shipped pipelines against forward.json.
 std::string shippedTable(const std::vector<ShippedResult>& shipped) {
   std::string t =
@@ -383,12 +410,16 @@ std::string shippedTable(const std::vector<ShippedResult>& shipped) {
 }  // namespace
 
 std::map<std::string, std::string> figureTables(const std::vector<Point>& points, const Config& def,
-                                                const std::vector<ShippedResult>& shipped) {
-  std::map<std::string, std::string> tables = {{"lights", lightsTable(points, def)},
-                                               {"layouts", layoutsTable(points, def)},
-                                               {"thresholds", thresholdsTable(points, def)},
-                                               {"points", pointsTable(points)}};
+                                                const std::vector<ShippedResult>& shipped,
+                                                const std::vector<AaRow>& aa) {
+  std::map<std::string, std::string> tables;
+  if (!points.empty())
+    tables = {{"lights", lightsTable(points, def)},
+              {"layouts", layoutsTable(points, def)},
+              {"thresholds", thresholdsTable(points, def)},
+              {"points", pointsTable(points)}};
   if (!shipped.empty()) tables["shipped"] = shippedTable(shipped);
+  if (!aa.empty()) tables["aa"] = aaTable(aa);
   return tables;
 }
 

@@ -5,7 +5,9 @@
 // image against a reference (forward_lit with no cut-off into an rgba32f HDR
 // target: no G-buffer quantisation at all). Writes results.csv,
 // results.json, figures.md (the deterministic figures as the tables the docs
-// quote) and three charts (SVG + PNG, drawn in C++: bench_chart.h).
+// quote) and three charts (SVG + PNG, drawn in C++: bench_chart.h). The aa
+// axis (bench_aa.cpp) measures anti-aliasing methods on two scenes of its own
+// against a 16-sample reference, with a fourth chart.
 // This file runs the sweep; bench.h names the parts.
 #include <unistd.h>
 
@@ -21,6 +23,7 @@
 #include <thread>
 
 #include "bench.h"
+#include "bench_aa_metrics.h"
 #include "cli_common.h"
 #include "commands.h"
 #include "rgraph/error.h"
@@ -105,11 +108,16 @@ void writeText(const std::filesystem::path& path, const std::string& text) {
 // block can be pasted (scripts/update-bench-figures.py) and checked
 // (tests/bench_cli).
 std::string figuresMarkdown(const std::vector<Point>& points, const Config& def,
-                            const std::vector<ShippedResult>& shipped, const std::string& sceneSpec) {
+                            const std::vector<ShippedResult>& shipped, const std::vector<AaRow>& aa,
+                            const std::string& sceneSpec) {
   std::string s = "# rgraph bench: deterministic figures\n\nScene " + sceneSpec + "; default point " + describe(def) +
                   ". Error: 8-bit RGB against forward_lit with no cut-off into "
                   "an rgba32f target.\n";
-  for (const auto& [name, table] : figureTables(points, def, shipped))
+  if (!aa.empty())
+    s += "aa: each method against its own pipeline rendered at 4x4 the size with no jitter, box-filtered down "
+         "(8-bit values); edge pixels: luma step of " +
+         std::to_string(kEdgeThreshold) + "/255 to a neighbour in the reference.\n";
+  for (const auto& [name, table] : figureTables(points, def, shipped, aa))
     s += "\n<!-- bench-figures:" + name + " -->\n" + table + "<!-- /bench-figures:" + name + " -->\n";
   return s;
 }
@@ -136,16 +144,18 @@ int replot(const BenchOptions& options) {
     std::filesystem::create_directories(options.out);
     std::vector<ShippedResult> shipped;
     for (const json& sj : j.value("shipped", json::array())) shipped.push_back(shippedFromJson(sj));
-    writeText(std::filesystem::path(options.out) / "figures.md", figuresMarkdown(points, def, shipped, spec));
-    drawCharts(options.out, points, def, machineText(j.at("machine")),
-               sceneNote(spec, spec.rfind("many-lights", 0) == 0));
+    std::vector<AaRow> aa;
+    for (const json& aj : j.value("aa", json::array())) aa.push_back(aaFromJson(aj));
+    writeText(std::filesystem::path(options.out) / "figures.md", figuresMarkdown(points, def, shipped, aa, spec));
+    if (!points.empty())
+      drawCharts(options.out, points, def, machineText(j.at("machine")),
+                 sceneNote(spec, spec.rfind("many-lights", 0) == 0));
+    if (!aa.empty()) drawAaChart(options.out, aa, machineText(j.at("machine")));
   } catch (const std::exception& e) {
     std::cerr << "error: " << options.replot << ": " << e.what() << "\n";
     return kExitFailure;
   }
-  std::cout << "wrote figures.md, frame_ms_vs_lights, frame_ms_vs_error, "
-               "bytes_vs_error (.svg, .png) under "
-            << options.out << "\n";
+  std::cout << "wrote figures.md and the charts (.svg, .png) under " << options.out << "\n";
   return kExitOk;
 }
 
@@ -257,10 +267,44 @@ size_t runSweep(std::vector<Point>& points, Scenes& scenes, const RunPlan& plan,
   return failures;
 }
 
+const std::vector<std::string> kAxes = {"lights", "layout", "layout_exact", "threshold", "resolution", "aa"};
+
+// One line per scene: the methods' edge PSNR, and whether taa > fxaa > none
+// by 2 dB each (the must-show), into results.json "checks".
+void aaChecks(const std::vector<AaRow>& rows, json& checks, std::vector<std::string>& summary) {
+  for (const auto& scene : kAaScenes) {
+    std::map<std::string, double> edge;
+    std::string line = "aa on " + scene + ", edge PSNR:";
+    for (const auto& r : rows)
+      if (r.ok() && r.scene == scene) {
+        edge[r.aa] = r.edgePsnr;
+        char buf[64];
+        std::snprintf(buf, sizeof buf, " %s %.2f dB", r.aa.c_str(), r.edgePsnr);
+        line += buf;
+      }
+    if (edge.size() < 2) continue;
+    json j = json::object();
+    for (const auto& [aa, db] : edge) j[aa + "_edge_psnr_db"] = db;
+    if (edge.count("none") && edge.count("fxaa") && edge.count("taa")) {
+      j["pass"] = edge["taa"] >= edge["fxaa"] + 2.0 && edge["fxaa"] >= edge["none"] + 2.0;
+      line +=
+          j["pass"].get<bool>() ? " (taa > fxaa > none by 2 dB each: yes)" : " (taa > fxaa > none by 2 dB each: NO)";
+    }
+    checks["aa_" + scene] = j;
+    summary.push_back(line);
+  }
+}
+
 }  // namespace
 
 int runBench(const BenchOptions& options) {
   if (!options.replot.empty()) return replot(options);
+  if (!options.only.empty() && !std::count(kAxes.begin(), kAxes.end(), options.only)) {
+    std::string list;
+    for (const auto& a : kAxes) list += (list.empty() ? "" : ", ") + a;
+    std::cerr << "error: --only: unknown axis '" << options.only << "' (axes: " << list << ")\n";
+    return kExitFailure;
+  }
   const auto start = Clock::now();
   try {
     std::filesystem::create_directories(options.out);
@@ -281,15 +325,23 @@ int runBench(const BenchOptions& options) {
     def.lights = scenes.defaultLights();
     if (options.smoke) def.size = {64, 64};
     std::vector<Point> points = planSweep(def, scenes, options.quick, options.smoke);
+    if (!options.only.empty())
+      std::erase_if(points, [&](const Point& p) { return !std::count(p.axes.begin(), p.axes.end(), options.only); });
     const RunPlan plan = runPlan(options);
-    const size_t failures = runSweep(points, scenes, plan, shaders, *context);
+    size_t failures = runSweep(points, scenes, plan, shaders, *context);
+    const std::string pipelineDir = std::filesystem::path(defaultPipelinePath()).parent_path().string();
+    const AaPlan aaSettings = aaPlan(options.quick);
+    std::vector<AaRow> aa;
+    if (!options.smoke && (options.only.empty() || options.only == "aa")) {
+      aa = planAa(aaSettings);
+      failures += runAa(aa, aaSettings, pipelineDir, shaders, !options.figuresOnly);
+    }
     // The shipped pipelines as they come, on the default scene and size.
     std::vector<ShippedResult> shipped;
-    if (!options.smoke) {
+    if (!options.smoke && options.only.empty()) {
       std::cerr << "shipped pipelines against forward.json (" << scenes.spec() << ", " << def.lights << " lights, "
                 << sizeText(def.size) << ")\n";
-      shipped = measureShipped(std::filesystem::path(defaultPipelinePath()).parent_path().string(),
-                               scenes.get(def.lights), def.size, shaders, *context);
+      shipped = measureShipped(pipelineDir, scenes.get(def.lights), def.size, shaders, *context);
     }
     // One untimed frame per point: no frame times to report.
     if (options.figuresOnly)
@@ -297,9 +349,10 @@ int runBench(const BenchOptions& options) {
 
     // ---- outputs
     const std::filesystem::path dir(options.out);
-    writeCsv((dir / "results.csv").string(), points);
+    writeCsv((dir / "results.csv").string(), points, aa);
     std::vector<std::string> summary;
-    const json checks = headlineChecks(points, def, summary);
+    json checks = headlineChecks(points, def, summary);
+    aaChecks(aa, checks, summary);
     const double wallS = std::chrono::duration<double>(Clock::now() - start).count();
     json results = {{"tool", "rgraph bench"},
                     {"quick", options.quick},
@@ -328,28 +381,38 @@ int runBench(const BenchOptions& options) {
                      "share of pixels with a channel off by more than 1/255"},
                     {"wall_seconds", wallS},
                     {"checks", checks},
+                    {"only", options.only},
+                    {"aa_reference",
+                     "each method's pipeline at 4x4 the size, jitter off, one frame after a camera cut, "
+                     "box-filtered down in 8-bit values (16 samples per pixel); edge pixels: luma step of " +
+                         std::to_string(kEdgeThreshold) + "/255 to a 4-neighbour in the reference"},
                     {"points", json::array()}};
     for (const auto& p : points) results["points"].push_back(pointJson(p));
     results["shipped"] = json::array();
     for (const auto& r : shipped) results["shipped"].push_back(shippedJson(r));
+    results["aa"] = json::array();
+    for (const auto& r : aa) results["aa"].push_back(aaJson(r));
     writeText(dir / "results.json", results.dump(2) + "\n");
-    writeText(dir / "figures.md", figuresMarkdown(points, def, shipped, scenes.spec()));
-    if (!options.figuresOnly)
+    writeText(dir / "figures.md", figuresMarkdown(points, def, shipped, aa, scenes.spec()));
+    if (!options.figuresOnly && !points.empty())
       drawCharts(options.out, points, def, machineText(machine), sceneNote(scenes.spec(), scenes.procedural()));
+    if (!options.figuresOnly && !aa.empty()) drawAaChart(options.out, aa, machineText(machine));
 
-    std::cout << "rgraph bench: " << points.size() << " points in " << static_cast<int>(wallS) << " s on "
-              << context->renderer() << (options.quick ? " (--quick)" : "")
+    std::cout << "rgraph bench: " << points.size() << " points, " << aa.size() << " aa rows in "
+              << static_cast<int>(wallS) << " s on " << context->renderer() << (options.quick ? " (--quick)" : "")
               << (options.figuresOnly ? " (--figures-only)" : "") << "\n";
     for (const auto& s : summary) std::cout << "  " << s << "\n";
     std::cout << "wrote " << (dir / "results.csv").string() << ", results.json, figures.md"
-              << (options.figuresOnly ? ""
-                                      : ", frame_ms_vs_lights, frame_ms_vs_error, "
-                                        "bytes_vs_error (.svg, .png)")
-              << "\n";
+              << (options.figuresOnly || points.empty() ? ""
+                                                        : ", frame_ms_vs_lights, frame_ms_vs_error, "
+                                                          "bytes_vs_error (.svg, .png)")
+              << (options.figuresOnly || aa.empty() ? "" : ", aa_ms_vs_error (.svg, .png)") << "\n";
     if (failures) {
       std::cerr << "error: " << failures << " point(s) failed; see results.csv\n";
       for (const auto& p : points)
         if (!p.ok()) std::cerr << "  " << describe(p.cfg) << ": " << p.error << "\n";
+      for (const auto& r : aa)
+        if (!r.ok()) std::cerr << "  aa " << r.aa << " on " << r.scene << ": " << r.error << "\n";
       return kExitFailure;
     }
   } catch (const RuntimeError& e) {

@@ -59,7 +59,10 @@ nlohmann::json planJson(const Plan& plan) {
                          {"last_order", indexJson(r.lastPass)},
                          {"physical", indexJson(r.physical)},
                          {"bytes", r.bytes},
-                         {"versions", r.versions}});
+                         {"versions", r.versions},
+                         {"history_of", r.historyOf.valid() ? nlohmann::json(plan.resource(r.historyOf).name)
+                                                            : nlohmann::json(nullptr)},
+                         {"kept_across_frames", r.historyOf.valid() || r.history.valid()}});
   }
   nlohmann::json physical = nlohmann::json::array();
   for (const auto& ph : plan.physical) {
@@ -90,7 +93,9 @@ void printPlanText(const Plan& plan) {
   for (PassIndex idx : plan.order) {
     const auto& p = plan.pass(idx);
     std::cout << "  " << std::setw(3) << p.order.value() << "  " << std::left << std::setw(24) << p.name << std::right
-              << " (" << p.type << ")\n";
+              << " (" << p.type << ")";
+    if (!p.reason.empty()) std::cout << "  " << p.reason;  // kept only for the next frame
+    std::cout << "\n";
   }
   for (const auto& p : plan.passes)
     if (p.culled) std::cout << "  cut  " << std::left << std::setw(24) << p.name << std::right << " " << p.reason << "\n";
@@ -106,7 +111,12 @@ void printPlanText(const Plan& plan) {
       std::cout << "  imported";
     else
       std::cout << "  physical #" << r.physical.value();
-    std::cout << "  " << mib(r.bytes) << "\n";
+    std::cout << "  " << mib(r.bytes);
+    if (r.historyOf.valid())
+      std::cout << "  history of " << plan.resource(r.historyOf).name << ", kept across frames";
+    else if (r.history.valid())
+      std::cout << "  kept across frames (history: " << plan.resource(r.history).name << ")";
+    std::cout << "\n";
   }
   std::cout << "memory: naive " << mib(plan.naiveBytes) << ", allocated " << mib(plan.allocatedBytes) << " in "
             << plan.physical.size() << " physical textures\n";

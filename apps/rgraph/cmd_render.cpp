@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
@@ -70,12 +71,64 @@ std::optional<Camera> parseCamera(const std::string& text, Camera camera, std::s
   return camera;
 }
 
+// --cut "K[,K...]": the 0-based frames that follow a camera cut, each below
+// `frames`. nullopt with `error` set when one is not such a number.
+std::optional<std::set<uint32_t>> parseCuts(const std::string& text, uint32_t frames, std::string& error) {
+  std::set<uint32_t> cuts;
+  std::stringstream in(text);
+  std::string item;
+  const std::string expected =
+      " (expected K[,K...]: 0-based frame numbers below --frames " + std::to_string(frames) + ")";
+  while (std::getline(in, item, ',')) {
+    const bool digits = !item.empty() && item.size() <= 9 &&
+                        std::all_of(item.begin(), item.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (!digits) {
+      error = "--cut '" + text + "': '" + item + "' is not a frame number" + expected;
+      return std::nullopt;
+    }
+    const auto k = static_cast<uint32_t>(std::stoul(item));
+    if (k >= frames) {
+      error = "--cut '" + text + "': frame " + item + " is out of range: the frames are 0 to " +
+              std::to_string(frames - 1) + " (--frames " + std::to_string(frames) + ")";
+      return std::nullopt;
+    }
+    cuts.insert(k);
+  }
+  if (text.empty() || text.back() == ',') {
+    error = "--cut '" + text + "': a frame number is missing" + expected;
+    return std::nullopt;
+  }
+  return cuts;
+}
+
 }  // namespace
 
 // Everything through the public renderer API (rgraph/renderer.h), as a
 // program embedding rgraph would: this command only adds the context, the
 // PNG and the statistics.
 int runRender(const RenderOptions& options) {
+  // The frame options first: a mistake in them costs no loading.
+  const uint32_t frames = std::max<uint32_t>(1, options.frames);
+  std::set<uint32_t> cuts;
+  if (options.cuts) {
+    std::string error;
+    std::optional<std::set<uint32_t>> parsed = parseCuts(*options.cuts, frames, error);
+    if (!parsed) {
+      std::cerr << "error: " << error << "\n";
+      return kExitFailure;
+    }
+    cuts = std::move(*parsed);
+  }
+  float orbit = 0.0f;
+  if (options.orbit) {
+    char* end = nullptr;
+    orbit = std::strtof(options.orbit->c_str(), &end);
+    if (options.orbit->empty() || *end != '\0' || !std::isfinite(orbit)) {
+      std::cerr << "error: --orbit '" << *options.orbit << "': not a number of degrees per frame\n";
+      return kExitFailure;
+    }
+  }
+
   const std::string pipelinePath = options.pipeline.empty() ? defaultPipelinePath() : options.pipeline;
   RendererOptions rendererOptions;
   rendererOptions.size = Extent{options.size.width, options.size.height};
@@ -111,16 +164,25 @@ int runRender(const RenderOptions& options) {
     spdlog::info("OpenGL {} on {}", context->version(), context->renderer());
 
     renderer->setScene(scene);
-    if (camera) renderer->setCamera(*camera);
+    const Camera start = camera ? *camera : scene->scene().camera;
+    renderer->setCamera(start);
     renderer->setSize(Extent{options.size.width, options.size.height});
 
     std::vector<double> frameMs;
     std::map<std::string, std::vector<double>> passMs;
     std::vector<std::string> passOrder;
-    const uint32_t frames = std::max<uint32_t>(1, options.frames);
     for (uint32_t i = 0; i < frames; ++i) {
+      if (cuts.count(i)) renderer->cameraCut();
+      if (orbit != 0.0f) renderer->setCamera(orbitCamera(start, orbit * static_cast<float>(i)));
       auto t0 = std::chrono::steady_clock::now();
-      renderer->render();
+      // One render per frame (a second would be a frame of its own to the
+      // history and the jitter): in a window, with the copy into it.
+      if (context->hasWindow()) {
+        const Extent fb = context->windowFramebufferSize();
+        renderer->render(0, Viewport{0, 0, fb.width, fb.height});
+      } else {
+        renderer->render();
+      }
       auto t1 = std::chrono::steady_clock::now();
       if (i == 0)  // "Model no more than the scene needs": what the adaptation changed.
         for (const auto& note : renderer->adaptNotes()) spdlog::info("{}", note);
@@ -129,9 +191,7 @@ int runRender(const RenderOptions& options) {
         if (!passMs.count(t.name)) passOrder.push_back(t.name);
         passMs[t.name].push_back(t.ms);
       }
-      if (context->hasWindow()) {  // show it: the output copied into the window
-        const Extent fb = context->windowFramebufferSize();
-        renderer->render(0, Viewport{0, 0, fb.width, fb.height});
+      if (context->hasWindow()) {  // show it
         context->swapBuffers();
         context->pollEvents();
       }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace rgraph::cli {
@@ -29,6 +30,12 @@ struct RenderOptions {
   std::string camera;     // "px,py,pz,tx,ty,tz[,fovDeg]"; empty: the scene's camera
   SizeOptions size;
   uint32_t frames = 1;
+  // --cut "K[,K...]": camera cuts before these 0-based frames (checked by
+  // render: a malformed or out-of-range value is an error, exit 1).
+  std::optional<std::string> cuts;
+  // --orbit DEGREES: the camera's turn about its target per frame (as given;
+  // render checks it is a finite number).
+  std::optional<std::string> orbit;
   bool window = false;
   // false (--no-checks): skip the checks validate runs (graph, pass checks,
   // glslang shader checks, cached on disk) before any GL work.
@@ -48,7 +55,7 @@ struct ViewOptions {
 int runView(const ViewOptions& options);
 
 // `rgraph bench`: sweeps lighting methods, light counts, G-buffer layouts,
-// cut-off thresholds and resolutions; writes results.csv, results.json and
+// cut-off thresholds and resolutions, and anti-aliasing methods (the aa axis); writes results.csv, results.json and
 // figures.md and charts (SVG + PNG) under `out` (cmd_bench.cpp, bench.h).
 struct BenchOptions {
   std::string out;     // output folder (created)
@@ -57,6 +64,7 @@ struct BenchOptions {
   bool smoke = false;  // hidden: 2 points at 64x64, 1 frame each (tests)
   bool figuresOnly = false;  // one untimed frame per point: the deterministic figures only, no charts
   std::string replot;  // a previous run's results.json: redraw its charts under `out`, render nothing
+  std::string only;    // non-empty: run only the rows of this axis (lights, layout, ..., aa)
 };
 int runBench(const BenchOptions& options);
 

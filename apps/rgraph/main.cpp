@@ -109,8 +109,18 @@ CLI::App* addRender(CLI::App& app, Options& o) {
   cmd->add_option("--out,-o", r.out, "output PNG")->required();
   cmd->add_option(
       "--scene", r.scene,
-      "scene file (.json), glTF (.gltf/.glb), learnopengl, learnopengl:overview (default) or many-lights:N");
+      "scene file (.json), glTF (.gltf/.glb), learnopengl, learnopengl:overview (default), thin (thin edges that alias) or many-lights:N");
   cmd->add_option("--frames", r.frames, "frames to render (timings are medians)")->check(CLI::Range(1u, 100000u));
+  cmd->add_option_function<std::string>(
+         "--cut", [&r](const std::string& v) { r.cuts = v; },
+         "camera cuts before these frames (0-based, below --frames): history resources start again "
+         "(cleared, invalid) and motion is zero there")
+      ->type_name("K[,K...]");
+  cmd->add_option_function<std::string>(
+         "--orbit", [&r](const std::string& v) { r.orbit = v; },
+         "turn the camera this many degrees per frame about its up axis through its target "
+         "(frame i: i times that; negative: the other way, as --orbit=-D)")
+      ->type_name("DEGREES");
   cmd->add_option("--stats", r.stats, "write frame and pass timings and memory as JSON");
   cmd->add_option("--camera", r.camera,
                   "camera at px,py,pz looking at tx,ty,tz, optionally with a vertical field of view in degrees "
@@ -129,11 +139,18 @@ CLI::App* addRender(CLI::App& app, Options& o) {
 CLI::App* addBench(CLI::App& app, Options& o) {
   BenchOptions& b = o.bench;
   auto* cmd = app.add_subcommand("bench",
-                                 "sweep lighting methods, light counts, G-buffer layouts, cut-offs and "
-                                 "resolutions; write results.csv, results.json, figures.md and charts");
+                                 "sweep lighting methods, light counts, G-buffer layouts, cut-offs, "
+                                 "resolutions and anti-aliasing methods; write results.csv, results.json, "
+                                 "figures.md and charts");
   cmd->add_option("--out,-o", b.out, "output folder")->required();
   cmd->add_flag("--quick", b.quick, "fewer points and frames (light counts up to 1,024, 640x360 mostly)");
-  cmd->add_option("--scene", b.scene, "scene (default: many-lights, N swept); a file's first N lights");
+  cmd->add_option("--scene", b.scene,
+                  "scene of the lighting axes (default: many-lights, N swept); a file's first N lights. The aa "
+                  "axis always uses learnopengl:overview and thin");
+  cmd->add_option("--only", b.only,
+                  "run one axis only: lights, layout, layout_exact, threshold, resolution or aa "
+                  "(anti-aliasing against a 16-sample reference)")
+      ->type_name("AXIS");
   cmd->add_flag("--figures-only", b.figuresOnly,
                 "render each point once, untimed: errors and bytes only (the figures docs quote), no charts");
   cmd->add_flag("--smoke", b.smoke, "tiny sweep for tests (2 points, 64x64, 1 frame)")->group("");

@@ -5,12 +5,15 @@
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/passes/lighting_options.h"
+#include "rgraph/passes/velocity.h"
 #include "rgraph/scene.h"
 
 namespace rgraph::forward {
 
 std::vector<ShaderProgramSpec> programs(const ParamSet& params, bool blendsSourceAlpha) {
-  ShaderProgramSpec s = programSpec("scene.vert", "forward_lit.frag", lighting::defines(params));
+  std::vector<std::string> defines = lighting::defines(params);
+  velocity::addDefine(params, defines);  // forward_lit's "velocity" (absent elsewhere: off)
+  ShaderProgramSpec s = programSpec("scene.vert", "forward_lit.frag", std::move(defines));
   s.ownSamplers = lighting::materialSamplers();
   s.blendsSourceAlpha = blendsSourceAlpha;
   return lighting::normalMapVariants(s);
@@ -35,6 +38,9 @@ void SurfaceDrawer::draw(PassContext& ctx, bool blended) const {
     // Blended surfaces are tested against the opaque depth but do not write
     // it, so those behind them stay visible through them.
     glDepthMask(GL_FALSE);
+    // Motion vectors (draw buffer 1 when bound) stay those of the opaque
+    // surface behind: a blend of two motions is neither's.
+    glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
@@ -46,6 +52,7 @@ void SurfaceDrawer::draw(PassContext& ctx, bool blended) const {
   options.filter = filter;
   options.backToFront = blended;
   scene.drawPrimitives(prog, options);
+  glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glDisable(GL_BLEND);
   glDepthMask(GL_TRUE);
   glDisable(GL_DEPTH_TEST);

@@ -8,6 +8,7 @@
 #include "rgraph/pass_decl.h"
 #include "rgraph/passes/forward_shading.h"
 #include "rgraph/passes/lighting_options.h"
+#include "rgraph/passes/velocity.h"
 #include "rgraph/registry.h"
 
 namespace {
@@ -24,6 +25,10 @@ class ForwardLitPass final : public PassInstance {
     const float one = 1.0f;
     glDepthMask(GL_TRUE);
     glClearNamedFramebufferfv(ctx.framebuffer(), GL_DEPTH, 0, &one);
+    if (ctx.bound("velocity")) {  // the background keeps 0, as in the geometry pass
+      const float zero[4] = {0, 0, 0, 0};
+      glClearNamedFramebufferfv(ctx.framebuffer(), GL_COLOR, 1, zero);
+    }
     surfaces_.draw(ctx, /*blended=*/false);
     if (ctx.params().getBool("blend", true)) surfaces_.draw(ctx, /*blended=*/true);
   }
@@ -42,9 +47,12 @@ PassTypeDesc makeForwardLitPass() {
            "HDR target; background keeps its clear value", lighting::hdrFormats()),
       slot("depth", Access::depth_attachment, true, SlotDecl::Load::never, "depth buffer (cleared here)",
            {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}),
+      velocity::slot(),
   };
   d.params = lighting::params();
   d.params.push_back(param("blend", ParamType::boolean, true, "also draw BLEND materials, back to front"));
+  d.params.push_back(velocity::param());
+  d.check = velocity::check;
   d.adapt = [](const SceneFeatures& f, PassAdaptation& a) {
     if (!f.blendMaterials && a.params.getBool("blend", true)) {
       a.params.set("blend", false);

@@ -9,6 +9,7 @@
 #include "rgraph/pass_decl.h"
 #include "rgraph/passes/gbuffer_layout.h"
 #include "rgraph/passes/lighting_options.h"
+#include "rgraph/passes/velocity.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
 
@@ -19,7 +20,10 @@ class GeometryPass final : public PassInstance {
  public:
   // Model no more than the scene needs: without normal maps no tangent is
   // read and no normal map sampled.
-  void setup(PassContext& ctx) override { program_ = ctx.program(lighting::normalMapVariant(ctx)); }
+  void setup(PassContext& ctx) override {
+    program_ = ctx.program(lighting::normalMapVariant(ctx));
+    velocity_ = ctx.bound("velocity");  // checkGeometry: bound exactly when the "velocity" param is on
+  }
 
   void execute(PassContext& ctx) override {
     gl::bindPassFramebuffer(ctx);
@@ -30,6 +34,8 @@ class GeometryPass final : public PassInstance {
     GLint drawBuffers = 0;
     for (const auto& slot : gbuffer::colorSlots())
       if (ctx.bound(slot)) glClearNamedFramebufferfv(fbo, GL_COLOR, drawBuffers++, zero);
+    // Background pixels keep velocity 0 (no camera-only motion for them yet).
+    if (velocity_) glClearNamedFramebufferfv(fbo, GL_COLOR, drawBuffers++, zero);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -43,6 +49,7 @@ class GeometryPass final : public PassInstance {
 
  private:
   uint32_t program_ = 0;
+  bool velocity_ = false;
 };
 
 // The targets the layout writes are exactly the bound ones (gbuffer_layout.h).
@@ -55,6 +62,7 @@ void checkGeometry(const PassCheckContext& ctx, PassChecks& checks) {
   };
   require("position", layout.writes("position"));
   require("material", layout.writes("material") && !ctx.params().getBool("constant_material", false));
+  velocity::check(ctx, checks);
   if (auto normal = ctx.format("normal"); normal && formatInfo(*normal).components < layout.normalComponents)
     checks.slotError("normal", "layout '" + layout.name + "' needs " + std::to_string(layout.normalComponents) +
                                    " components in 'normal', got " + std::string(formatName(*normal)));
@@ -77,14 +85,19 @@ PassTypeDesc makeGeometryPass() {
            "metallic, roughness (, ao) (pbr, compact, fp32 layouts)", color),
       slot("depth", Access::depth_attachment, true, SlotDecl::Load::never, "scene depth",
            {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}),
+      velocity::slot(),  // last, so the layouts' colour targets keep their attachment indices
   };
   for (auto& s : d.slots) s.gbufferTarget = true;  // what `rgraph plan --scene` counts as G-buffer bytes
   d.params = {param("layout", ParamType::enumeration, std::string(gbuffer::kDefaultLayout),
                     "G-buffer layout: " + gbuffer::nameList(true), gbuffer::names())};
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
   d.adapt = lighting::adaptGBuffer;
-  d.programs = [](const ParamSet& p) {  // HAS_NORMAL_MAPS follows the scene: both variants
-    ShaderProgramSpec s = programSpec("scene.vert", "gbuffer.frag", lighting::gbufferDefines(p));
+  d.params.push_back(velocity::param());
+  // HAS_NORMAL_MAPS follows the scene (both variants), HAS_VELOCITY the param.
+  d.programs = [](const ParamSet& p) {
+    std::vector<std::string> defines = lighting::gbufferDefines(p);
+    velocity::addDefine(p, defines);
+    ShaderProgramSpec s = programSpec("scene.vert", "gbuffer.frag", std::move(defines));
     s.ownSamplers = lighting::materialSamplers();
     return lighting::normalMapVariants(s);
   };

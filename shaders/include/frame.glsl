@@ -13,6 +13,12 @@ layout(std140, binding = 0) uniform Frame {
   vec4 u_dirLightDir;    // xyz: direction the light travels (world), w: 1 when present
   vec4 u_dirLightColor;  // rgb * intensity
   ivec4 u_counts;        // x: point lights
+  // Motion and jitter (docs/writing-a-pass.md, "Frame block"). u_proj,
+  // u_viewProj and u_invProj above carry the jitter; these do not.
+  mat4 u_prevViewProj;     // the previous frame's unjittered view-projection (= u_viewProjNoJitter after a cut)
+  mat4 u_viewProjNoJitter; // this frame's unjittered view-projection
+  vec4 u_jitter;           // xy: jitter in pixels (-0.5..0.5), zw: the NDC offset added to clip xy / w
+  ivec4 u_frame;           // x: frame index (mod 2^31), y: jitter phases (0: none)
 };
 
 // A point light (std430, binding 0 of the lights buffer).

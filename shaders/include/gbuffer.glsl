@@ -46,3 +46,9 @@ vec3 safeNormal(vec3 n, vec3 fallback) {
   if (!(len2 > 1e-12) || isinf(len2) || isnan(len2)) return fallback;
   return n * inversesqrt(len2);
 }
+
+// Motion vector in UV units from a point's clip positions this frame and the
+// last (both unjittered): uv_now - uv_prev, so the point was at uv - velocity.
+vec2 screenVelocity(vec4 clipNow, vec4 clipPrev) {
+  return (clipNow.xy / clipNow.w - clipPrev.xy / clipPrev.w) * 0.5;
+}

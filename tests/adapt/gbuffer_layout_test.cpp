@@ -89,7 +89,10 @@ TEST(GBufferLayoutTable, TheGeometryPassDeclaresWhatTheTableWrites) {
     EXPECT_TRUE(s.gbufferTarget) << s.name;
     if (s.access == Access::color_attachment) color.push_back(s.name);
   }
-  EXPECT_EQ(color, gbuffer::colorSlots());
+  // The layouts' targets, then the optional motion vectors (rgraph/passes/velocity.h), last.
+  std::vector<std::string> expected = gbuffer::colorSlots();
+  expected.push_back("velocity");
+  EXPECT_EQ(color, expected);
   for (const auto& layout : gbuffer::layouts()) {
     for (const auto& slot : gbuffer::colorSlots()) {
       const SlotDecl* decl = geometry->findSlot(slot);

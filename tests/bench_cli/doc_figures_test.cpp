@@ -99,6 +99,24 @@ void expectCommittedRunMatches(const FreshRun& run) {
   }
 }
 
+// The aa axis's rows (the still methods, TAA after a fixed number of frames,
+// the orbit's mean): the same figures, in the same order.
+void expectCommittedAaMatches(const FreshRun& run) {
+  const json fresh = json::parse(slurp(run.dir / "results.json")).at("aa");
+  const json committed = json::parse(slurp(kSource / "docs/images/bench/results.json")).value("aa", json::array());
+  ASSERT_EQ(committed.size(), fresh.size()) << "the aa axis changed: regenerate the committed run";
+  for (size_t i = 0; i < fresh.size(); ++i) {
+    SCOPED_TRACE(fresh[i].at("scene").get<std::string>() + " " + fresh[i].at("aa").get<std::string>());
+    EXPECT_EQ(committed[i].at("scene"), fresh[i].at("scene"));
+    EXPECT_EQ(committed[i].at("aa"), fresh[i].at("aa"));
+    EXPECT_FALSE(fresh[i].contains("error")) << fresh[i].dump();
+    EXPECT_NEAR(committed[i].at("psnr_db").get<double>(), fresh[i].at("psnr_db").get<double>(), 0.005);
+    EXPECT_NEAR(committed[i].at("edge_psnr_db").get<double>(), fresh[i].at("edge_psnr_db").get<double>(), 0.005);
+    EXPECT_EQ(committed[i].at("edge_pixels"), fresh[i].at("edge_pixels"));
+    EXPECT_EQ(committed[i].at("frames"), fresh[i].at("frames"));
+  }
+}
+
 // Every figures block the page quotes is what bench generates now, and the
 // page quotes every table bench generates.
 // The shipped pipelines against forward.json, in the same order.
@@ -134,6 +152,7 @@ TEST(DocFigures, CommittedRunAndPerformancePageMatchTheCode) {
     SCOPED_TRACE("docs/images/bench/results.json against a fresh run");
     expectCommittedRunMatches(run);
     expectCommittedShippedMatches(run);
+    expectCommittedAaMatches(run);
   }
   {
     SCOPED_TRACE("docs/performance.md's generated tables against a fresh run");

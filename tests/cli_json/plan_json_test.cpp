@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 
 #include "support/run_command.h"
 
@@ -75,6 +76,40 @@ TEST(CliValidateJson, MisspelledResourceHasLocation) {
   EXPECT_EQ(d.at("column"), 65);
   EXPECT_EQ(d.at("path"), "/passes/1/inputs/src");
   EXPECT_NE(d.at("file").get<std::string>().find("misspelled-resource.json"), std::string::npos);
+}
+
+TEST(CliPlanJson, HistoryResourcesAreLinkedKeptAndOwnTheirTextures) {
+  RunResult r = run("plan --json --width 640 --height 360 " + kConfigs + "history.json");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  auto plan = nlohmann::json::parse(r.out);
+  const auto& resources = plan.at("resources");
+  for (const auto& [history, source] : {std::pair{"echo_prev", "echo"}, std::pair{"trail_prev", "trail"}}) {
+    const auto* h = findByName(resources, history);
+    const auto* s = findByName(resources, source);
+    ASSERT_TRUE(h && s) << history;
+    EXPECT_EQ(h->at("history_of"), source);
+    EXPECT_TRUE(s->at("history_of").is_null());
+    EXPECT_TRUE(h->at("kept_across_frames").get<bool>()) << history;
+    EXPECT_TRUE(s->at("kept_across_frames").get<bool>()) << source;
+    // The whole frame (4 passes), each in a physical texture of its own.
+    for (const auto* e : {h, s}) {
+      EXPECT_EQ(e->at("first_order"), 0) << e->at("name");
+      EXPECT_EQ(e->at("last_order"), 3) << e->at("name");
+      const auto& phys = plan.at("physical").at(e->at("physical").get<size_t>());
+      EXPECT_EQ(phys.at("resources").size(), 1u) << e->at("name");
+    }
+  }
+  const auto* scene = findByName(resources, "scene");
+  ASSERT_NE(scene, nullptr);
+  EXPECT_FALSE(scene->at("kept_across_frames").get<bool>());
+  EXPECT_TRUE(scene->at("history_of").is_null());
+  // 'trail' feeds only the next frame: it runs, and says why.
+  const auto* trail = findByName(plan.at("passes"), "trail");
+  ASSERT_NE(trail, nullptr);
+  EXPECT_FALSE(trail->at("culled").get<bool>());
+  EXPECT_EQ(trail->at("reason"), "kept: it feeds 'trail', whose history 'trail_prev' is read in the next frame");
+  const uint64_t texture = 640ull * 360 * 8;
+  EXPECT_EQ(plan.at("memory").at("allocated_bytes"), 5 * texture) << "scene, and the two pairs unaliased";
 }
 
 TEST(CliValidateJson, ValidConfigPrintsEmptyArray) {

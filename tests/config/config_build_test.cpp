@@ -308,7 +308,7 @@ TEST(ConfigBuild, ReportsEveryErrorInFileOrder) {
                        "expected one of 'fast', 'nice', 'exact', got int",
                        "inline.json:10:14: error: /passes/2/name: pass name 'p' is already used (first at line 8)",
                        "inline.json:13:3: error: /extra: unknown top-level key 'extra'; expected one of 'version', "
-                       "'description', 'plugins', 'resources', 'passes', 'output'",
+                       "'description', 'plugins', 'resources', 'passes', 'output', 'jitter'",
                    }))
       << allDiagnostics(diags);
   // Structured fields for tools.

@@ -32,11 +32,16 @@ std::string trimLine(std::string s) {
   return s;
 }
 
-// Loads and checks one file the way the CLI does.
+// Loads and checks one file the way the CLI does: the graph is compiled
+// once the config builds cleanly (history errors are the compiler's).
 Diagnostics check(const std::string& path) {
   Diagnostics diags;
   ConfigDocument doc = ConfigDocument::parseFile(path, diags);
-  if (doc.ok()) doc.build(test::testRegistry(), diags);
+  if (!doc.ok()) return diags;
+  const PipelineConfig cfg = doc.build(test::testRegistry(), diags);
+  if (hasErrors(diags)) return diags;
+  const Plan plan = compile(cfg.graph);
+  diags.insert(diags.end(), plan.diagnostics.begin(), plan.diagnostics.end());
   return diags;
 }
 
@@ -82,7 +87,22 @@ const std::map<std::string, DiagCode>& expectedCodes() {
       {"format_not_allowed", DiagCode::format_not_allowed},
       {"format_not_allowed_version", DiagCode::format_not_allowed},
       {"format_not_string", DiagCode::config_schema},
+      {"history_format_mismatch", DiagCode::history_error},
+      {"history_of_buffer", DiagCode::history_error},
+      {"history_of_empty", DiagCode::config_schema},
+      {"history_of_history", DiagCode::history_error},
+      {"history_of_imported", DiagCode::history_error},
+      {"history_of_not_string", DiagCode::config_schema},
+      {"history_of_output", DiagCode::history_error},
+      {"history_of_version", DiagCode::history_error},
+      {"history_size_mismatch", DiagCode::history_error},
+      {"history_unknown_source", DiagCode::history_error},
+      {"history_unwritten_source", DiagCode::history_error},
+      {"history_written_by_pass", DiagCode::history_error},
       {"input_slot_in_outputs", DiagCode::unknown_slot},
+      {"jitter_not_integer", DiagCode::config_schema},
+      {"jitter_one", DiagCode::config_schema},
+      {"jitter_too_large", DiagCode::config_schema},
       {"missing_format", DiagCode::config_schema},
       {"missing_load_input", DiagCode::missing_slot},
       {"missing_name", DiagCode::config_schema},
@@ -99,6 +119,7 @@ const std::map<std::string, DiagCode>& expectedCodes() {
       {"param_out_of_range", DiagCode::param_range},
       {"param_wrong_type", DiagCode::param_type},
       {"params_not_object", DiagCode::config_schema},
+      {"pass_jitter_not_bool", DiagCode::config_schema},
       {"passes_not_array", DiagCode::config_schema},
       {"plugin_not_string", DiagCode::config_schema},
       {"python_literal", DiagCode::json_syntax},

@@ -147,7 +147,7 @@ TEST(Robustness, WrongShapesEverywhere) {
 // returns diagnostics, each inside the text.
 TEST(Robustness, MutatedConfigs) {
   std::vector<std::string> seeds;
-  for (const char* name : {"deferred.json", "compute.json", "minimal.json"})
+  for (const char* name : {"deferred.json", "compute.json", "minimal.json", "history.json"})
     seeds.push_back(test::readFile(test::configsDir() + "/valid/" + name));
   const std::string alphabet = "{}[]:,\"\\ \n0123456789.-+eEtrufalsn\x01\xC3\xA9/~";
   std::mt19937 rng(12345);

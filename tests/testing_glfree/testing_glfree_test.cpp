@@ -91,3 +91,36 @@ TEST(TestingGlFree, DefaultRegistryHasNoBuiltinsHere) {
   EXPECT_FALSE(p.loaded());
   EXPECT_TRUE(p.hasError(DiagCode::unknown_pass_type)) << p.describe();
 }
+
+// History resources through rgraph/testing.h: the pass that only feeds the
+// next frame runs, and describe()/describeResource() say why and what is kept.
+TEST(TestingGlFree, HistoryIsDescribed) {
+  const char* json = R"({
+    "version": 1,
+    "resources": {
+      "a": { "format": "rgba16f" }, "trail": { "format": "rgba16f" }, "trail_prev": { "history_of": "trail" },
+      "output": { "format": "rgba8" }
+    },
+    "passes": [
+      { "name": "first", "type": "draw", "inputs": { "in": "trail_prev" }, "outputs": { "out": "a" } },
+      { "name": "feed", "type": "draw", "inputs": { "in": "a" }, "outputs": { "out": "trail" } },
+      { "name": "present", "type": "show", "inputs": { "src": "a" }, "outputs": { "dst": "output" } }
+    ],
+    "output": "output"
+  })";
+  rt::Options o;
+  o.size = {32, 16};
+  o.registry = &ownRegistry();
+  const rt::CompiledPipeline p = rt::compileText(json, o);
+  ASSERT_TRUE(p.ok()) << p.describe();
+  EXPECT_EQ(p.order(), (std::vector<std::string>{"first", "feed", "present"}));
+  EXPECT_FALSE(p.aliased("a", "trail")) << p.describe();
+  const std::string d = p.describe();
+  EXPECT_NE(d.find("kept: feed: it feeds 'trail', whose history 'trail_prev' is read in the next frame"),
+            std::string::npos)
+      << d;
+  EXPECT_NE(d.find("history: trail_prev holds the previous frame of trail"), std::string::npos) << d;
+  EXPECT_NE(p.describeResource("trail_prev").find("history of 'trail' (kept across frames)"), std::string::npos)
+      << p.describeResource("trail_prev");
+  EXPECT_NE(p.describeResource("trail").find("kept across frames in 'trail_prev'"), std::string::npos);
+}

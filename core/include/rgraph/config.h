@@ -23,6 +23,10 @@ struct PipelineConfig {
   std::string file;
   int version = 1;
   std::vector<std::string> plugins;
+  // Sub-pixel camera jitter: the number of Halton(2,3) phases (config key
+  // "jitter"; 0: off). Scene passes see the jittered camera unless their
+  // PassDecl::jitter is false.
+  uint32_t jitterPhases = 0;
   GraphDesc graph;                 // passes in config order
   std::vector<ParamSet> params;    // one per graph.passes entry, defaults filled in
 };

@@ -30,6 +30,7 @@ enum class DiagCode {
   access_format_mismatch, // e.g. depth format bound as a colour attachment
   invalid_output,         // the output cannot be shown: multisampled, depth, a buffer, overwritten later
   output_size,            // warning: the output's own size is not the requested output size
+  history_error,          // a history resource whose source is unknown, unwritten, not kept, or differs in size/format
   // config
   json_syntax,
   file_not_found,

@@ -74,6 +74,14 @@ struct ResourceDecl {
   // the caller's textures, whose writers are never culled (the caller sees
   // what they write). The output image does not.
   bool importedHasContent = true;
+  // A history resource: non-empty names the resource whose content at the end
+  // of the previous frame this one holds (config key "history_of"). Nobody
+  // writes it; passes read it like any texture. Its source is kept across
+  // frames; neither is ever aliased. The executor copies the source into it
+  // after each frame and clears it (PassContext::historyValid false) on the
+  // first frame, after a resize, a reload and a camera cut.
+  std::string historyOf;
+  SourceLocation historyWhere;  // the "history_of" value
   SourceLocation where;
 };
 
@@ -115,6 +123,9 @@ struct PassDecl {
   std::vector<ResourceUse> uses;
   bool sideEffect = false;  // never culled (e.g. writes a file, reads back stats)
   bool enabled = true;      // disabled in-place passes become pass-throughs
+  // false: the pass sees the camera without the pipeline's sub-pixel jitter
+  // (config pass key "jitter": false; a UI overlay, for instance).
+  bool jitter = true;
   SourceLocation where;
 };
 
@@ -178,7 +189,7 @@ struct PlannedPass {
   std::string name, type;
   StepIndex order;            // position in execution order, invalid when culled
   bool culled = false;
-  std::string reason;         // why culled ("disabled", "its outputs reach no output ...")
+  std::string reason;         // why culled ("disabled", ...), or "kept: ..." when it runs only for the next frame
 };
 
 struct PlannedResource {
@@ -191,6 +202,10 @@ struct PlannedResource {
   StepIndex lastPass;         // execution-order index of last use
   PhysicalIndex physical;     // invalid for imported and unused resources
   std::vector<std::string> versions;  // version names in write order
+  // A history read by a pass that runs (else invalid): its source. Both own a physical, whole frame.
+  ResourceIndex historyOf;
+  // The source of such a live history: that history (invalid otherwise; nothing to copy then).
+  ResourceIndex history;
 };
 
 struct PhysicalTexture {

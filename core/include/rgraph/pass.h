@@ -165,6 +165,13 @@ class PassContext {
   virtual uint32_t samples(std::string_view slot) const = 0;
   // True when a writing slot loads its previous version (do not clear it).
   virtual bool loads(std::string_view slot) const = 0;
+  // A slot bound to a history resource (ResourceDecl::historyOf): whether its
+  // texture holds the previous frame's content. false on the first frame,
+  // after a resize, a reload or a camera cut (the texture is then cleared to
+  // zero: do not blend with it), and for slots bound to anything else.
+  virtual bool historyValid(std::string_view /*slot*/) const { return false; }
+  // Frames this pass's executor has rendered before this one (0 on the first).
+  virtual uint64_t frameIndex() const { return 0; }
 
   // The pass's framebuffer: colour attachments in slot-declaration order at
   // GL_COLOR_ATTACHMENT0.., plus the depth/stencil slot; draw buffers set.

@@ -33,6 +33,9 @@ struct CheckedSlot {
   Extent extent;                 // at the plan's output size; 0x0 when unknown
   uint32_t samples = 1;
   bool loads = false;    // a writing slot that also loads its previous version
+  // A history resource (ResourceDecl::historyOf): the resource whose previous
+  // frame it holds; empty for anything else.
+  std::string historyOf;
   SourceLocation where;  // the binding in the config
 };
 

@@ -50,7 +50,9 @@
 // 2: PassTypeDesc::programs is the one program list (the executor builds it,
 // PassContext::program, `shaders` removed, sampler units mandatory),
 // PassTypeDesc::check and needsScene, gl::FullscreenPass and gl::Uniform.
-#define RGRAPH_PLUGIN_ABI_VERSION 2u
+// 3: PassContext::historyValid and frameIndex (history resources), the Frame
+// block's motion and jitter members, GpuScene::updateFrame with FrameMotion.
+#define RGRAPH_PLUGIN_ABI_VERSION 3u
 
 #define RGRAPH_PLUGIN_ABI_SYMBOL "rgraph_plugin_abi_version"
 #define RGRAPH_PLUGIN_REGISTER_SYMBOL "rgraph_plugin_register"

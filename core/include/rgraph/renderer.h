@@ -169,6 +169,11 @@ class Renderer {
   // Per frame; no rebuild. Each renderer has its own camera.
   void setCamera(const Camera& camera);
   const Camera& camera() const;
+  // The next frame follows no previous one (a cut, a teleport): history
+  // resources start again from a cleared, invalid state and motion vectors
+  // are zero (Executor::cameraCut). Setting a new scene or size, or a reload,
+  // does the same on its own.
+  void cameraCut();
 
   // Output size. Textures are re-created at the next frame when it changes.
   void setSize(Extent size);

@@ -178,9 +178,22 @@ struct Primitive {
   Bounds bounds;              // world space
   std::string name;           // node name, for diagnostics
 
+  // A constant rotation over time (scene files' "spin"): `degreesPerSecond`
+  // about the world-space `axis` (unit) through the world point `pivot` (the
+  // model's origin), applied after `transform`. 0 degrees per second: static.
+  struct Spin {
+    glm::vec3 pivot{0.0f};
+    glm::vec3 axis{0.0f, 1.0f, 0.0f};
+    float degreesPerSecond = 0.0f;
+  } spin;
+
   glm::mat3 normalMatrix() const { return glm::transpose(glm::inverse(glm::mat3(transform))); }
   // A negative determinant flips the winding: draw with the front face reversed.
   bool mirrored() const { return glm::determinant(glm::mat3(transform)) < 0.0f; }
+  bool animated() const { return spin.degreesPerSecond != 0.0f; }
+  // local -> world at `seconds` of animation time: `transform` turned by the
+  // spin (`transform` itself when static). Bounds stay the static ones.
+  glm::mat4 transformAt(double seconds) const;
 };
 
 // ---------------------------------------------------------------- lights and camera
@@ -238,6 +251,10 @@ struct Camera {
 // A camera with the given vertical fov that sees all of `bounds`, looking at
 // its centre from the +Z side and slightly above.
 Camera frameBounds(const Bounds& bounds, float fovY = 45.0f);
+// The camera turned `degrees` about the axis through its target along its
+// up vector (validUp()): position moves, target and up stay. `rgraph render
+// --orbit D` shows frame i with orbitCamera(camera, D * i).
+Camera orbitCamera(const Camera& camera, float degrees);
 
 // ---------------------------------------------------------------- scene
 
@@ -332,7 +349,8 @@ Scene parseSceneText(const std::string& text, const std::string& file, const std
 
 // "path.json" -> loadSceneFile; "path.gltf" / "path.glb" -> loadGltf + applySceneDefaults;
 // "learnopengl" -> makeLearnOpenGLScene(); "learnopengl:overview" -> the same
-// scene seen from above and behind, all 9 objects in view (rgraph render's default); "many-lights:N[:seed]" -> makeManyLightsScene(N, seed).
+// scene seen from above and behind, all 9 objects in view (rgraph render's default); "many-lights:N[:seed]" -> makeManyLightsScene(N, seed);
+// "thin" -> makeThinScene().
 Scene loadSceneAny(const std::string& spec);
 
 // ---------------------------------------------------------------- procedural scenes
@@ -349,6 +367,16 @@ Scene makeLearnOpenGLScene();
 // spread over it from a seeded PRNG. The field grows with n; each light's
 // attenuation is chosen so its radius keeps ~16 lights overlapping on average.
 Scene makeManyLightsScene(int n, uint32_t seed = 1);
+
+// Edges that alias, for anti-aliasing measurements (rgraph bench's aa axis;
+// loadSceneAny "thin"): a dark floor (one primitive "floor"), a fence of
+// kThinScenePosts posts 0.03 wide ("post<i>", x in -4..4, z = 0, 1.2 high),
+// kThinSceneWires wires 0.008 thick along the fence, each tilted 0.5-1.25 degrees
+// ("wire<i>"), and a far grid of kThinSceneGridBars bars 0.03 wide lying on the
+// floor at z in -18..-6 ("bar_x<i>", "bar_z<i>"); flat-coloured materials, one
+// directional and 4 point lights, a camera at (0, 1.6, 5.5). Deterministic.
+inline constexpr int kThinScenePosts = 25, kThinSceneWires = 4, kThinSceneGridBars = 42;
+Scene makeThinScene();
 
 // glibc's rand()/random() (TYPE_3 additive feedback generator) reimplemented, so
 // the LearnOpenGL light placement is the same on every platform.

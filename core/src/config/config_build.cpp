@@ -9,6 +9,7 @@
 // versions as the compiler resolves them).
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <set>
 #include <string>
 #include <string_view>
@@ -22,7 +23,8 @@ namespace rgraph::config_detail {
 
 namespace {
 
-const std::vector<std::string> kTopLevelKeys = {"version", "description", "plugins", "resources", "passes", "output"};
+const std::vector<std::string> kTopLevelKeys = {"version", "description", "plugins", "resources",
+                                                "passes",  "output",      "jitter"};
 
 // Every version name of the compiled plan -> its resource (views of the
 // plan's strings: the plan must outlive the map).
@@ -128,6 +130,21 @@ void Builder::checkTopLevel() {
           typeError("/plugins/" + std::to_string(i), "a plugin name or path (string)", p);
       }
     }
+  }
+
+  // Sub-pixel camera jitter: Halton(2,3) phases. One phase would be a fixed
+  // offset, not jitter; more than 64 converge no better in a 8-16 frame history.
+  if (auto it = root_.find("jitter"); it != root_.end()) {
+    int64_t n = 0;
+    if (readInteger(*it).status == IntegerValue::Status::not_a_number)
+      typeError("/jitter", "an integer (0: off, or 2 to 64 Halton phases)", *it);
+    else if (std::string why = integerInRange(*it, "jitter", 0, 64, n, "phases", " (0: off)"); !why.empty())
+      error(DiagCode::config_schema, at("/jitter"), why);
+    else if (n == 1)
+      error(DiagCode::config_schema, at("/jitter"),
+            "jitter 1 is a fixed offset, not jitter: use 0 (off) or 2 to 64 Halton phases (8 or 16 are usual)");
+    else
+      config_.jitterPhases = static_cast<uint32_t>(n);
   }
 
   if (auto it = root_.find("resources"); it == root_.end())

@@ -14,8 +14,8 @@ namespace rgraph::config_detail {
 
 namespace {
 
-const std::vector<std::string> kPassKeys = {"name",        "type",   "description", "enabled",
-                                            "side_effect", "inputs", "outputs",     "params"};
+const std::vector<std::string> kPassKeys = {"name",   "type",    "description", "enabled", "side_effect",
+                                            "inputs", "outputs", "params",      "jitter"};
 
 }  // namespace
 
@@ -100,6 +100,14 @@ void Builder::checkPass(const Json& pass, PassInfo& info, std::map<std::string, 
       typeError(p + "/side_effect", "true or false", *se);
   }
   decl.sideEffect = sideEffect || (info.type && info.type->sideEffect);
+  // false: the pass sees the unjittered camera (a UI overlay drawn over a
+  // jittered scene would shimmer).
+  if (const Json* jitter = member("jitter")) {
+    if (jitter->is_boolean())
+      decl.jitter = jitter->get<bool>();
+    else
+      typeError(p + "/jitter", "true or false", *jitter);
+  }
 
   readBindings(member("inputs"), p + "/inputs", info, decl.name, true);
   readBindings(member("outputs"), p + "/outputs", info, decl.name, false);

@@ -1,5 +1,6 @@
 // The config Builder: resource declarations (type, format, size, samples,
 // mips, clear values, buffer size). See config_builder.h.
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <set>
@@ -12,9 +13,8 @@ namespace rgraph::config_detail {
 
 namespace {
 
-const std::vector<std::string> kResourceKeys = {"type", "format", "size",         "samples",
-                                                "mips", "clear",  "buffer_bytes", "description",
-                                                "imported"};
+const std::vector<std::string> kResourceKeys = {"type",  "format",       "size",        "samples",  "mips",
+                                                "clear", "buffer_bytes", "description", "imported", "history_of"};
 
 }  // namespace
 
@@ -36,6 +36,31 @@ void Builder::checkResources(const Json& resources) {
     }
     formatOk_.push_back(formatOk);
     config_.graph.resources.push_back(std::move(r));
+  }
+  inheritHistoryDescriptors(resources);
+}
+
+// A history resource ("history_of") holds its source's previous content, so
+// its descriptor is the source's: the keys it omits are copied from the
+// source; the keys it gives must match (compile() says so when they do not,
+// naming both descriptors).
+void Builder::inheritHistoryDescriptors(const Json& resources) {
+  auto& decls = config_.graph.resources;
+  for (size_t i = 0; i < decls.size(); ++i) {
+    ResourceDecl& h = decls[i];
+    if (h.historyOf.empty() || h.kind != ResourceKind::texture) continue;
+    const auto src =
+        std::find_if(decls.begin(), decls.end(), [&](const ResourceDecl& d) { return d.name == h.historyOf; });
+    if (src == decls.end() || src->kind != ResourceKind::texture) continue;  // compile() reports it
+    const Json& object = resources[h.name];
+    const size_t s = static_cast<size_t>(src - decls.begin());
+    if (!object.contains("format")) {
+      h.texture.format = src->texture.format;
+      formatOk_[i] = formatOk_[s];
+    }
+    if (!object.contains("size")) h.texture.size = src->texture.size;
+    if (!object.contains("samples")) h.texture.samples = src->texture.samples;
+    if (!object.contains("mips")) h.texture.mips = src->texture.mips;
   }
 }
 
@@ -71,6 +96,19 @@ bool Builder::checkResource(const Json& res, const std::string& pointer, Resourc
       typeError(sub("imported"), "true or false", *imported);
   }
 
+  if (const Json* of = member("history_of")) {
+    if (!of->is_string()) {
+      typeError(sub("history_of"), "the name of the resource whose previous frame this one holds", *of);
+    } else if (of->get<std::string>().empty()) {
+      error(DiagCode::config_schema, at(sub("history_of")),
+            "resource '" + r.name + "': \"history_of\" is empty; name the resource whose previous frame it holds")
+          .resource = r.name;
+    } else {
+      r.historyOf = of->get<std::string>();
+      r.historyWhere = at(sub("history_of"));
+    }
+  }
+
   if (r.kind == ResourceKind::buffer) {
     for (const char* key : {"format", "size", "samples", "mips", "clear"})
       if (member(key))
@@ -104,7 +142,7 @@ bool Builder::checkResource(const Json& res, const std::string& pointer, Resourc
   bool formatOk = false;
   TextureDesc& t = r.texture;
   if (const Json* format = member("format"); !format) {
-    if (!typos.count("format"))
+    if (!typos.count("format") && !member("history_of"))
       error(DiagCode::config_schema, at(pointer), "resource '" + r.name + "' has no \"format\"").resource = r.name;
   } else if (!format->is_string()) {
     typeError(sub("format"), "a format name (string)", *format);

@@ -81,6 +81,7 @@ class Builder {
   // config_build_resources.cpp
   void checkResources(const Json& resources);
   bool checkResource(const Json& res, const std::string& pointer, ResourceDecl& r);
+  void inheritHistoryDescriptors(const Json& resources);
   void checkClear(const Json& clear, const std::string& pointer, bool formatOk, TextureDesc& t);
   void checkSize(const Json& size, const std::string& pointer, SizeSpec& out);
 

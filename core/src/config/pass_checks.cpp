@@ -72,6 +72,7 @@ std::vector<CheckedSlot> planSlots(const GraphDesc& g, const Plan& plan, size_t 
     // Plan::resources matches g.resources one to one (rgraph/graph.h), ok or not.
     if (bu && bu->resource.valid()) {
       const ResourceDecl& rd = g.resources[bu->resource.value()];
+      s.historyOf = rd.historyOf;
       if (rd.kind == ResourceKind::texture) {
         s.format = rd.texture.format;
         s.samples = std::max<uint32_t>(1, rd.texture.samples);

@@ -63,11 +63,12 @@ bool isSoftwareRenderer() {
 }  // namespace
 
 
-exec_detail::SharedTexture Executor::Impl::takeTexture(Format format, Extent extent, uint32_t mips, uint32_t samples) {
+exec_detail::SharedTexture Executor::Impl::takeTexture(Format format, Extent extent, uint32_t mips, uint32_t samples,
+                                                       bool reuse) {
   auto same = std::find_if(reusable.begin(), reusable.end(), [&](const SharedTexture& t) {
     return t.texture && t.format == format && t.extent == extent && t.mips == mips && t.samples == samples;
   });
-  if (same != reusable.end()) return std::exchange(*same, SharedTexture{});
+  if (reuse && same != reusable.end()) return std::exchange(*same, SharedTexture{});
   return SharedTexture{std::make_shared<gl::Texture>(gl::createTexture2D(format, extent, mips, samples)), format,
                        extent, mips, samples};
 }
@@ -77,10 +78,11 @@ exec_detail::SharedTexture Executor::Impl::takeTexture(Format format, Extent ext
 void Executor::Impl::createResources() {
   physicalTextures.resize(plan.physical.size());
   physicalBuffers.resize(plan.physical.size());
+  const std::vector<bool> kept = keptPhysicals(plan);
   for (size_t i = 0; i < plan.physical.size(); ++i) {
     const PhysicalTexture& p = plan.physical[i];
     if (p.kind == ResourceKind::texture) {
-      physicalTextures[i] = takeTexture(p.format, p.extent, p.mips, p.samples);
+      physicalTextures[i] = takeTexture(p.format, p.extent, p.mips, p.samples, !kept[i]);
     } else {
       physicalBuffers[i] = gl::createBuffer();
       glNamedBufferStorage(physicalBuffers[i].id(), static_cast<GLsizeiptr>(std::max<uint64_t>(p.bytes, 4)), nullptr,
@@ -150,6 +152,8 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(PassIndex pass, Extent output
   run->shaderLib = &shaders;
   run->scenePtr = scene;
   run->gpuScenePtr = gpuScene;
+  run->historyHeld = &historyHeld;
+  run->frameCounter = &frame;
   run->output = output;
   run->paramSet = defaultParams(type->params);
   if (pass.value() < pipeline.params.size())
@@ -169,6 +173,7 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(PassIndex pass, Extent output
     b.resource = u.resource;
     b.loads = isWriteAccess(u.access) && !u.readVersion.empty();
     b.firstWrite = u.firstWrite;
+    b.history = plan.resources[u.resource.value()].historyOf.valid();
     b.texture = obj.texture;
     b.buffer = obj.buffer;
     b.format = obj.format;
@@ -302,6 +307,7 @@ void Executor::Impl::createRuns() {
   builtPrograms.clear();
   for (PassIndex pass : plan.order) runs.push_back(createRun(pass, size));
   assignMemoryBarriers();
+  planHistory();
   for (auto& run : runs) {
     try {
       // The programs the type's spec names, before setup, so that a pass
@@ -438,12 +444,8 @@ void Executor::renderFrame() {
   if (!im.built) throw RuntimeError("Executor::renderFrame: call resize() first");
   im.timings.assign(im.runs.size(), PassTiming{});
   using Clock = std::chrono::steady_clock;
-  if (im.gpuScene) {
-    if (im.camera)
-      im.gpuScene->updateFrame(im.size, *im.camera);
-    else
-      im.gpuScene->updateFrame(im.size);
-  }
+  im.updateFrameBlock();
+  im.beginHistory();
   // Software renderers: CPU time around a glFinish per pass, only when asked
   // (setCpuPassTiming): each finish stalls the pipeline the driver keeps.
   const bool cpuTiming = im.software && im.cpuPassTiming;
@@ -454,6 +456,7 @@ void Executor::renderFrame() {
     Clock::time_point t0 = Clock::now();
     if (run.query) glBeginQuery(GL_TIME_ELAPSED, run.query.id());
     if (run.memoryBarrier) glMemoryBarrier(run.memoryBarrier);
+    if (im.gpuScene) im.gpuScene->selectJitter(im.pipeline.graph.passes[run.decl.value()].jitter);
     im.resetState(run);
     im.applyClears(run);
     run.programs.bindSlots(run);
@@ -474,6 +477,8 @@ void Executor::renderFrame() {
     if (im.afterPass) im.afterPass(i);  // outside the pass's time
   }
   if (im.frameEndBarrier) glMemoryBarrier(im.frameEndBarrier);
+  im.endHistory();
+  ++im.frame;
   // Leave a neutral state for whoever draws next (e.g. a blit to the window:
   // sRGB encoding left on would encode the output a second time).
   glBindFramebuffer(GL_FRAMEBUFFER, 0);

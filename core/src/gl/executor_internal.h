@@ -1,6 +1,7 @@
-// The executor's insides, shared by its two source files: executor.cpp
-// (building the plan's GL objects, running frames) and executor_resources.cpp
-// (imports, readback, what tools query). Not installed.
+// The executor's insides, shared by its source files: executor.cpp
+// (building the plan's GL objects, running frames), executor_resources.cpp
+// (imports, readback, what tools query) and executor_history.cpp (what
+// carries over from one frame to the next). Not installed.
 #pragma once
 
 #include <functional>
@@ -33,6 +34,16 @@ struct SharedTexture {
   explicit operator bool() const { return texture != nullptr; }
 };
 
+// After each frame, `source`'s texture is copied into `history`'s (every mip
+// level; multisampled ones sample for sample).
+struct HistoryCopy {
+  ResourceIndex source, history;
+  uint32_t from = 0, to = 0;  // GL textures
+  Format format = Format::rgba8;
+  Extent extent;
+  uint32_t mips = 1, samples = 1;
+};
+
 struct SlotBinding {
   std::string slot;
   Access access = Access::sampled;
@@ -44,6 +55,7 @@ struct SlotBinding {
   uint32_t mips = 1;
   bool loads = false;
   bool firstWrite = false;
+  bool history = false;  // bound to a history resource (ResourceDecl::historyOf)
   int colorIndex = -1;    // GL_COLOR_ATTACHMENT0 + colorIndex
   bool depthAttachment = false;
 };
@@ -76,6 +88,9 @@ class PassRun final : public PassContext {
   uint32_t memoryBarrier = 0;  // glMemoryBarrier bits before execute (memory_barriers.h)
   const PassTypeDesc* type = nullptr;
   PassPrograms programs;  // built from type->programs(paramSet) before setup
+  // The executor's frame state, read through historyValid() and frameIndex().
+  const bool* historyHeld = nullptr;
+  const uint64_t* frameCounter = nullptr;
 
   const SlotBinding* find(std::string_view slot) const {
     for (const auto& s : slots)
@@ -111,6 +126,11 @@ class PassRun final : public PassContext {
     const SlotBinding* s = find(slot);
     return s && s->loads;
   }
+  bool historyValid(std::string_view slot) const override {
+    const SlotBinding* s = find(slot);
+    return s && s->history && historyHeld && *historyHeld;
+  }
+  uint64_t frameIndex() const override { return frameCounter ? *frameCounter : 0; }
   uint32_t framebuffer() const override { return fbo.id(); }
   Extent framebufferExtent() const override { return fbExtent; }
   ShaderLibrary& shaders() override { return *shaderLib; }
@@ -149,6 +169,13 @@ struct Executor::Impl {
   std::vector<BuiltProgram> builtPrograms;  // what passes asked the ShaderLibrary for, in order
   uint32_t frameEndBarrier = 0;  // glMemoryBarrier bits after the last pass
 
+  // Frame state (executor_history.cpp). `frame` counts every renderFrame and
+  // survives resize(); the rest starts again on a build, a resize and a cut.
+  uint64_t frame = 0;
+  bool historyHeld = false;  // history textures hold the previous frame's content
+  std::optional<glm::mat4> prevViewProj;  // the last frame's unjittered view-projection
+  std::vector<exec_detail::HistoryCopy> historyCopies;
+
   Impl(const PipelineConfig& p, const PassRegistry& r, ShaderLibrary& s, const Scene* sc)
       : pipeline(p), registry(r), shaders(s), scene(sc) {}
 
@@ -161,6 +188,9 @@ struct Executor::Impl {
     timings.clear();
     builtPrograms.clear();
     frameEndBarrier = 0;
+    historyCopies.clear();
+    historyHeld = false;
+    prevViewProj.reset();
     built = false;
   }
 
@@ -176,13 +206,22 @@ struct Executor::Impl {
     }
   }
   void createResources();
-  // A reusable texture of this description, else a new one.
-  SharedTexture takeTexture(Format format, Extent extent, uint32_t mips, uint32_t samples);
+  // A reusable texture of this description (unless !reuse), else a new one.
+  SharedTexture takeTexture(Format format, Extent extent, uint32_t mips, uint32_t samples, bool reuse = true);
   gl::TextureShape declaredShape(ResourceIndex r) const;
   std::unique_ptr<exec_detail::PassRun> createRun(PassIndex pass, Extent output);
   void applyClears(exec_detail::PassRun& run);
   void resetState(const exec_detail::PassRun& run);
   void assignMemoryBarriers();
+  // History (executor_history.cpp): which textures are copied after a frame
+  // (after createResources), which physicals must never be shared with
+  // another executor, the Frame block's motion, the clear before a frame that
+  // follows no previous one and the copy after every frame.
+  void planHistory();
+  static std::vector<bool> keptPhysicals(const Plan& plan);
+  void updateFrameBlock();
+  void beginHistory();
+  void endHistory();
 
   ResourceIndex resourceIndex(std::string_view name) const {
     auto it = byName.find(name);

@@ -119,9 +119,16 @@ uint32_t Executor::bufferOf(const std::string& name) const {
 }
 
 void Executor::reuseTextures(const Executor& previous) {
-  impl_->reusable = previous.impl_->physicalTextures;
-  for (const auto& r : previous.impl_->resources)
-    if (r.ownTexture) impl_->reusable.push_back(r.ownTexture);
+  const Impl& from = *previous.impl_;
+  const std::vector<bool> kept = Impl::keptPhysicals(from.plan);  // history pairs stay the previous one's
+  impl_->reusable.clear();
+  for (size_t i = 0; i < from.physicalTextures.size(); ++i)
+    if (i >= kept.size() || !kept[i]) impl_->reusable.push_back(from.physicalTextures[i]);
+  for (size_t r = 0; r < from.resources.size(); ++r) {
+    const PlannedResource& pr = from.plan.resources[r];
+    if (from.resources[r].ownTexture && !pr.historyOf.valid() && !pr.history.valid())
+      impl_->reusable.push_back(from.resources[r].ownTexture);
+  }
 }
 
 size_t Executor::ownedObjects() const {

@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "rgraph/error.h"
+#include "rgraph/jitter.h"
 #include "rgraph/scene.h"
 
 namespace rgraph {
@@ -21,8 +23,12 @@ struct FrameBlock {
   glm::vec4 dirLightDir;
   glm::vec4 dirLightColor;
   glm::ivec4 counts;
+  // Motion and jitter (issue 13), appended so earlier offsets stay.
+  glm::mat4 prevViewProj, viewProjNoJitter;
+  glm::vec4 jitter;  // xy pixels, zw NDC
+  glm::ivec4 frame;  // x frame index (mod 2^31), y jitter phases
 };
-static_assert(sizeof(FrameBlock) == 5 * 64 + 6 * 16, "FrameBlock must match the std140 layout");
+static_assert(sizeof(FrameBlock) == 7 * 64 + 8 * 16, "FrameBlock must match the std140 layout");
 
 // std430 mirror of PointLight in frame.glsl.
 struct GpuPointLight {
@@ -49,7 +55,7 @@ int mipLevels(int w, int h) {
 }  // namespace
 
 struct GpuScene::Locations {
-  int model, normalMatrix, baseColorFactor, metallicFactor, roughnessFactor, specular, normalScale,
+  int model, prevModel, normalMatrix, baseColorFactor, metallicFactor, roughnessFactor, specular, normalScale,
       occlusionStrength, alphaCutoff, alphaMode, emissive, hasBaseColorTex, hasMetallicRoughnessTex, hasNormalTex,
       hasOcclusionTex;
 };
@@ -103,6 +109,8 @@ GpuScene::GpuScene(const Scene& scene) : scene_(scene) {
 
   frame_ = gl::createBuffer();
   glNamedBufferStorage(frame_.id(), sizeof(FrameBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  frameUnjittered_ = gl::createBuffer();
+  glNamedBufferStorage(frameUnjittered_.id(), sizeof(FrameBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
 }
 
 GpuScene::~GpuScene() = default;
@@ -164,6 +172,40 @@ GpuScene::GpuMesh GpuScene::upload(const MeshData& mesh, bool tangents) const {
 void GpuScene::updateFrame(Extent viewport) { updateFrame(viewport, scene_.camera); }
 
 void GpuScene::updateFrame(Extent viewport, const Camera& cam) {
+  // No motion: every primitive draws with its transform, previous = current.
+  models_.clear();
+  prevModels_.clear();
+  modelsFrame_.reset();
+  writeFrame(viewport, cam, nullptr);
+}
+
+glm::mat4 GpuScene::updateFrame(Extent viewport, const Camera& cam, const FrameMotion& motion) {
+  // Model matrices at this frame's animation time, from each primitive's
+  // current transform (an API that moves a primitive between frames moves it).
+  const double seconds = static_cast<double>(motion.frame) / 60.0;
+  std::vector<glm::mat4> current;
+  current.reserve(scene_.primitives.size());
+  for (const Primitive& p : scene_.primitives) current.push_back(p.transformAt(seconds));
+  const bool sameShape = models_.size() == current.size();
+  if (!motion.prevViewProj) {
+    prevModels_ = current;  // first frame or camera cut: no motion
+  } else if (sameShape && modelsFrame_ && *modelsFrame_ + 1 == motion.frame) {
+    prevModels_ = models_;  // the last frame's matrices
+  } else if (sameShape && modelsFrame_ && *modelsFrame_ == motion.frame) {
+    // The same frame again (a second renderer sharing this scene): keep its previous matrices.
+  } else {
+    // Frames skipped (or the scene changed shape): the animation one frame
+    // back, from today's transforms.
+    prevModels_.clear();
+    const double before = motion.frame > 0 ? static_cast<double>(motion.frame - 1) / 60.0 : seconds;
+    for (const Primitive& p : scene_.primitives) prevModels_.push_back(p.transformAt(before));
+  }
+  models_ = std::move(current);
+  modelsFrame_ = motion.frame;
+  return writeFrame(viewport, cam, &motion);
+}
+
+glm::mat4 GpuScene::writeFrame(Extent viewport, const Camera& cam, const FrameMotion* motion) {
   const float w = static_cast<float>(std::max(viewport.width, 1u));
   const float h = static_cast<float>(std::max(viewport.height, 1u));
   eye_ = cam.position;
@@ -182,11 +224,36 @@ void GpuScene::updateFrame(Extent viewport, const Camera& cam) {
     f.dirLightColor = glm::vec4(d.color * d.intensity, 0.0f);
   }
   f.counts = glm::ivec4(static_cast<int>(scene_.pointLights.size()), 0, 0, 0);
+  const glm::mat4 unjittered = f.viewProj;
+  f.viewProjNoJitter = unjittered;
+  f.prevViewProj = motion && motion->prevViewProj ? *motion->prevViewProj : unjittered;
+  if (motion)
+    f.frame = glm::ivec4(static_cast<int>(motion->frame & 0x7fffffffu), static_cast<int>(motion->jitterPhases), 0, 0);
+  glNamedBufferSubData(frameUnjittered_.id(), 0, sizeof(FrameBlock), &f);
+
+  const glm::vec2 pixels = motion ? jitterPixels(motion->frame, motion->jitterPhases) : glm::vec2(0.0f);
+  if (pixels != glm::vec2(0.0f)) {
+    // clip.xy += ndc * clip.w: the whole image moves by `pixels`; the inverse
+    // projection follows, so positions rebuilt from this frame's depth match.
+    const glm::vec2 ndc = 2.0f * pixels / glm::vec2(w, h);
+    f.jitter = glm::vec4(pixels, ndc);
+    f.proj = glm::translate(glm::mat4(1.0f), glm::vec3(ndc, 0.0f)) * f.proj;
+    f.viewProj = f.proj * f.view;
+    f.invProj = glm::inverse(f.proj);
+  }
   glNamedBufferSubData(frame_.id(), 0, sizeof(FrameBlock), &f);
+  bindFrame();
+  return unjittered;
+}
+
+void GpuScene::selectJitter(bool jittered) {
+  jittered_ = jittered;
   bindFrame();
 }
 
-void GpuScene::bindFrame() const { glBindBufferBase(GL_UNIFORM_BUFFER, 0, frame_.id()); }
+void GpuScene::bindFrame() const {
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, jittered_ ? frame_.id() : frameUnjittered_.id());
+}
 
 std::vector<float> GpuScene::pointLightRadii(float threshold) const {
   const Bounds bounds = scene_.bounds();
@@ -246,11 +313,13 @@ const GpuScene::Locations& GpuScene::locations(uint32_t program) const {
   if (it != locations_.end()) return *it->second;
   auto loc = std::make_unique<Locations>();
   auto get = [&](const char* name) { return glGetUniformLocation(program, name); };
-  *loc = Locations{get("u_model"),           get("u_normalMatrix"),     get("u_baseColorFactor"),
-                   get("u_metallicFactor"),  get("u_roughnessFactor"),  get("u_specular"),
+  // clang-format off
+  *loc = Locations{get("u_model"),           get("u_prevModel"),        get("u_normalMatrix"),
+                   get("u_baseColorFactor"), get("u_metallicFactor"),   get("u_roughnessFactor"), get("u_specular"),
                    get("u_normalScale"),     get("u_occlusionStrength"), get("u_alphaCutoff"),
                    get("u_alphaMode"),       get("u_emissive"),         get("u_hasBaseColorTex"),
                    get("u_hasMetallicRoughnessTex"), get("u_hasNormalTex"), get("u_hasOcclusionTex")};
+  // clang-format on
   return *locations_.emplace(program, std::move(loc)).first->second;
 }
 
@@ -315,8 +384,13 @@ void GpuScene::drawPrimitives(uint32_t program, const DrawOptions& options) cons
     const Material& m = scene_.materials[p.material];
     const GpuMesh& mesh = meshes_[p.mesh];
     if (mesh.indexCount == 0) continue;
-    glProgramUniformMatrix4fv(program, loc.model, 1, GL_FALSE, glm::value_ptr(p.transform));
-    const glm::mat3 nm = p.normalMatrix();
+    // With motion, the matrices of this frame's animation time; else the transform.
+    const bool moving = models_.size() == scene_.primitives.size();
+    const glm::mat4& model = moving ? models_[i] : p.transform;
+    glProgramUniformMatrix4fv(program, loc.model, 1, GL_FALSE, glm::value_ptr(model));
+    if (loc.prevModel >= 0)
+      glProgramUniformMatrix4fv(program, loc.prevModel, 1, GL_FALSE, glm::value_ptr(moving ? prevModels_[i] : model));
+    const glm::mat3 nm = moving ? glm::transpose(glm::inverse(glm::mat3(model))) : p.normalMatrix();
     glProgramUniformMatrix3fv(program, loc.normalMatrix, 1, GL_FALSE, glm::value_ptr(nm));
     bindMaterial(program, p.material);
     if (options.cullBackFaces && !m.doubleSided) {

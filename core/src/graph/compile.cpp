@@ -23,6 +23,10 @@
 //  6. culling: backwards over RAW edges from the writer of the output's final
 //     version and from side-effect passes (WAR edges order, they never keep alive).
 //  7. lifetimes over the execution order, then greedy aliasing by first use.
+// History resources (compile_history.cpp) are checked after the output; a
+// history read by a pass that runs keeps its source's writers (step 6), adds
+// no edge (the copy happens after the frame), and gives the history and its
+// source whole-frame lifetimes and textures of their own (step 7).
 //
 // The steps are member functions of Compiler (compile_internal.h), one file
 // per subject.
@@ -47,6 +51,7 @@ void Compiler::run() {
   chains();
   resolve();
   output();
+  history();
   order();
   if (!cyclic_) {
     cull();
@@ -92,6 +97,11 @@ void Compiler::finish() {
     if (!(passFlags_[p] & kEnabled)) {
       pp.culled = true;
       pp.reason = "disabled";
+    } else if (!cyclic_ && needed_[p] && !keptFor_.empty() && keptFor_[p] >= 0) {
+      // Runs, but only for the next frame: say so where culling reasons show.
+      const int h = keptFor_[p];
+      pp.reason = "kept: it feeds " + q(resName_[histSrc_[h]]) + ", whose history " + q(resName_[h]) +
+                  " is read in the next frame";
     } else if (!cyclic_ && !needed_[p]) {
       pp.culled = true;
       std::string outs, later;
@@ -127,6 +137,12 @@ void Compiler::finish() {
       pr.lastPass = StepIndex(static_cast<uint32_t>(rs.last));
     }
     if (rs.physical >= 0) pr.physical = PhysicalIndex(static_cast<uint32_t>(rs.physical));
+    // Linked only when the history is live (read by a pass that runs): then
+    // both have textures of their own for the executor's copy.
+    if (historyCount_ > 0 && histSrc_[r] >= 0 && rs.physical >= 0 && r_[histSrc_[r]].physical >= 0) {
+      pr.historyOf = ResourceIndex(static_cast<uint32_t>(histSrc_[r]));
+      plan_.resources[histSrc_[r]].history = ResourceIndex(r);
+    }
     const uint32_t b = resVersionsBegin_[r], e = resVersionsBegin_[r + 1];
     pr.versions.reserve(e - b);
     for (uint32_t i = b; i < e; ++i) pr.versions.emplace_back(versionName(preorder_[i]));

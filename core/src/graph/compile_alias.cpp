@@ -68,6 +68,7 @@ void Compiler::lifetimesAndAliasing() {
     Res& rs = r_[r];
     if (rs.imported || !rs.valid) continue;
     plan_.naiveBytes += rs.bytes;
+    const bool own = wholeFrame(r);  // a live history or its source: never aliased
     PoolKey key{rs.kind, Format::rgba8, 0, 0, 0, 0, 0};
     if (rs.kind == ResourceKind::texture)
       key = {rs.kind, rs.format, rs.extent.width, rs.extent.height, rs.mips, rs.samples, 0};
@@ -75,7 +76,7 @@ void Compiler::lifetimesAndAliasing() {
       key.bytes = rs.bytes;
     int phys = -1;
     Pool* pool = nullptr;
-    if (o_.alias) {
+    if (o_.alias && !own) {
       auto [it, inserted] = poolOf.try_emplace(key, static_cast<int>(pools.size()));
       if (inserted) pools.emplace_back();
       pool = &pools[it->second];

@@ -9,7 +9,9 @@
 //   compile_bindings.cpp   reads resolved, binding checks, RAW/WAR edges
 //                          (step 4);
 //   compile_order.cpp      topological order, cycles, culling (steps 5, 6);
-//   compile_alias.cpp      lifetimes and aliasing (step 7).
+//   compile_alias.cpp      lifetimes and aliasing (step 7);
+//   compile_history.cpp    history resources: checks (after the output),
+//                          what culling follows, whole-frame lifetimes.
 #pragma once
 
 #include <cstddef>
@@ -150,8 +152,14 @@ class Compiler {
   void order();
   void reportCycles(const std::vector<uint32_t>& indeg);
   void cull();
+  void keepHistorySources(std::vector<uint32_t>& stack);
   // compile_alias.cpp
   void lifetimesAndAliasing();
+  // compile_history.cpp
+  void history();
+  std::string descriptorString(uint32_t r) const;
+  int historyWriterRead(uint32_t f) const;
+  bool wholeFrame(uint32_t r);
   // compile.cpp
   void finish();
 
@@ -175,6 +183,12 @@ class Compiler {
   std::vector<char> needed_;
   std::vector<std::string> candidates_;
   size_t suggestionWork_ = 0;  // names compared by suggestion() so far
+  // History resources (compile_history.cpp), per resource, -1 for none:
+  std::vector<int> histSrc_;      // history H -> its source X (a valid declaration)
+  std::vector<int> histWriter_;   // history H -> the enabled pass writing X's last version
+  std::vector<int> keptHistory_;  // source X -> its history H
+  std::vector<int> keptFor_;      // pass -> the history H it runs for alone (it feeds only the next frame)
+  uint32_t historyCount_ = 0;     // resources declaring "history_of"
   int outputWriter_ = -1;
   int outputVer_ = -1;  // the version "output" names
   bool cyclic_ = false;

@@ -83,6 +83,32 @@ void Compiler::reportCycles(const std::vector<uint32_t>& indeg) {
   }
 }
 
+// A pass that runs and reads a history H of X needs X written in this frame,
+// for the next: the writer of X's last version is kept (with what it reads)
+// even when nothing else in the frame reads X. A second phase after the
+// frame's own culling, so that the passes kept only for the next frame are
+// known (keptFor_, their reason). History reads of culled passes keep nothing.
+void Compiler::keepHistorySources(std::vector<uint32_t>& stack) {
+  keptFor_.assign(nPass_, -1);
+  auto mark = [&](int p, int h) {
+    if (enabled(p) && !needed_[p]) {
+      needed_[p] = 1;
+      keptFor_[p] = h;
+      stack.push_back(static_cast<uint32_t>(p));
+    }
+  };
+  for (uint32_t p = 0; p < nPass_; ++p)
+    if (needed_[p]) stack.push_back(p);
+  while (!stack.empty()) {
+    const uint32_t p = stack.back();
+    stack.pop_back();
+    for (uint32_t f = useBegin_[p]; f < useBegin_[p + 1]; ++f) {
+      if (const int w = historyWriterRead(f); w >= 0) mark(w, u_[f].res);
+      mark(u_[f].rawFrom, keptFor_[p]);
+    }
+  }
+}
+
 void Compiler::cull() {
   needed_.assign(nPass_, 0);
   std::vector<uint32_t> stack;
@@ -112,6 +138,7 @@ void Compiler::cull() {
     stack.pop_back();
     for (uint32_t f = useBegin_[p]; f < useBegin_[p + 1]; ++f) mark(u_[f].rawFrom);
   }
+  if (historyCount_ > 0) keepHistorySources(stack);
   plan_.order.reserve(topo_.size());
   for (uint32_t p : topo_)
     if (needed_[p]) plan_.order.push_back(PassIndex(p));

@@ -35,7 +35,9 @@ void Compiler::resources() {
     resName_[r] = rd.name;
     rs.kind = rd.kind;
     rs.imported = rd.imported;
-    rs.hasContent = rd.imported && rd.importedHasContent;
+    // A history resource's version 0 (the previous frame) is readable too,
+    // even when its declaration is wrong (no second error at its readers).
+    rs.hasContent = (rd.imported && rd.importedHasContent) || !rd.historyOf.empty();
     if (rd.name.empty()) {
       diag(DiagCode::invalid_resource, "resource #" + std::to_string(r) + " has an empty name", {}, {}, {},
            rd.where);

@@ -24,6 +24,8 @@ std::string_view diagCodeName(DiagCode c) {
     case DiagCode::access_format_mismatch: return "access_format_mismatch";
     case DiagCode::invalid_output: return "invalid_output";
     case DiagCode::output_size: return "output_size";
+    case DiagCode::history_error:
+      return "history_error";
     case DiagCode::json_syntax: return "json_syntax";
     case DiagCode::file_not_found: return "file_not_found";
     case DiagCode::config_schema: return "config_schema";

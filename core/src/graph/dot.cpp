@@ -76,6 +76,7 @@ std::string toDot(const GraphDesc& desc, const Plan& plan) {
         label += "\n(imported)";
         attrs += ", peripheries=2";
       }
+      if (r->historyOf.valid()) label += "\n(history of " + plan.resource(r->historyOf).name + ")";
       if (r->physical.valid()) {
         label += "\nphys #" + std::to_string(r->physical.value());
         attrs += ", style=filled, fillcolor=\"";
@@ -123,6 +124,16 @@ std::string toDot(const GraphDesc& desc, const Plan& plan) {
         out += attrs(u.slot) + ";\n";
       }
     }
+  }
+  // A history holds its source's last version of the previous frame: the
+  // executor copies it after the frame, so the edge crosses into the next one.
+  for (const PlannedResource& r : plan.resources) {
+    if (!r.history.valid() || r.versions.empty()) continue;
+    const PlannedResource& h = plan.resource(r.history);
+    auto from = node.find(r.versions.back()), to = node.find(h.name);
+    if (from == node.end() || to == node.end()) continue;
+    out += "  v" + std::to_string(from->second) + " -> v" + std::to_string(to->second) +
+           " [style=dashed, color=\"#1f78b4\", fontcolor=\"#1f78b4\", constraint=false, label=\"next frame\"];\n";
   }
   out += "}\n";
   return out;

@@ -73,6 +73,29 @@ std::string checkPlanContract(const Plan& plan) {
     }
   }
 
+  // A live history and its source: linked both ways, each alone on a
+  // physical of its own (the executor copies one into the other after the
+  // frame), both alive for the whole frame.
+  for (uint32_t r = 0; r < plan.resources.size(); ++r) {
+    const ResourceIndex ri(r);
+    const PlannedResource& pr = plan.resource(ri);
+    if (!pr.history.valid()) continue;
+    if (!inRange(pr.history, plan.resources.size()) || plan.resource(pr.history).historyOf != ri)
+      return resourceName(ri) + " and its history are not linked both ways";
+    for (ResourceIndex x : {ri, pr.history}) {
+      const PlannedResource& xr = plan.resource(x);
+      if (!xr.physical.valid() || plan.physicalTexture(xr.physical).resources.size() != 1)
+        return resourceName(x) + " keeps a history but does not own its physical";
+      if (xr.firstPass != StepIndex(0) || xr.lastPass != StepIndex(static_cast<uint32_t>(plan.order.size() - 1)))
+        return resourceName(x) + " keeps a history but does not live for the whole frame";
+    }
+  }
+  for (uint32_t r = 0; r < plan.resources.size(); ++r) {
+    const ResourceIndex of = plan.resources[r].historyOf;
+    if (of.valid() && (!inRange(of, plan.resources.size()) || plan.resource(of).history != ResourceIndex(r)))
+      return resourceName(ResourceIndex(r)) + " is a history whose source does not name it";
+  }
+
   if (!inRange(plan.outputResource, plan.resources.size())) return "no output resource";
   const PlannedResource& out = plan.resource(plan.outputResource);
   if (out.kind != ResourceKind::texture || !used[plan.outputResource.value()])

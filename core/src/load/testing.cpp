@@ -334,6 +334,8 @@ std::string CompiledPipeline::describeResource(std::string_view name) const {
   if (r->name != name) out += " (version " + q(name) + ")";
   out += r->kind == ResourceKind::buffer ? ", buffer" : ", " + extentText(r->extent);
   if (r->imported) out += ", imported";
+  if (r->historyOf.valid()) out += ", history of " + q(plan_.resource(r->historyOf).name) + " (kept across frames)";
+  if (r->history.valid()) out += ", kept across frames in " + q(plan_.resource(r->history).name);
   const auto l = lifetime(name);
   if (!l) return out + ", unused";
   out += ", used from step " + std::to_string(l->first) + " (" + l->firstPass + ") to step " + std::to_string(l->last) +
@@ -359,6 +361,14 @@ std::string CompiledPipeline::describe() const {
   out += "order: " + join(order(), " -> ") + "\n";
   for (const auto& p : plan_.passes)
     if (p.culled) out += "culled: " + p.name + ": " + p.reason + "\n";
+  for (const auto& p : plan_.passes)  // runs only for the next frame (a history's source)
+    if (!p.culled && !p.reason.empty()) {
+      const std::string_view why = std::string_view(p.reason).substr(p.reason.rfind("kept: ", 0) == 0 ? 6 : 0);
+      out += "kept: " + p.name + ": " + std::string(why) + "\n";
+    }
+  for (const auto& r : plan_.resources)
+    if (r.historyOf.valid())
+      out += "history: " + r.name + " holds the previous frame of " + plan_.resource(r.historyOf).name + "\n";
   for (const auto& t : textures())
     out += "texture #" + std::to_string(t.index) + " " + std::string(formatName(t.format)) + " " +
            extentText(t.extent) + ": " + join(t.resources, ", ") + "\n";

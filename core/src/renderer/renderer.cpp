@@ -258,6 +258,12 @@ void Renderer::setCamera(const Camera& camera) {
 
 const Camera& Renderer::camera() const { return impl_->camera; }
 
+// A rebuild pending (new scene, size or pipeline) makes a new executor,
+// which starts without history on its own.
+void Renderer::cameraCut() {
+  if (impl_->executor) impl_->executor->cameraCut();
+}
+
 void Renderer::setSize(Extent size) {
   if (size.width == 0 || size.height == 0)
     throw RuntimeError("Renderer::setSize: cannot render at " + std::to_string(size.width) + "x" +

@@ -1,4 +1,4 @@
-// Procedural scenes: the LearnOpenGL deferred-shading demo and a many-lights field.
+// Procedural scenes: the LearnOpenGL deferred-shading demo, a many-lights field and thin geometry.
 #include <algorithm>
 #include <cmath>
 
@@ -242,6 +242,86 @@ Scene makeManyLightsScene(int n, uint32_t seed) {
   s.camera.fovY = 45.0f;
   s.camera.near = 0.1f;
   s.camera.far = side * 3.0f;
+  s.hasCamera = true;
+  return s;
+}
+
+// ---------------------------------------------------------------- thin geometry
+
+// Edges that alias (the bench's aa axis): at 640x360 the fence posts are
+// 2-3 pixels wide, the wires and the far grid's bars a pixel or less, so
+// every sample pattern shows in them. Flat colours only (no textures), so
+// what differs between anti-aliasing methods is geometry edges, not texture
+// filtering. Deterministic: no PRNG.
+Scene makeThinScene() {
+  Scene s;
+  s.source = "thin";
+  s.meshes.push_back(makeCube(1.0f));                 // mesh 0: scaled into posts, wires and bars
+  s.meshes.push_back(makePlane(10.0f, 14.0f, 1.0f));  // mesh 1: the floor, 20 x 28
+  auto material = [&](const std::string& name, glm::vec3 color, float specular) {
+    Material m;
+    m.name = name;
+    m.baseColorFactor = glm::vec4(color, 1.0f);
+    m.metallicFactor = 0.0f;
+    m.roughnessFactor = 0.7f;
+    m.specular = specular;
+    s.materials.push_back(m);
+    return int(s.materials.size()) - 1;
+  };
+  const int floorMat = material("floor", {0.18f, 0.18f, 0.2f}, 0.1f);
+  const int postMat = material("post", {0.85f, 0.7f, 0.5f}, 0.3f);
+  const int wireMat = material("wire", {0.9f, 0.9f, 0.9f}, 0.8f);
+  const int barMat = material("bar", {0.95f, 0.95f, 0.8f}, 0.5f);
+  // A box with these half extents, turned by `degrees` about z, at `centre`.
+  auto box = [&](glm::vec3 centre, glm::vec3 half, float degrees, int mat, const std::string& name) {
+    glm::mat4 xf = glm::translate(glm::mat4(1.0f), centre);
+    xf = glm::rotate(xf, glm::radians(degrees), glm::vec3(0, 0, 1));
+    addDraw(s, 0, mat, glm::scale(xf, half), name);
+  };
+
+  addDraw(s, 1, floorMat, glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, -6.0f)), "floor");  // z in -20..8
+  // The fence: 25 posts 0.03 wide, x in -4..4 at z = 0.
+  for (int i = 0; i < kThinScenePosts; ++i)
+    box({-4.0f + (8.0f / float(kThinScenePosts - 1)) * float(i), 0.6f, 0.0f}, {0.015f, 0.6f, 0.015f}, 0.0f, postMat,
+        "post" + std::to_string(i));
+  // Wires 0.008 thick (under a pixel), each tilted a little so its edge
+  // crosses pixel rows: the stair pattern of a nearly horizontal line.
+  for (int i = 0; i < kThinSceneWires; ++i)
+    box({0.0f, 0.25f + 0.25f * float(i), 0.05f}, {4.0f, 0.004f, 0.004f}, 0.5f + 0.25f * float(i), wireMat,
+        "wire" + std::to_string(i));
+  // The far grid: bars 0.03 wide and 0.02 high on the floor, z in -18..-6
+  // (12 to 24 units from the camera: half a pixel to a pixel wide).
+  const int n = kThinSceneGridBars / 2;
+  for (int i = 0; i < n; ++i) {
+    const float t = float(i) / float(n - 1);
+    box({-6.0f + 12.0f * t, 0.01f, -12.0f}, {0.015f, 0.01f, 6.0f}, 0.0f, barMat, "bar_z" + std::to_string(i));
+    box({0.0f, 0.01f, -18.0f + 12.0f * t}, {6.0f, 0.01f, 0.015f}, 0.0f, barMat, "bar_x" + std::to_string(i));
+  }
+
+  DirectionalLight sun;
+  sun.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, -0.5f));
+  sun.color = glm::vec3(1.0f, 0.97f, 0.9f);
+  sun.intensity = 0.8f;
+  s.directionalLights.push_back(sun);
+  const glm::vec3 lightPos[4] = {{-4.0f, 1.5f, 1.5f}, {0.0f, 3.0f, 4.0f}, {4.0f, 1.5f, 1.5f}, {0.0f, 1.0f, -10.0f}};
+  const glm::vec3 lightColor[4] = {{1.0f, 0.6f, 0.4f}, {0.6f, 0.8f, 1.0f}, {0.7f, 1.0f, 0.6f}, {1.0f, 1.0f, 0.8f}};
+  for (int i = 0; i < 4; ++i) {
+    PointLight l;
+    l.position = lightPos[i];
+    l.color = lightColor[i];
+    l.constant = 1.0f;
+    l.linear = 0.22f;
+    l.quadratic = 0.2f;
+    l.radius = lightRadius(l);
+    s.pointLights.push_back(l);
+  }
+
+  s.ambient = glm::vec3(0.08f);
+  s.camera.position = glm::vec3(0.0f, 1.6f, 5.5f);
+  s.camera.target = glm::vec3(0.0f, 0.5f, -4.0f);
+  s.camera.fovY = 45.0f;
+  s.camera.near = 0.1f;
+  s.camera.far = 60.0f;
   s.hasCamera = true;
   return s;
 }

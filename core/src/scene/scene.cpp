@@ -154,6 +154,13 @@ Camera frameBounds(const Bounds& bounds, float fovY) {
   return cam;
 }
 
+Camera orbitCamera(const Camera& camera, float degrees) {
+  Camera c = camera;
+  const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(degrees), glm::normalize(camera.validUp()));
+  c.position = camera.target + glm::vec3(turn * glm::vec4(camera.position - camera.target, 0.0f));
+  return c;
+}
+
 // ---------------------------------------------------------------- Scene queries
 
 namespace {

@@ -235,8 +235,14 @@ class SceneFileParser {
 
   void addModel(Scene& scene, const json& j, const std::string& ptr) const {
     object(j, ptr);
-    unknownKeys(j, ptr, {"file", "shape", "material", "transform", "name", "size"});
+    unknownKeys(j, ptr, {"file", "shape", "material", "transform", "name", "size", "spin"});
     const glm::mat4 xf = j.contains("transform") ? transform(j["transform"], ptr + "/transform") : glm::mat4(1.0f);
+    // Parsed before the model is loaded, so a bad spin is reported without reading a file.
+    const Primitive::Spin turn = j.contains("spin") ? spin(j["spin"], ptr + "/spin", xf) : Primitive::Spin{};
+    const size_t firstPrimitive = scene.primitives.size();
+    auto animate = [&] {
+      for (size_t i = firstPrimitive; i < scene.primitives.size(); ++i) scene.primitives[i].spin = turn;
+    };
     const bool hasFile = j.contains("file"), hasShape = j.contains("shape");
     if (hasFile == hasShape) fail(ptr, "a model needs exactly one of \"file\" or \"shape\"");
     if (hasFile) {
@@ -255,6 +261,7 @@ class SceneFileParser {
       }
       if (j.contains("material")) overrideMaterials(model, j["material"], ptr + "/material");
       appendScene(scene, std::move(model), xf);
+      animate();
       return;
     }
     const std::string shape = string(j["shape"], ptr + "/shape");
@@ -283,6 +290,30 @@ class SceneFileParser {
     p.bounds = s.meshes[0].bounds;
     s.primitives.push_back(p);
     appendScene(scene, std::move(s), xf);
+    animate();
+  }
+
+  // "spin": {"axis": [x, y, z], "degrees_per_second": s}, about the model's
+  // origin (its transform's translation), axis in world space.
+  Primitive::Spin spin(const json& j, const std::string& ptr, const glm::mat4& xf) const {
+    object(j, ptr);
+    unknownKeys(j, ptr, {"axis", "degrees_per_second"});
+    if (!j.contains("degrees_per_second")) fail(ptr, "a spin needs \"degrees_per_second\"");
+    Primitive::Spin s;
+    s.pivot = glm::vec3(xf[3]);
+    if (j.contains("axis")) {
+      glm::vec3 a = vec3(j["axis"], ptr + "/axis");
+      // Scaled by its largest component first: the length of [1e38, 1e38, 0] overflows a float.
+      const float largest = std::max({std::abs(a.x), std::abs(a.y), std::abs(a.z)});
+      if (!(largest > 0.0f) || !std::isfinite(largest)) fail(ptr + "/axis", "must be a finite, non-zero vector");
+      a /= largest;
+      s.axis = glm::normalize(a);
+    }
+    s.degreesPerSecond = number(j["degrees_per_second"], ptr + "/degrees_per_second");
+    // number() checks the double; one beyond the float range turns infinite here.
+    if (!std::isfinite(s.degreesPerSecond))
+      fail(ptr + "/degrees_per_second", "expected a finite number of degrees per second");
+    return s;
   }
 
   void addLight(Scene& scene, const json& j, const std::string& ptr) const {
@@ -407,6 +438,7 @@ Scene loadSceneFile(const std::string& path) {
 
 Scene loadSceneAny(const std::string& spec) {
   if (spec == "learnopengl") return makeLearnOpenGLScene();
+  if (spec == "thin") return makeThinScene();
   if (spec == "learnopengl:overview") {
     // The chapter's start camera (0, 0, 5) sees 5 of the 9 objects; this one
     // stands back and above so the whole 3x3 grid and its lights are in view.
@@ -440,7 +472,7 @@ Scene loadSceneAny(const std::string& spec) {
     return s;
   }
   throw RuntimeError("unknown scene '" + spec +
-                     "': expected a scene file (.json), a glTF model (.gltf, .glb), 'learnopengl', 'learnopengl:overview' or 'many-lights:N'");
+                     "': expected a scene file (.json), a glTF model (.gltf, .glb), 'learnopengl', 'learnopengl:overview', 'thin' or 'many-lights:N'");
 }
 
 }  // namespace rgraph

@@ -54,6 +54,13 @@ class Executor {
 
   // The camera of the following frames (default: the scene's own camera).
   void setCamera(const Camera& camera);
+  // The next frame follows no previous one (a cut in an edit, a teleport):
+  // history resources are cleared and PassContext::historyValid is false for
+  // it, and motion vectors are zero (previous camera and models = current).
+  void cameraCut();
+  // Frames rendered since this executor was built (resize() keeps counting;
+  // it resets history like a cut).
+  uint64_t frameIndex() const;
 
   // The caller's GL texture for a resource declared imported (rgraph/renderer.h):
   // used from now on instead of a texture the executor creates. Throws
@@ -68,6 +75,8 @@ class Executor {
   // instead of created (a rebuilt pipeline keeps what did not change). Both
   // may hold them until `previous` is destroyed; contents are not kept
   // meaningful (transients are written before they are read each frame).
+  // History resources and their sources are neither offered nor taken: this
+  // executor's history starts cleared and invalid all the same.
   void reuseTextures(const Executor& previous);
 
   // Back to a texture the executor owns (no-op when none was imported).

@@ -6,7 +6,9 @@
 //   vertex attributes  0 position, 1 normal, 2 uv0, 3 tangent (MeshVertex)
 //   uniform block 0    Frame (camera, viewport, ambient, directional light, counts)
 //   storage buffer 0   PointLight[] (bindPointLights)
-//   per draw           u_model, u_normalMatrix, material uniforms u_baseColorFactor,
+//   per draw           u_model, u_normalMatrix, u_prevModel (the previous frame's
+//                      u_model, for motion vectors; equal to u_model without
+//                      motion), material uniforms u_baseColorFactor,
 //                      u_metallicFactor, u_roughnessFactor, u_specular, u_normalScale,
 //                      u_occlusionStrength, u_alphaCutoff, u_alphaMode (0 opaque,
 //                      1 mask, 2 blend), u_emissive, u_hasBaseColorTex,
@@ -17,6 +19,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -28,6 +31,19 @@ namespace rgraph {
 
 struct Scene;
 struct Camera;
+
+// What a frame needs beyond its camera: motion vectors and sub-pixel jitter
+// (the executor keeps it per pipeline; rgraph/jitter.h).
+struct FrameMotion {
+  // The executor's frame number: the jitter phase, and the animation time of
+  // models that move (frame / 60 seconds).
+  uint64_t frame = 0;
+  uint32_t jitterPhases = 0;  // Halton(2,3) phases; 0: no jitter
+  // The previous frame's unjittered view-projection; none on the first frame
+  // and after a camera cut, where motion is zero (previous = current, for the
+  // models' matrices too).
+  std::optional<glm::mat4> prevViewProj;
+};
 
 class GpuScene {
  public:
@@ -43,12 +59,21 @@ class GpuScene {
   // their own; the block is rewritten at the start of each one's frame).
   void updateFrame(Extent viewport);
   void updateFrame(Extent viewport, const Camera& camera);
+  // The same with motion and jitter: fills the previous view-projection, the
+  // jitter and the models' previous matrices (u_prevModel per draw). Returns
+  // this frame's unjittered view-projection (the next frame's prevViewProj).
+  glm::mat4 updateFrame(Extent viewport, const Camera& camera, const FrameMotion& motion);
   // The scene's lights or ambient changed (same Scene object): light buffers
   // are rewritten in place at their next use, grown only past their capacity
   // (a power of two), so that moving, recolouring, adding and removing lights
   // creates no GL object in the common case.
   void lightsChanged() { ++lightsVersion_; }
+  // Binds the Frame block at 0: the frame's jittered camera, or the same
+  // camera without jitter while the executor runs a pass whose
+  // PassDecl::jitter is false (selectJitter).
   void bindFrame() const;
+  // The executor, before each pass: which block bindFrame() binds (and binds it).
+  void selectJitter(bool jittered);
 
   // Point lights with radii solved for `threshold` (LearnOpenGL: 5/256 of the
   // brightest channel) and capped at the distance beyond which the scene has
@@ -101,7 +126,15 @@ class GpuScene {
   std::vector<gl::Sampler> samplers_;  // one per SceneTexture
   gl::Texture white_, flatNormal_;
   gl::Sampler defaultSampler_;
-  gl::Buffer frame_;
+  gl::Buffer frame_;            // the Frame block with jitter (what passes see by default)
+  gl::Buffer frameUnjittered_;  // the same frame without jitter (passes with jitter: false)
+  bool jittered_ = true;        // which of the two bindFrame() binds (selectJitter)
+  // Model matrices of the last updateFrame with motion (empty: draw with each
+  // Primitive::transform, previous = current): this frame's, the previous
+  // frame's, and the frame number they belong to.
+  std::vector<glm::mat4> models_, prevModels_;
+  std::optional<uint64_t> modelsFrame_;
+  glm::mat4 writeFrame(Extent viewport, const Camera& camera, const FrameMotion* motion);
   struct LightBuffer {
     gl::Buffer buffer;
     size_t capacity = 0;  // lights it can hold

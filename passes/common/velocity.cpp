@@ -1,0 +1,32 @@
+#include "rgraph/passes/velocity.h"
+
+#include "rgraph/pass_decl.h"
+
+namespace rgraph::velocity {
+
+SlotDecl slot() {
+  return decl::slot("velocity", Access::color_attachment, false, SlotDecl::Load::never,
+                    "motion vectors in UV units, uv_now - uv_prev, unjittered (0 where nothing was drawn); "
+                    "needs the velocity parameter",
+                    {Format::rg16f, Format::rgba16f, Format::rgba32f});
+}
+
+ParamDecl param() {
+  return decl::param("velocity", ParamType::boolean, false,
+                     "write motion vectors to the 'velocity' output (bind it too)");
+}
+
+bool enabled(const ParamSet& params) { return params.getBool("velocity", false); }
+
+void addDefine(const ParamSet& params, std::vector<std::string>& defines) {
+  if (enabled(params)) defines.push_back("HAS_VELOCITY");
+}
+
+void check(const PassCheckContext& ctx, PassChecks& checks) {
+  const bool wanted = enabled(ctx.params());
+  if (ctx.bound("velocity") == wanted) return;
+  checks.slotError("velocity", wanted ? "\"velocity\": true writes motion vectors: bind the 'velocity' output"
+                                      : "a 'velocity' output needs the pass parameter \"velocity\": true");
+}
+
+}  // namespace rgraph::velocity
