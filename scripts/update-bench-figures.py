@@ -4,6 +4,7 @@
     scripts/update-bench-figures.py build            # timed `rgraph bench --quick` into docs/images/bench
     scripts/update-bench-figures.py build --replot   # no rendering: tables and charts from the committed run
     scripts/update-bench-figures.py build --aa-only  # timed `rgraph bench --quick --only aa`, merged into the run
+    scripts/update-bench-figures.py build --lights-only  # timed `rgraph bench --quick --only lights`, merged
 
 The timed run writes docs/images/bench/{results.csv,results.json,figures.md}
 and the charts; then every `<!-- bench-figures:NAME -->` ...
@@ -36,6 +37,9 @@ def main() -> int:
     ap.add_argument("--replot", action="store_true", help="redraw from the committed results.json, render nothing")
     ap.add_argument("--aa-only", action="store_true",
                     help="rerun only the aa axis and replace its rows in the committed run (the rest is kept)")
+    ap.add_argument("--lights-only", action="store_true",
+                    help="rerun only the light-count axis (with the exact loop at each count) and merge its points "
+                         "into the committed run (the rest is kept)")
     args = ap.parse_args()
     rgraph = pathlib.Path(args.build_dir) / "bin" / "rgraph"
     if not rgraph.exists():
@@ -43,6 +47,10 @@ def main() -> int:
         return 1
     if args.aa_only:
         if merge_aa_run(rgraph) != 0:
+            return 1
+        args.replot = True
+    if args.lights_only:
+        if merge_lights_run(rgraph) != 0:
             return 1
         args.replot = True
     cmd = [str(rgraph), "bench", "--out", str(BENCH_DIR)]
@@ -84,6 +92,61 @@ def merge_aa_run(rgraph: pathlib.Path) -> int:
             csv.writer(f, lineterminator="\n").writerows(rows)
         for ext in ("svg", "png"):
             shutil.copy(pathlib.Path(tmp) / f"aa_ms_vs_error.{ext}", BENCH_DIR)
+    return 0
+
+
+def point_key(p: dict) -> tuple:
+    return (p["method"], p["layout"], round(p["threshold"], 8), p["lights"], p["width"], p["height"])
+
+
+def merge_lights_run(rgraph: pathlib.Path) -> int:
+    """Runs the light-count axis alone (and the exact loop at each count) and merges its points into the
+    committed results.json and results.csv: a point the run already has keeps its other axes and takes the
+    fresh figures; new points are added; the lights checks are replaced."""
+    with tempfile.TemporaryDirectory() as tmp:
+        if subprocess.call([str(rgraph), "bench", "--quick", "--only", "lights", "--out", tmp]) != 0:
+            return 1
+        fresh = json.loads((pathlib.Path(tmp) / "results.json").read_text())
+        run = json.loads((BENCH_DIR / "results.json").read_text())
+        by_key = {point_key(p): i for i, p in enumerate(run["points"])}
+        axes_of = {}
+        for p in fresh["points"]:
+            i = by_key.get(point_key(p))
+            if i is None:
+                run["points"].append(p)
+            else:
+                p["axes"] = run["points"][i]["axes"] + [a for a in p["axes"] if a not in run["points"][i]["axes"]]
+                run["points"][i] = p
+            axes_of[point_key(p)] = ";".join(p["axes"])
+        for name in ("exact_reference_1024", "flat_cost_64_to_1024", "culling_vs_fullscreen_1024"):
+            if name in fresh["checks"]:
+                run["checks"][name] = fresh["checks"][name]
+        (BENCH_DIR / "results.json").write_text(json.dumps(run, indent=2) + "\n")
+        with open(pathlib.Path(tmp) / "results.csv", newline="") as f:
+            fresh_rows = list(csv.reader(f))
+        with open(BENCH_DIR / "results.csv", newline="") as f:
+            rows = [r for r in csv.reader(f) if r]
+        header = fresh_rows[0]
+        col = {name: header.index(name) for name in ("method", "layout", "threshold", "lights", "width", "height")}
+
+        def row_key(r):
+            return (r[col["method"]], r[col["layout"]] or None, round(float(r[col["threshold"]]), 8),
+                    int(r[col["lights"]]), int(r[col["width"]]), int(r[col["height"]]))
+
+        fresh_by_key = {row_key(r): r for r in fresh_rows[1:] if r and r[0] != "aa"}
+        merged = [header]
+        for r in rows[1:]:
+            r = r + [""] * (len(header) - len(r))
+            k = row_key(r) if r[0] != "aa" else None
+            if k in fresh_by_key:
+                r = fresh_by_key.pop(k)
+                r[0] = axes_of[k]
+            merged.append(r)
+        for k, r in fresh_by_key.items():
+            r[0] = axes_of[k]
+            merged.insert(len(merged) - sum(1 for x in merged if x[0] == "aa"), r)
+        with open(BENCH_DIR / "results.csv", "w", newline="") as f:
+            csv.writer(f, lineterminator="\n").writerows(merged)
     return 0
 
 

@@ -151,13 +151,26 @@ struct Point {
   std::vector<std::string> axes;
   Measured m;
   ImageError err;
+  // Against the exact loop at the same light count and size (exactConfig()),
+  // where the sweep has it: what a method loses to the cut-off and to its
+  // G-buffer, measured from the image users compare with.
+  ImageError errExact;
+  bool hasExact = false;
   std::string error;  // non-empty: the point failed (message)
   bool ok() const { return error.empty(); }
 };
 
+// The exact loop at c's light count and size: the fullscreen method, no
+// cut-off, the default layout (axis "lights_exact": the reference time and
+// image at each N).
+Config exactConfig(const Config& c, const Config& def);
+
 // One axis at a time around `def`, plus the method x light-count grid; each
 // configuration once, with every axis it belongs to; cheap points first.
 std::vector<Point> planSweep(const Config& def, const Scenes& scenes, bool quick, bool smoke);
+// Fills errExact/hasExact of every point whose exact loop (exactConfig) is in
+// `points` with an image, from the points' images (Measured::image).
+void compareWithExact(std::vector<Point>& points, const Config& def);
 
 // ---------------------------------------------------------------- the aa axis
 

@@ -31,6 +31,17 @@ void drawCharts(const std::string& dir, const std::vector<Point>& points, const 
       for (const Point* p : ps) s.points.push_back({double(p->cfg.lights), median(p->m.frameMs), ""});
       if (!s.points.empty()) c.series.push_back(std::move(s));
     }
+    // The exact loop (fullscreen, no cut-off) at each N: what the cut-off saves.
+    Series exact;
+    exact.name = "exact loop (no cut-off)";
+    exact.color = 6;
+    exact.dashed = true;
+    for (const auto& p : points)
+      if (p.ok() && std::count(p.axes.begin(), p.axes.end(), "lights_exact"))
+        exact.points.push_back({double(p.cfg.lights), median(p.m.frameMs), ""});
+    std::sort(exact.points.begin(), exact.points.end(),
+              [](const chart::Point& a, const chart::Point& b) { return a.x < b.x; });
+    if (!exact.points.empty()) c.series.push_back(std::move(exact));
     writeChart(c, dir, "frame_ms_vs_lights");
   }
   // 2. frame ms against error at the default scene and resolution, Pareto front marked.

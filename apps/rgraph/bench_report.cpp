@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 
 #include "bench.h"
 #include "rgraph/error.h"
@@ -21,6 +22,12 @@ std::string csvEscape(const std::string& s) {
   return o + "\"";
 }
 
+std::string fmtMs(double ms) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f ms", ms);
+  return buf;
+}
+
 std::string joined(const std::vector<std::string>& v, const char* sep) {
   std::string s;
   for (size_t i = 0; i < v.size(); ++i) s += (i ? sep : "") + v[i];
@@ -35,7 +42,7 @@ void writeCsv(const std::string& path, const std::vector<Point>& points, const s
   f << "axes,method,layout,threshold,lights,width,height,frames,median_ms,min_"
        "ms,max_ms,psnr_db,max_abs_error,"
        "share_over_1,gbuffer_bytes_per_pixel,gbuffer_bytes_per_pixel_adapted,"
-       "allocated_bytes,naive_bytes,status,scene,aa,edge_psnr_db,edge_pixels\n";
+       "allocated_bytes,naive_bytes,status,scene,aa,edge_psnr_db,edge_pixels,psnr_exact_db,max_abs_error_exact\n";
   char buf[64];
   auto n = [&](double v, const char* fmt = "%.4f") {
     std::snprintf(buf, sizeof buf, fmt, v);
@@ -50,7 +57,7 @@ void writeCsv(const std::string& path, const std::vector<Point>& points, const s
       << fr.size() << "," << n(median(fr)) << "," << n(mn) << "," << n(mx) << "," << n(p.err.psnr, "%.3f") << ","
       << p.err.maxAbs << "," << n(p.err.over1, "%.6f") << "," << p.m.gbufferBytes << "," << p.m.gbufferBytesAdapted
       << "," << p.m.allocatedBytes << "," << p.m.naiveBytes << "," << csvEscape(p.ok() ? "ok" : "error: " + p.error)
-      << ",,,,\n";
+      << ",,,,," << (p.hasExact ? n(p.errExact.psnr, "%.3f") + "," + std::to_string(p.errExact.maxAbs) : ",") << "\n";
   }
   // aa rows: the pipeline file in the method column, the scene's point lights
   // unknown here (empty), no G-buffer figures.
@@ -61,7 +68,7 @@ void writeCsv(const std::string& path, const std::vector<Point>& points, const s
     f << "aa," << csvEscape(r.pipeline) << ",,,," << r.size.width << "," << r.size.height << "," << fr.size() << ","
       << n(median(fr)) << "," << n(mn) << "," << n(mx) << "," << n(r.psnr, "%.3f") << "," << r.maxAbs << ",,,,,,"
       << csvEscape(r.ok() ? "ok" : "error: " + r.error) << "," << csvEscape(r.scene) << "," << r.aa << ","
-      << n(r.edgePsnr, "%.3f") << "," << r.edgePixels << "\n";
+      << n(r.edgePsnr, "%.3f") << "," << r.edgePixels << ",,\n";
   }
   if (!f) throw RuntimeError("cannot write '" + path + "'");
 }
@@ -91,6 +98,7 @@ json pointJson(const Point& p) {
             {"allocated_bytes", p.m.allocatedBytes},
             {"naive_bytes", p.m.naiveBytes},
             {"gl_errors", p.m.glErrors}};
+  if (p.hasExact) j["psnr_exact_db"] = p.errExact.psnr, j["max_abs_error_exact"] = p.errExact.maxAbs;
   if (!p.ok()) j["error"] = p.error;
   return j;
 }
@@ -122,6 +130,11 @@ Point pointFromJson(const json& pj, const Config& def) {
   p.err.psnr = pj.at("psnr_db");
   p.err.maxAbs = pj.at("max_abs_error");
   p.err.over1 = pj.at("share_over_1");
+  if (pj.contains("psnr_exact_db")) {
+    p.hasExact = true;
+    p.errExact.psnr = pj.at("psnr_exact_db");
+    p.errExact.maxAbs = pj.at("max_abs_error_exact");
+  }
   if (pj.contains("error")) p.error = pj.at("error");
   return p;
 }
@@ -160,10 +173,70 @@ const Point* findPoint(const std::vector<Point>& points, const Config& c) {
 
 bool onAxis(const Point& p, const char* axis) { return std::count(p.axes.begin(), p.axes.end(), axis) > 0; }
 
+// At 1,024 lights: each method against the exact loop (threshold 0) at the
+// same N, in time and in PSNR against its image; passes when a method at
+// >= 35 dB runs >= 10x faster than the exact loop (issue 14's must-show).
+void exactReferenceCheck(const std::vector<Point>& points, const Config& def, json& checks,
+                         std::vector<std::string>& summary) {
+  Config at = def;
+  at.lights = 1024;
+  at.size = {640, 360};
+  const Point* exact = findPoint(points, exactConfig(at, def));
+  if (!exact || exact->m.frameMs.empty()) return;
+  const double exactMs = median(exact->m.frameMs);
+  json methods = json::object();
+  std::string line = "1,024 lights " + sizeText(at.size) + ": exact loop (no cut-off) " + fmtMs(exactMs) + ";";
+  bool pass = false;
+  for (const auto& m : kMethods) {
+    Config c = at;
+    c.method = m;
+    const Point* p = findPoint(points, c);
+    if (!p || !p->hasExact || p->m.frameMs.empty()) continue;
+    const double ms = median(p->m.frameMs), speedup = exactMs / ms;
+    methods[m] = {{"ms", ms}, {"psnr_exact_db", p->errExact.psnr}, {"speedup", speedup}};
+    pass = pass || (p->errExact.psnr >= 35.0 && speedup >= 10.0);
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s %s %.1fx faster at %.1f dB", methods.size() > 1 ? "," : "", m.c_str(), speedup,
+                  p->errExact.psnr);
+    line += buf;
+  }
+  checks["exact_reference_1024"] = {{"lights", 1024}, {"exact_ms", exactMs}, {"methods", methods}, {"pass", pass}};
+  summary.push_back(line + (pass ? " (>= 35 dB at >= 10x: yes)" : " (>= 35 dB at >= 10x: NO)"));
+}
+
+// Cost flat in lights at constant overlap: each culling method's median at
+// 1,024 lights over its median at 64, same run (the issue's target: <= 1.2).
+void flatCostCheck(const std::vector<Point>& points, const Config& def, json& checks,
+                   std::vector<std::string>& summary) {
+  std::string line = "median at 1,024 / at 64 lights " + sizeText(def.size) + ":";
+  json j = json::object();
+  for (const char* m : {"light_volumes", "tiled"}) {
+    Config c = def;
+    c.method = m;
+    c.lights = 64;
+    const Point* lo = findPoint(points, c);
+    c.lights = 1024;
+    const Point* hi = findPoint(points, c);
+    if (!lo || !hi || lo->m.frameMs.empty() || hi->m.frameMs.empty()) continue;
+    const double ratio = median(hi->m.frameMs) / median(lo->m.frameMs);
+    j[m] = {
+        {"ms_64", median(lo->m.frameMs)}, {"ms_1024", median(hi->m.frameMs)}, {"ratio", ratio}, {"pass", ratio <= 1.2}};
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s %s %.1f / %.1f ms = %.2fx%s", j.size() > 1 ? "," : "", m, median(hi->m.frameMs),
+                  median(lo->m.frameMs), ratio, ratio <= 1.2 ? " (<= 1.2: yes)" : " (<= 1.2: NO)");
+    line += buf;
+  }
+  if (j.empty()) return;
+  checks["flat_cost_64_to_1024"] = j;
+  summary.push_back(line);
+}
+
 }  // namespace
 
 json headlineChecks(const std::vector<Point>& points, const Config& def, std::vector<std::string>& summary) {
   json checks = json::object();
+  exactReferenceCheck(points, def, checks, summary);
+  flatCostCheck(points, def, checks, summary);
   char line[512];
   const bool timed = std::any_of(points.begin(), points.end(), [](const Point& p) { return !p.m.frameMs.empty(); });
   {
@@ -276,11 +349,13 @@ std::string row(const std::vector<std::string>& cells) {
   return s + "\n";
 }
 
-// Light count x method at the default layout, cut-off and size.
-std::string lightsTable(const std::vector<Point>& points, const Config& def) {
+// Light count (the counts of points on `axis`) x method at the default
+// layout, cut-off and size; `cell` gives a point's cell ("-" where none).
+std::string lightsGrid(const std::vector<Point>& points, const Config& def, const char* axis,
+                       const std::function<std::string(const Point*)>& cell) {
   std::vector<int> counts;
   for (const auto& p : points)
-    if (onAxis(p, "lights") && !std::count(counts.begin(), counts.end(), p.cfg.lights)) counts.push_back(p.cfg.lights);
+    if (onAxis(p, axis) && !std::count(counts.begin(), counts.end(), p.cfg.lights)) counts.push_back(p.cfg.lights);
   std::sort(counts.begin(), counts.end());
   std::vector<std::string> head = {"lights"}, rule = {"---:"};
   for (const auto& m : kMethods) head.push_back(methodTitle(m)), rule.push_back("---:");
@@ -291,12 +366,25 @@ std::string lightsTable(const std::vector<Point>& points, const Config& def) {
       Config c = def;
       c.method = m;
       c.lights = n;
-      const Point* p = findPoint(points, c);
-      cells.push_back(p ? psnrText(p->err.psnr) + ", " + errText(p->err.maxAbs) : "-");
+      cells.push_back(cell(findPoint(points, c)));
     }
     t += row(cells);
   }
   return t;
+}
+
+// Against the reference (forward_lit, no cut-off).
+std::string lightsTable(const std::vector<Point>& points, const Config& def) {
+  return lightsGrid(points, def, "lights", [](const Point* p) {
+    return p ? psnrText(p->err.psnr) + ", " + errText(p->err.maxAbs) : std::string("-");
+  });
+}
+
+// Against the exact loop at the same N (lights_exact) instead of forward_lit.
+std::string lightsExactTable(const std::vector<Point>& points, const Config& def) {
+  return lightsGrid(points, def, "lights_exact", [](const Point* p) {
+    return p && p->hasExact ? psnrText(p->errExact.psnr) + ", " + errText(p->errExact.maxAbs) : std::string("-");
+  });
 }
 
 // One row per layout: bytes, and the error with and without the cut-off.
@@ -416,6 +504,7 @@ std::map<std::string, std::string> figureTables(const std::vector<Point>& points
   if (!points.empty())
     tables = {{"lights", lightsTable(points, def)},
               {"layouts", layoutsTable(points, def)},
+              {"lights_exact", lightsExactTable(points, def)},
               {"thresholds", thresholdsTable(points, def)},
               {"points", pointsTable(points)}};
   if (!shipped.empty()) tables["shipped"] = shippedTable(shipped);

@@ -246,7 +246,10 @@ std::vector<Point> planSweep(const Config& def, const Scenes& scenes, bool quick
       return;
     }
     byKey[c.key()] = points.size();
-    points.push_back(Point{c, {axis}, {}, {}, {}});
+    Point p;
+    p.cfg = c;
+    p.axes = {axis};
+    points.push_back(std::move(p));
   };
   if (smoke) {
     Config a = def;
@@ -262,6 +265,13 @@ std::vector<Point> planSweep(const Config& def, const Scenes& scenes, bool quick
         c.lights = n;
         add(c, "lights");
       }
+    // The exact loop at every light count: the reference time at each N,
+    // and the image each method's psnr_exact_db is measured against.
+    for (int n : scenes.lightCounts(quick)) {
+      Config c = def;
+      c.lights = n;
+      add(exactConfig(c, def), "lights_exact");
+    }
     // Layouts: at the default point, and in the fullscreen loop with no
     // cut-off, where the layout is the only difference from the reference.
     for (const auto& l : kLayouts) {
@@ -298,6 +308,27 @@ std::vector<Point> planSweep(const Config& def, const Scenes& scenes, bool quick
     return a.cfg.lights < b.cfg.lights;
   });
   return points;
+}
+
+Config exactConfig(const Config& c, const Config& def) {
+  Config e = def;
+  e.method = "fullscreen";
+  e.threshold = 0.0;
+  e.lights = c.lights;
+  e.size = c.size;
+  return e;
+}
+
+void compareWithExact(std::vector<Point>& points, const Config& def) {
+  std::map<std::string, const Point*> byKey;
+  for (const auto& p : points)
+    if (p.ok() && !p.m.image.empty()) byKey[p.cfg.key()] = &p;
+  for (auto& p : points) {
+    auto it = byKey.find(exactConfig(p.cfg, def).key());
+    if (!p.ok() || p.m.image.empty() || it == byKey.end()) continue;
+    p.errExact = compareImages(p.m.image, it->second->m.image);
+    p.hasExact = true;
+  }
 }
 
 }  // namespace rgraph::cli::bench

@@ -192,8 +192,8 @@ std::string groupOf(const Config& c) { return sizeText(c.size) + "/" + std::to_s
 
 // Renders every point once per round (and each group's reference once);
 // returns the number of points that failed.
-size_t runSweep(std::vector<Point>& points, Scenes& scenes, const RunPlan& plan, ShaderLibrary& shaders,
-                GlContext& context) {
+size_t runSweep(std::vector<Point>& points, Scenes& scenes, const RunPlan& plan, const Config& def,
+                ShaderLibrary& shaders, GlContext& context) {
   auto weightOf = [&](const Config& c, const FrameBudget& b) {
     const double ms = estimateFrameMs(c);
     const int frames = b.warm + std::clamp(static_cast<int>(b.budgetMs / std::max(ms, 1.0)), b.minFrames, b.maxFrames);
@@ -240,9 +240,7 @@ size_t runSweep(std::vector<Point>& points, Scenes& scenes, const RunPlan& plan,
         const double frameMs = median(m.frameMs);
         if (round == 0) {
           p.m = std::move(m);
-          p.err = compareImages(p.m.image, references[group]);
-          p.m.image.clear();
-          p.m.image.shrink_to_fit();
+          p.err = compareImages(p.m.image, references[group]);  // the image is kept for compareWithExact()
         } else {
           p.m.frameMs.insert(p.m.frameMs.end(), m.frameMs.begin(), m.frameMs.end());
           for (const auto& [pass, ms] : m.passMs) {
@@ -262,12 +260,24 @@ size_t runSweep(std::vector<Point>& points, Scenes& scenes, const RunPlan& plan,
       }
       progress.end(weightOf(p.cfg, plan.budget), what, result);
     }
+    if (round == 0) {
+      compareWithExact(points, def);
+      for (auto& p : points) std::vector<uint8_t>().swap(p.m.image);
+    }
   }
   progress.finish();
   return failures;
 }
 
-const std::vector<std::string> kAxes = {"lights", "layout", "layout_exact", "threshold", "resolution", "aa"};
+const std::vector<std::string> kAxes = {"lights",    "lights_exact", "layout", "layout_exact",
+                                        "threshold", "resolution",   "aa"};
+
+// --only lights keeps the exact loop at each N too (the methods' psnr_exact_db
+// and the reference time need it).
+bool keptByOnly(const Point& p, const std::string& only) {
+  auto on = [&](const char* axis) { return std::count(p.axes.begin(), p.axes.end(), axis) > 0; };
+  return on(only.c_str()) || (only == "lights" && on("lights_exact"));
+}
 
 // One line per scene: the methods' edge PSNR, and whether taa > fxaa > none
 // by 2 dB each (the must-show), into results.json "checks".
@@ -325,10 +335,9 @@ int runBench(const BenchOptions& options) {
     def.lights = scenes.defaultLights();
     if (options.smoke) def.size = {64, 64};
     std::vector<Point> points = planSweep(def, scenes, options.quick, options.smoke);
-    if (!options.only.empty())
-      std::erase_if(points, [&](const Point& p) { return !std::count(p.axes.begin(), p.axes.end(), options.only); });
+    if (!options.only.empty()) std::erase_if(points, [&](const Point& p) { return !keptByOnly(p, options.only); });
     const RunPlan plan = runPlan(options);
-    size_t failures = runSweep(points, scenes, plan, shaders, *context);
+    size_t failures = runSweep(points, scenes, plan, def, shaders, *context);
     const std::string pipelineDir = std::filesystem::path(defaultPipelinePath()).parent_path().string();
     const AaPlan aaSettings = aaPlan(options.quick);
     std::vector<AaRow> aa;

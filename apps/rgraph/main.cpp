@@ -148,8 +148,8 @@ CLI::App* addBench(CLI::App& app, Options& o) {
                   "scene of the lighting axes (default: many-lights, N swept); a file's first N lights. The aa "
                   "axis always uses learnopengl:overview and thin");
   cmd->add_option("--only", b.only,
-                  "run one axis only: lights, layout, layout_exact, threshold, resolution or aa "
-                  "(anti-aliasing against a 16-sample reference)")
+                  "run one axis only: lights (with lights_exact), lights_exact (the exact loop at each light count), "
+                  "layout, layout_exact, threshold, resolution or aa (anti-aliasing against a 16-sample reference)")
       ->type_name("AXIS");
   cmd->add_flag("--figures-only", b.figuresOnly,
                 "render each point once, untimed: errors and bytes only (the figures docs quote), no charts");

@@ -1,5 +1,7 @@
 #include "rgraph/passes/lighting_options.h"
 
+#include <GL/glcorearb.h>
+
 #include "rgraph/error.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/passes/gbuffer_layout.h"
@@ -10,6 +12,22 @@ namespace rgraph::lighting {
 const std::vector<Format>& hdrFormats() {
   static const std::vector<Format> formats = {Format::rgba16f, Format::rgba32f, Format::r11g11b10f};
   return formats;
+}
+
+const char* hdrImageQualifier(Format f) {
+  switch (f) {
+    case Format::rgba32f: return "rgba32f";
+    case Format::r11g11b10f: return "r11f_g11f_b10f";
+    default: return "rgba16f";
+  }
+}
+
+uint32_t hdrImageFormat(Format f) {
+  switch (f) {
+    case Format::rgba32f: return GL_RGBA32F;
+    case Format::r11g11b10f: return GL_R11F_G11F_B10F;
+    default: return GL_RGBA16F;
+  }
 }
 
 std::vector<ParamDecl> params(double defaultThreshold, bool allowNoCutoff) {
@@ -126,6 +144,22 @@ PassTypeDesc gbufferReader(std::string name, std::string description) {
   d.check = checkGBuffer;
   d.needsScene = true;
   d.adapt = adaptGBuffer;
+  return d;
+}
+
+PassTypeDesc computeLightingPass(std::string name, std::string description) {
+  using namespace rgraph::decl;
+  PassTypeDesc d = gbufferReader(std::move(name), std::move(description));
+  d.slots.push_back(slot("color", Access::storage_write, true, SlotDecl::Load::optional,
+                         "HDR lighting target written with image stores; when loaded, the lights are added to it; "
+                         "background pixels keep its clear value",
+                         hdrFormats()));
+  d.params = params();
+  d.params.push_back(layoutParam());
+  d.params.push_back(param("point_lights", ParamType::boolean, true, "shade the point lights"));
+  d.params.push_back(param("ambient_and_sun", ParamType::boolean, true,
+                           "also add ambient and the directional light (false when another pass adds them)"));
+  d.adapt = adaptPointLightShading;
   return d;
 }
 

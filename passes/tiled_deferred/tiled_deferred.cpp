@@ -1,7 +1,8 @@
 // tiled_deferred: deferred lighting in one compute pass. Each 16x16 tile of
 // the G-buffer finds its depth bounds, culls the point lights against its
-// frustum into a shared-memory list, and shades its pixels with that list
-// only (ambient and the directional light too, unless another pass adds
+// frustum into a shared-memory list, refines that list per 8x8 quarter
+// (shaders/tiled_deferred.comp says why), and shades its pixels with their
+// quarter's list only (ambient and the directional light too, unless another pass adds
 // them), storing the HDR result with image stores. Same lighting maths and
 // defines as deferred_lighting and light_volumes (rgraph/passes/lighting_options.h).
 #include <GL/glcorearb.h>
@@ -27,12 +28,13 @@ const char* imageFormatQualifier(Format f) {
   }
 }
 
-// Shared memory: the list (4 bytes a light) plus three counters, within the
-// 32 KiB every GL 4.5 device has (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE's
+// Shared memory: the tile's list and its four quarters' lists (each a subset
+// of the tile's: 5 x 4 bytes a light) plus the counters and depth bounds,
+// within the 32 KiB every GL 4.5 device has (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE's
 // minimum), so that the program does not depend on the device and validate
 // checks the one that runs.
 int maxTileLights(const ParamSet& p) {
-  constexpr int64_t kFit = (32768 - 64) / 4;
+  constexpr int64_t kFit = (32768 - 128) / 20;
   return static_cast<int>(std::clamp<int64_t>(std::min(p.getInt("max_tile_lights", 1024), kFit), 1, 65536));
 }
 

@@ -3,9 +3,11 @@
 // chart module it draws with.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -91,6 +93,59 @@ TEST(BenchCli, SmokeSweepWritesResultsAndCharts) {
   ASSERT_EQ(re.exitCode, 0) << re.out;
   for (const char* name : {"frame_ms_vs_lights", "frame_ms_vs_error", "bytes_vs_error"})
     EXPECT_EQ(slurp(again / (std::string(name) + ".svg")), slurp(dir / (std::string(name) + ".svg"))) << name;
+  fs::remove_all(dir.parent_path());
+}
+
+// The exact loop (fullscreen, no cut-off) at every light count, and every
+// method's error against it at the same count (--only lights keeps both;
+// untimed: only the deterministic figures are checked).
+TEST(BenchCli, LightsAxisHasTheExactLoopAtEveryCount) {
+  const fs::path dir = freshDir("exact");
+  const RunResult r = run("bench --quick --figures-only --only lights --scene learnopengl --out " + dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(slurp(dir / "results.json"));
+  std::map<int, nlohmann::json> exact;                      // lights -> the exact row
+  std::map<int, std::map<std::string, nlohmann::json>> at;  // lights -> method -> row at the default cut-off
+  for (const auto& p : j.at("points")) {
+    const auto axes = p.at("axes").get<std::vector<std::string>>();
+    const bool isExact = std::count(axes.begin(), axes.end(), "lights_exact") > 0;
+    if (isExact) {
+      EXPECT_EQ(p.at("method"), "fullscreen");
+      EXPECT_EQ(p.at("threshold").get<double>(), 0.0);
+      exact[p.at("lights").get<int>()] = p;
+    } else {
+      EXPECT_NE(std::count(axes.begin(), axes.end(), "lights"), 0) << p.dump();
+      at[p.at("lights").get<int>()][p.at("method").get<std::string>()] = p;
+    }
+  }
+  ASSERT_EQ(exact.size(), 4u) << "learnopengl has 32 lights: 1, 4, 16, 32";
+  ASSERT_EQ(at.size(), exact.size());
+  for (const auto& [n, e] : exact) {
+    SCOPED_TRACE("lights " + std::to_string(n));
+    // Against itself, and against forward_lit (the G-buffer only): close.
+    EXPECT_EQ(e.at("psnr_exact_db").get<double>(), 100.0);
+    EXPECT_EQ(e.at("max_abs_error_exact").get<int>(), 0);
+    EXPECT_GT(e.at("psnr_db").get<double>(), 45.0);
+    ASSERT_EQ(at[n].size(), 5u);
+    for (const auto& [method, p] : at[n]) {
+      SCOPED_TRACE(method);
+      ASSERT_TRUE(p.contains("psnr_exact_db")) << p.dump();
+      const double db = p.at("psnr_exact_db").get<double>();
+      EXPECT_GT(db, 20.0);              // a lit image of the same scene, not black or another count's
+      if (n >= 4) EXPECT_LT(db, 60.0);  // the cut-off drops light the exact loop keeps
+    }
+    // The deferred culling methods shade what the fullscreen loop shades at the
+    // same cut-off (within 1/255), so they sit at the same distance from it.
+    EXPECT_NEAR(at[n]["tiled"].at("psnr_exact_db").get<double>(), at[n]["fullscreen"].at("psnr_exact_db").get<double>(),
+                0.5);
+  }
+  // The CSV's columns and the figures table docs/performance.md quotes.
+  const std::string csv = slurp(dir / "results.csv");
+  EXPECT_NE(csv.substr(0, csv.find('\n')).find("psnr_exact_db,max_abs_error_exact"), std::string::npos);
+  const std::string figures = slurp(dir / "figures.md");
+  const size_t block = figures.find("<!-- bench-figures:lights_exact -->");
+  ASSERT_NE(block, std::string::npos) << figures;
+  EXPECT_NE(figures.find("| 32 | ", block), std::string::npos) << figures;
   fs::remove_all(dir.parent_path());
 }
 

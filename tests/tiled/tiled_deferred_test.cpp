@@ -38,6 +38,7 @@ struct Options {
   double threshold = 5.0 / 256.0;
   std::string lighting = "tiled";  // tiled | fullscreen | ambient+tiled
   int maxTileLights = 1024;
+  int tileSize = 16;
 };
 
 // A G-buffer of the layout, lit by one method, into an rgba32f HDR target.
@@ -71,6 +72,7 @@ PipelineConfig pipeline(const Options& o) {
   } else if (o.lighting == "tiled") {
     json p = params;
     p["max_tile_lights"] = o.maxTileLights;
+    p["tile_size"] = o.tileSize;
     passes.push_back({{"name", "lighting"}, {"type", "tiled_deferred"}, {"params", p}, {"inputs", gIn},
                       {"outputs", {{"color", "hdr"}}}});
   } else {
@@ -174,6 +176,14 @@ class TiledDeferred : public ::testing::Test {
 TEST_F(TiledDeferred, MatchesFullscreenWithPartialTiles) {
   const Scene scene = makeManyLightsScene(64);
   expectSame(Options{}, scene, {150, 90});  // 10 x 6 tiles, the last column and row partial
+}
+
+// Many small lights (the per-quarter lists and depth slices cull hardest) and
+// an odd tile size (quarters of 6 and 7 pixels).
+TEST_F(TiledDeferred, MatchesFullscreenWithManyLightsAndAnOddTileSize) {
+  Options o;
+  o.tileSize = 13;
+  expectSame(o, makeManyLightsScene(1024), {150, 90});
 }
 
 TEST_F(TiledDeferred, MatchesFullscreenWithTheCompactLayout) {

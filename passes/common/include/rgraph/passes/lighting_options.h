@@ -14,6 +14,10 @@ namespace rgraph::lighting {
 
 // The formats an HDR lighting target may have (rgba16f, rgba32f, r11g11b10f).
 const std::vector<Format>& hdrFormats();
+// For compute passes storing into an HDR target: the GLSL image format
+// qualifier (rgba16f, rgba32f, r11f_g11f_b10f) and the GL internal format.
+const char* hdrImageQualifier(Format f);
+uint32_t hdrImageFormat(Format f);
 // model, attenuation, threshold parameter declarations.
 std::vector<ParamDecl> params(double defaultThreshold = 5.0 / 256.0, bool allowNoCutoff = true);
 // The G-buffer layout parameter of a reader: the layouts of gbuffer::layouts().
@@ -54,6 +58,11 @@ void checkGBuffer(const PassCheckContext& ctx, PassChecks& checks);
 // slots are bound (checkGBuffer), needsScene, and adaptGBuffer as its adapt
 // hook. The pass adds its own slots, params and programs.
 PassTypeDesc gbufferReader(std::string name, std::string description);
+// A compute lighting pass (tiled_deferred, clustered_deferred): gbufferReader,
+// the HDR "color" slot written with image stores (loaded: lights added to
+// it), params(), layoutParam(), point_lights and ambient_and_sun, and
+// adaptPointLightShading. The pass adds its own params and programs.
+PassTypeDesc computeLightingPass(std::string name, std::string description);
 // Sampled G-buffer slot declarations (position, normal, albedo, material, depth).
 std::vector<SlotDecl> gbufferSlots();
 // The samplers of include/material.glsl, bound per draw by GpuScene (not slots).

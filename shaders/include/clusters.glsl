@@ -1,0 +1,52 @@
+// The cluster grid shared by clustered_build.comp and clustered_deferred.comp:
+// screen tiles of TILE_SIZE pixels times SLICES depth slices spaced
+// exponentially from the camera's near to its far plane (both read from
+// u_proj), so that a cluster's depth extent grows with its distance like its
+// width does. Needs include/frame.glsl first.
+// The list buffer (storage buffer 1): a header, then one count per cluster
+// (every light that reaches it, also past MAX_CLUSTER_LIGHTS), then
+// MAX_CLUSTER_LIGHTS light indices per cluster.
+#ifndef TILE_SIZE
+#define TILE_SIZE 32
+#endif
+#ifndef SLICES
+#define SLICES 24
+#endif
+#ifndef MAX_CLUSTER_LIGHTS
+#define MAX_CLUSTER_LIGHTS 256
+#endif
+
+ivec2 clusterTiles() { return (ivec2(u_viewport.xy) + TILE_SIZE - 1) / TILE_SIZE; }
+int clusterCount() { return clusterTiles().x * clusterTiles().y * SLICES; }
+
+// Near and far distances of the perspective projection (glm::perspective:
+// P[2][2] = -(f+n)/(f-n), P[3][2] = -2fn/(f-n)).
+vec2 clusterNearFar() {
+  const float a = u_proj[2][2], b = u_proj[3][2];
+  return vec2(b / (a - 1.0), b / (a + 1.0));
+}
+
+// The slice a positive view depth falls in (depths outside near..far clamp
+// to the first or last slice).
+int clusterSlice(float viewDepth) {
+  const vec2 nf = clusterNearFar();
+  const float t = log(max(viewDepth, nf.x) / nf.x) / log(nf.y / nf.x);
+  return clamp(int(floor(t * float(SLICES))), 0, SLICES - 1);
+}
+
+// A slice's depth range [near (far/near)^(k/S), near (far/near)^((k+1)/S)].
+vec2 clusterDepthRange(int slice) {
+  const vec2 nf = clusterNearFar();
+  const float ratio = nf.y / nf.x;
+  return nf.x * vec2(pow(ratio, float(slice) / float(SLICES)), pow(ratio, float(slice + 1) / float(SLICES)));
+}
+
+// false when the bound list buffer is too small for this viewport's grid
+// (the pass sized it for its target; a target smaller than the viewport):
+// then no list is built and every pixel shades every light.
+bool clusterListsFit(uint bufferUints) { return uint(clusterCount()) * uint(1 + MAX_CLUSTER_LIGHTS) <= bufferUints; }
+
+int clusterIndex(ivec2 tile, int slice) {
+  const ivec2 tiles = clusterTiles();
+  return (slice * tiles.y + tile.y) * tiles.x + tile.x;
+}
