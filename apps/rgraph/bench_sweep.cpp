@@ -76,7 +76,7 @@ json lightingParams(const Config& c) {
 std::string pipelineJson(const Config& c, bool reference) {
   json res = json::object(), passes = json::array();
   const std::string hdrFormat =
-      (getenv("X16") ? false : reference) || (c.deferred() && c.layout == "fp32") ? "rgba32f" : "rgba16f";
+      reference || (c.deferred() && c.layout == "fp32") ? "rgba32f" : "rgba16f";
   res["hdr"] = {{"format", hdrFormat}, {"size", "output"}, {"clear", {0.0, 0.0, 0.0, 1.0}}};
   res["output"] = {{"format", "rgba8"}, {"size", "output"}};
   std::string lit = "hdr";

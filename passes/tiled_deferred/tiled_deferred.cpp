@@ -20,14 +20,6 @@
 namespace {
 using namespace rgraph;
 
-const char* imageFormatQualifier(Format f) {
-  switch (f) {
-    case Format::rgba32f: return "rgba32f";
-    case Format::r11g11b10f: return "r11f_g11f_b10f";
-    default: return "rgba16f";
-  }
-}
-
 // Shared memory: the tile's list and its four quarters' lists (each a subset
 // of the tile's: 5 x 4 bytes a light) plus the counters and depth bounds,
 // within the 32 KiB every GL 4.5 device has (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE's
@@ -42,7 +34,7 @@ std::vector<std::string> programDefines(const ParamSet& p, Format target) {
   std::vector<std::string> defines = lighting::shadingDefines(p);
   defines.push_back("TILE_SIZE=" + std::to_string(p.getInt("tile_size", 16)));
   defines.push_back("MAX_TILE_LIGHTS=" + std::to_string(maxTileLights(p)));
-  defines.push_back(std::string("TARGET_FORMAT=") + imageFormatQualifier(target));
+  defines.push_back(std::string("TARGET_FORMAT=") + lighting::hdrImageQualifier(target));
   return defines;
 }
 
@@ -77,10 +69,8 @@ class TiledDeferredPass final : public PassInstance {
     load_.set(ctx.loads("color"));
     scene.bindFrame();
     scene.bindPointLights(lighting::threshold(ctx.params()));
-    const GLenum format = ctx.format("color") == Format::rgba32f     ? GL_RGBA32F
-                          : ctx.format("color") == Format::r11g11b10f ? GL_R11F_G11F_B10F
-                                                                      : GL_RGBA16F;
-    glBindImageTexture(0, ctx.texture("color"), 0, GL_FALSE, 0, GL_READ_WRITE, format);
+    glBindImageTexture(0, ctx.texture("color"), 0, GL_FALSE, 0, GL_READ_WRITE,
+                       lighting::hdrImageFormat(ctx.format("color")));
     const GLuint groupsX = (size.width + tile_ - 1) / tile_, groupsY = (size.height + tile_ - 1) / tile_;
     glDispatchCompute(groupsX, groupsY, 1);
     // No memory barrier here: the executor issues the bits whoever touches
@@ -96,26 +86,16 @@ class TiledDeferredPass final : public PassInstance {
 
 PassTypeDesc makeTiledDeferredPass() {
   using namespace rgraph::decl;
-  PassTypeDesc d = lighting::gbufferReader(
+  PassTypeDesc d = lighting::computeLightingPass(
       "tiled_deferred",
       "Tiled deferred lighting (compute): lights culled per 16x16 tile against its depth bounds, "
       "each pixel shaded with its tile's list");
-  d.slots.push_back(slot("color", Access::storage_write, true, SlotDecl::Load::optional,
-                         "HDR lighting target written with image stores; when loaded, the lights are added to it; "
-                         "background pixels keep its clear value",
-                         lighting::hdrFormats()));
-  d.params = lighting::params();
-  d.params.push_back(lighting::layoutParam());
-  d.params.push_back(param("point_lights", ParamType::boolean, true, "shade the point lights"));
-  d.params.push_back(param("ambient_and_sun", ParamType::boolean, true,
-                           "also add ambient and the directional light (false when another pass adds them)"));
   d.params.push_back(ranged("tile_size", ParamType::integer, int64_t{16}, 4, 32,
                             "tile edge in pixels (tile_size^2 invocations per work group)"));
   d.params.push_back(ranged("max_tile_lights", ParamType::integer, int64_t{1024}, 16, 16384,
                             "lights one tile's list holds (shared memory, capped by the GL limit); a tile with "
                             "more shades every light"));
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
-  d.adapt = lighting::adaptPointLightShading;
   d.programs = [](const ParamSet& p) {
     std::vector<ShaderProgramSpec> v;
     for (Format target : lighting::hdrFormats()) {  // setup() takes the one of the bound target's format
