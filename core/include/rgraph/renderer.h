@@ -239,7 +239,8 @@ class Renderer {
 
   uint32_t outputTexture() const;
   Extent outputExtent() const;
-  // The output as RGBA8, rows top-down (stored bytes of an sRGB output).
+  // The output as RGBA8, rows top-down (stored bytes of an sRGB output; a
+  // one-channel output is grey).
   std::vector<uint8_t> readOutputRGBA8() const;
   // Any resource or version as RGBA32F, rows top-down (see Executor).
   std::vector<float> readResourceRGBA32F(const std::string& name) const;

@@ -78,6 +78,10 @@ std::vector<uint8_t> Executor::readOutputRGBA8() const {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glGetTextureImage(obj.texture, 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(data.size()), data.data());
   flipRows(data, w * 4, h);
+  // GL reads a one-channel image as (r, 0, 0, 1): a mask, occlusion or depth
+  // view would show as red. Its one value is grey.
+  if (formatInfo(obj.format).components == 1)
+    for (size_t i = 0; i < data.size(); i += 4) data[i + 1] = data[i + 2] = data[i];
   return data;
 }
 

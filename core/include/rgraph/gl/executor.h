@@ -128,7 +128,8 @@ class Executor {
   Extent outputExtent() const;
   Format outputFormat() const;
   // Output image as RGBA8, rows top-down, 4 bytes per pixel (stored bytes:
-  // an srgb8_alpha8 output gives its encoded values).
+  // an srgb8_alpha8 output gives its encoded values; a one-channel output,
+  // e.g. r8, is grey: its value in R, G and B).
   std::vector<uint8_t> readOutputRGBA8() const;
   // Any resource (or one of its version names) as RGBA32F, rows top-down, 4
   // floats per pixel; depth formats give depth in R (G = B = 0, A = 1). Level 0.
