@@ -23,6 +23,39 @@
 #include "include/gbuffer.glsl"
 #include "include/gbuffer_read.glsl"
 #include "include/lighting.glsl"
+#include "include/tile_cull.glsl"
+#ifndef TILE_SIZE
+#define TILE_SIZE 16
+#endif
+#include "include/tile_bins.glsl"
+#if defined(FAR_FIELD)
+// Cubes 0..3: the quarters' far fields (lights of the tile's list not in
+// the quarter's), cube 4: the tile's (lights not in its list).
+#define FAR_FIELD_CUBES 5
+#include "include/far_field.glsl"
+// Invocations that cull and sum the far field: a multiple of 4, so that each
+// keeps one quarter in the refine loop (its summing point).
+const uint kLanes = uint(TILE_SIZE * TILE_SIZE) & ~3u;
+// Unlisted lights closer to the tile's point than FAR_FIELD_NEAR times their
+// radius vary across the tile: they are summed at each quarter's point (the
+// refine loop) instead of once at the tile's, up to FAR_FIELD_MID of them.
+#ifndef FAR_FIELD_NEAR
+#define FAR_FIELD_NEAR 2.0
+#endif
+#define FAR_FIELD_MID 256
+// Per quarter and direction bin, what its pixels shade (the tile's set moved
+// to the quarter's point plus the quarter's): radiance, weighted direction,
+// gradient of the weight, mean light position from the quarter's point.
+// s_farBins[quarter]: a bit per bin that holds light, so that pixels visit
+// only those (half the bins are empty on a floor under the lights), in order.
+shared vec3 s_farShade[4][FAR_FIELD_BINS][4];
+shared uint s_farBins[4];
+shared uint s_midCount;
+shared uint s_midLights[FAR_FIELD_MID];
+shared vec3 s_farPoint[FAR_FIELD_CUBES];  // where each set was summed
+#else
+const uint kLanes = uint(TILE_SIZE * TILE_SIZE);
+#endif
 
 #ifndef TILE_SIZE
 #define TILE_SIZE 16
@@ -37,6 +70,7 @@
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE, local_size_z = 1) in;
 
 layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
+layout(std430, binding = 1) readonly buffer Bins { uint bins[]; };  // tiled_bin.comp's lists
 layout(TARGET_FORMAT, binding = 0) uniform image2D u_target;
 uniform int u_pointLightCount;
 uniform int u_ambientAndSun;  // 1: add ambient and the directional light
@@ -59,38 +93,6 @@ int depthSlice(float depth, float minDepth, float scale) {
   return clamp(int(floor((depth - minDepth) * scale)), 0, 31);
 }
 
-// A light's radius with a little slack, so that rounding never drops a light
-// a pixel can see.
-float slackRadius(float radius) { return radius * 1.001 + 1e-4; }
-
-// Where the pixel rectangle [pxMin, pxMax) (clamped to the viewport) is in
-// view space per unit of depth: a point at view depth d is inside its
-// frustum when x / d lies in [perDepth0.x, perDepth1.x] (and y likewise),
-// since ndc.x = (P00 x + P20 z) / -z with z = -d.
-void frustumPerDepth(uvec2 pxMin, uvec2 pxMax, out vec2 perDepth0, out vec2 perDepth1) {
-  const vec2 ndc0 = vec2(pxMin) * u_viewport.zw * 2.0 - 1.0;
-  const vec2 ndc1 = min(vec2(pxMax), u_viewport.xy) * u_viewport.zw * 2.0 - 1.0;
-  const vec2 p = vec2(u_proj[0][0], u_proj[1][1]), pz = vec2(u_proj[2][0], u_proj[2][1]);
-  perDepth0 = (ndc0 + pz) / p;
-  perDepth1 = (ndc1 + pz) / p;
-}
-
-// Whether a sphere (centre: view x, y and depth) meets the box bounding the
-// frustum between depths [minDepth, maxDepth] clipped to the sphere's own
-// depth range. The frustum's sides are linear in depth, so the box's extremes
-// are at the clipped range's ends; clipping first keeps the box small. It is
-// tight for lights small against the tile, which sphere-against-plane tests
-// pass near the tile's corners. Conservative: any point of the frustum slice
-// within the sphere is in the box.
-bool sphereMeetsFrustumBox(vec3 c, float r, float minDepth, float maxDepth, vec2 perDepth0, vec2 perDepth1) {
-  const float z0 = max(c.z - r, minDepth), z1 = min(c.z + r, maxDepth);
-  if (z0 > z1) return false;
-  const vec2 boxMin = min(perDepth0 * z0, perDepth0 * z1), boxMax = max(perDepth1 * z0, perDepth1 * z1);
-  const vec2 dxy = max(max(boxMin - c.xy, c.xy - boxMax), vec2(0.0));
-  const float dz = max(max(z0 - c.z, c.z - z1), 0.0);
-  return dot(dxy, dxy) + dz * dz <= r * r;
-}
-
 void main() {
   const ivec2 size = ivec2(u_viewport.xy);
   const ivec2 px = ivec2(gl_GlobalInvocationID.xy);
@@ -109,6 +111,11 @@ void main() {
     s_quarterMax[local] = 0u;
     s_quarterCount[local] = 0u;
   }
+#if defined(FAR_FIELD)
+  farFieldClear(local, uint(TILE_SIZE * TILE_SIZE));
+  if (local == 0u) s_midCount = 0u;
+  if (local < 4u) s_farBins[local] = 0u;
+#endif
   barrier();
 
   Surface s;
@@ -142,7 +149,17 @@ void main() {
     frustumPerDepth(tileMin, tileMin + uvec2(TILE_SIZE), perDepth0, perDepth1);
     const uint mask = s_depthMask;
     const vec4 viewRowZ = vec4(u_view[0][2], u_view[1][2], u_view[2][2], u_view[3][2]);
-    for (uint i = local; i < uint(u_pointLightCount); i += uint(TILE_SIZE * TILE_SIZE)) {
+#if defined(FAR_FIELD)
+    const vec3 farPoint = frustumMidPoint(perDepth0, perDepth1, minDepth, maxDepth);
+    if (local == 0u) s_farPoint[4] = farPoint;
+#endif
+    // The lights of the tile's bin (tiled_bin.comp), or every light when the
+    // bin's list overflowed.
+    const uint record = binRecord(gl_WorkGroupID.xy / uint(BIN_TILES));
+    const bool binned = bins[record] <= uint(MAX_BIN_LIGHTS);
+    const uint candidates = binned ? bins[record] : uint(u_pointLightCount);
+    for (uint j = local; j < candidates && local < kLanes; j += kLanes) {
+      const uint i = binned ? bins[record + uint(BIN_HEADER) + j] : j;
       const vec4 pr = lights[i].positionRadius;
       bool visible = true;
       if (pr.w >= 0.0) {
@@ -163,17 +180,74 @@ void main() {
         const uint slot = atomicAdd(s_count, 1u);
         if (slot < uint(MAX_TILE_LIGHTS)) s_lights[slot] = i;
       }
+#if defined(FAR_FIELD)
+      else {
+        const vec3 toLight = pr.xyz - farPoint;
+        const float nearDistance = FAR_FIELD_NEAR * pr.w;
+        uint mid = uint(FAR_FIELD_MID);
+        if (dot(toLight, toLight) < nearDistance * nearDistance) mid = atomicAdd(s_midCount, 1u);
+        if (mid < uint(FAR_FIELD_MID))
+          s_midLights[mid] = i;
+        else
+          farFieldAdd(4, lights[i], farPoint);
+      }
+#endif
     }
+#if defined(FAR_FIELD)
+    // The bin's far field (the lights its list leaves out), moved to the
+    // tile's point to first order: direction bin `local`.
+    if (binned && local < uint(FAR_FIELD_BINS)) {
+      const vec3 binPoint = uintBitsToFloat(uvec3(bins[record + 4u], bins[record + 5u], bins[record + 6u]));
+      vec3 v[4];
+      for (uint j = 0u; j < 4u; ++j)
+        for (uint c = 0u; c < 3u; ++c) v[j][c] = uintBitsToFloat(bins[record + 8u + (4u * local + j) * 3u + c]);
+      // The bin's mean light seen from the tile's point: the direction and
+      // distance change, the weight follows the gradient.
+      const vec3 offset = farPoint - binPoint, mean = farFieldMeanLight(v[1], v[3]) - offset;
+      const float scale = farFieldScaleAt(v[0], v[2], offset), distance = length(mean);
+      const vec3 dir = distance > 1e-12 ? mean * (length(v[1]) * scale / distance) : vec3(0.0);
+      v[0] *= scale;
+      v[1] = dir;
+      v[3] = dir * distance;
+      for (uint j = 0u; j < 4u; ++j)
+        for (uint c = 0u; c < 3u; ++c) atomicAdd(s_farSums[4][(4u * local + j) * 3u + c], farFieldFixed(v[j][c]));
+    }
+#endif
   }
   barrier();
 
   // Refine the tile's list into its quarters' lists: (light, quarter) pairs
   // spread over the group (a handful per invocation).
   const uint count = s_count;
+#if defined(FAR_FIELD)
+  const uint midCount = min(s_midCount, uint(FAR_FIELD_MID));
+#else
+  const uint midCount = 0u;
+#endif
   if (count <= uint(MAX_TILE_LIGHTS)) {
-    for (uint k = local; k < 4u * count; k += uint(TILE_SIZE * TILE_SIZE)) {
-      const uint q = k & 3u, light = s_lights[k >> 2u];
+#if defined(FAR_FIELD)
+    // k & 3 == local & 3 (kLanes is a multiple of 4): one quarter per invocation.
+    vec3 farPoint = vec3(0.0);
+    {
+      const uvec2 tileMin = gl_WorkGroupID.xy * uvec2(TILE_SIZE), high = uvec2(local & 1u, (local >> 1u) & 1u);
+      vec2 perDepth0, perDepth1;
+      frustumPerDepth(tileMin + high * kHalf, tileMin + mix(uvec2(kHalf), uvec2(TILE_SIZE), bvec2(high)), perDepth0,
+                      perDepth1);
+      farPoint = frustumMidPoint(perDepth0, perDepth1, uintBitsToFloat(s_quarterMin[local & 3u]),
+                               uintBitsToFloat(s_quarterMax[local & 3u]));
+      if (local < 4u) s_farPoint[local] = farPoint;
+    }
+#endif
+    for (uint k = local; k < 4u * (count + midCount) && local < kLanes; k += kLanes) {
+      const uint q = k & 3u;
       if (s_quarterMax[q] == 0u && s_quarterMin[q] == 0x7f7fffffu) continue;  // no pixel of the quarter is lit
+#if defined(FAR_FIELD)
+      if ((k >> 2u) >= count) {  // a near unlisted light: at the quarter's point
+        farFieldAdd(int(q), lights[s_midLights[(k >> 2u) - count]], farPoint);
+        continue;
+      }
+#endif
+      const uint light = s_lights[k >> 2u];
       const vec4 pr = lights[light].positionRadius;
       bool visible = true;
       if (pr.w >= 0.0) {
@@ -188,9 +262,35 @@ void main() {
                                         uintBitsToFloat(s_quarterMax[q]), perDepth0, perDepth1);
       }
       if (visible) s_quarterLights[q][atomicAdd(s_quarterCount[q], 1u)] = light;
+#if defined(FAR_FIELD)
+      else
+        farFieldAdd(int(q), lights[light], farPoint);
+#endif
     }
   }
   barrier();
+#if defined(FAR_FIELD)
+  // Merge the tile's set into each quarter's at the quarter's point, once per
+  // (quarter, bin) instead of per pixel.
+  if (count <= uint(MAX_TILE_LIGHTS) && tileCovered && u_pointLightCount > 0 && local < 4u * uint(FAR_FIELD_BINS)) {
+    const int q = int(local) / FAR_FIELD_BINS, b = int(local) % FAR_FIELD_BINS;
+    vec3 t[4], v[4];
+    farFieldLoad(4, b, t);
+    farFieldLoad(q, b, v);
+    const vec3 offset = s_farPoint[q] - s_farPoint[4];
+    const float scale = farFieldScaleAt(t[0], t[2], offset);
+    const float wt = dot(t[0], vec3(1.0 / 3.0)) * scale, wq = dot(v[0], vec3(1.0 / 3.0));
+    const vec3 mean = (farFieldMeanLight(t[1], t[3]) - offset) * wt + farFieldMeanLight(v[1], v[3]) * wq;
+    if (wt + wq > 0.0) {
+      atomicOr(s_farBins[q], 1u << uint(b));
+      s_farShade[q][b][0] = t[0] * scale + v[0];
+      s_farShade[q][b][1] = t[1] * scale + v[1];
+      s_farShade[q][b][2] = t[2] + v[2];
+      s_farShade[q][b][3] = mean / (wt + wq);
+    }
+  }
+  barrier();
+#endif
 
   if (!inside || !s.covered) return;  // the target's clear value (background) stays
   const vec3 V = safeNormal(u_cameraPos.xyz - s.position, s.normal);
@@ -199,10 +299,28 @@ void main() {
   if (u_ambientAndSun != 0) color += ambientTerm(s) + shadeDirectionalLight(s, V);
   if (count <= uint(MAX_TILE_LIGHTS)) {
     const uint quarterCount = s_quarterCount[quarter];
+#if defined(FAR_FIELD)
+    // The listed lights without their cut (their tails), the rest as the far field.
+    for (uint i = 0u; i < quarterCount; ++i)
+      color += shadePointLight(farFieldUncut(lights[s_quarterLights[quarter][i]]), s, V);
+    const vec3 offset = s.position - s_farPoint[quarter];
+    for (uint bits = s_farBins[quarter]; bits != 0u; bits &= bits - 1u) {
+      const int b = findLSB(bits);
+      const vec3 radiance = s_farShade[quarter][b][0];
+      color += farFieldShadeBin(radiance, farFieldScaleAt(radiance, s_farShade[quarter][b][2], offset),
+                                s_farShade[quarter][b][1], s_farShade[quarter][b][3] - offset, s, V);
+    }
+#else
     for (uint i = 0u; i < quarterCount; ++i) color += shadePointLight(lights[s_quarterLights[quarter][i]], s, V);
+#endif
   } else {
-    // More lights reach this tile than the list holds: shade them all (correct, slow).
+    // More lights reach this tile than the list holds: shade them all (correct, slow;
+    // FAR_FIELD: without their cut, so exact).
+#if defined(FAR_FIELD)
+    for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(farFieldUncut(lights[i]), s, V);
+#else
     for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(lights[i], s, V);
+#endif
   }
   imageStore(u_target, px, vec4(color, 1.0));
 }

@@ -210,7 +210,7 @@ void flatCostCheck(const std::vector<Point>& points, const Config& def, json& ch
                    std::vector<std::string>& summary) {
   std::string line = "median at 1,024 / at 64 lights " + sizeText(def.size) + ":";
   json j = json::object();
-  for (const char* m : {"light_volumes", "tiled"}) {
+  for (const char* m : {"light_volumes", "tiled", "clustered"}) {
     Config c = def;
     c.method = m;
     c.lights = 64;

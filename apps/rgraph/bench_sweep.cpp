@@ -17,7 +17,8 @@ namespace rgraph::cli::bench {
 
 using nlohmann::json;
 
-const std::vector<std::string> kMethods = {"forward_lit", "fullscreen", "fullscreen_radius", "light_volumes", "tiled"};
+const std::vector<std::string> kMethods = {"forward_lit", "fullscreen", "fullscreen_radius", "light_volumes",
+                                           "tiled",       "tiled_far",  "clustered"};
 const std::vector<std::string> kLayouts = {"pbr", "learnopengl", "compact", "fp32"};
 
 std::string Config::key() const {
@@ -33,6 +34,8 @@ std::string methodTitle(const std::string& m) {
   if (m == "fullscreen_radius") return "fullscreen + radius test";
   if (m == "light_volumes") return "light volumes";
   if (m == "tiled") return "tiled";
+  if (m == "tiled_far") return "tiled + far field";
+  if (m == "clustered") return "clustered";
   return m;
 }
 
@@ -139,9 +142,11 @@ std::string pipelineJson(const Config& c, bool reference) {
                         {"inputs", vin},
                         {"outputs", {{"color", "hdr_lit"}}}});
       lit = "hdr_lit";
-    } else if (c.method == "tiled") {
-      passes.push_back({{"name", "tiled"},
-                        {"type", "tiled_deferred"},
+    } else if (c.method == "tiled" || c.method == "tiled_far" || c.method == "clustered") {
+      const bool tiled = c.method.rfind("tiled", 0) == 0;
+      if (c.method.find("_far") != std::string::npos) params["far_field"] = true;
+      passes.push_back({{"name", c.method},
+                        {"type", tiled ? "tiled_deferred" : "clustered_deferred"},
                         {"params", params},
                         {"inputs", gInputs},
                         {"outputs", {{"color", "hdr"}}}});

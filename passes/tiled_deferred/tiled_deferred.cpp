@@ -1,5 +1,9 @@
-// tiled_deferred: deferred lighting in one compute pass. Each 16x16 tile of
-// the G-buffer finds its depth bounds, culls the point lights against its
+// tiled_deferred: deferred lighting in two compute dispatches. The first
+// (shaders/tiled_bin.comp) lists, per bin of tiles at least 64 pixels wide,
+// the point lights that reach the bin's frustum, so that the cost of the
+// culling below does not grow with the number of lights in the scene at
+// constant overlap. In the second, each 16x16 tile of
+// the G-buffer finds its depth bounds, culls its bin's lights against its
 // frustum into a shared-memory list, refines that list per 8x8 quarter
 // (shaders/tiled_deferred.comp says why), and shades its pixels with their
 // quarter's list only (ambient and the directional light too, unless another pass adds
@@ -14,6 +18,7 @@
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/uniform.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/far_field.h"
 #include "rgraph/passes/lighting_options.h"
 #include "rgraph/registry.h"
 
@@ -21,18 +26,38 @@ namespace {
 using namespace rgraph;
 
 // Shared memory: the tile's list and its four quarters' lists (each a subset
-// of the tile's: 5 x 4 bytes a light) plus the counters and depth bounds,
-// within the 32 KiB every GL 4.5 device has (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE's
-// minimum), so that the program does not depend on the device and validate
-// checks the one that runs.
+// of the tile's: 5 x 4 bytes a light) plus the counters and depth bounds
+// (< 128 bytes) and, with far_field, the far field's sums and near-light
+// list (tiled_deferred.comp, < 10 KiB), within the 32 KiB every GL 4.5 device
+// has (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE's minimum), so that the program does
+// not depend on the device and validate checks the one that runs.
 int maxTileLights(const ParamSet& p) {
-  constexpr int64_t kFit = (32768 - 128) / 20;
-  return static_cast<int>(std::clamp<int64_t>(std::min(p.getInt("max_tile_lights", 1024), kFit), 1, 65536));
+  const int64_t fit = (32768 - 128 - (p.getBool("far_field", false) ? 10240 : 0)) / 20;
+  return static_cast<int>(std::clamp<int64_t>(std::min(p.getInt("max_tile_lights", 1024), fit), 1, 65536));
+}
+
+// Tiles per bin side: bins of at least 64 pixels, so that the bin buffer
+// stays small (about 2.4 KiB per 64x64 pixels).
+int binTiles(const ParamSet& p) { return std::max<int>(2, static_cast<int>(64 / p.getInt("tile_size", 16))); }
+constexpr int kMaxBinLights = 512;
+constexpr int kBinHeader = 200;  // include/tile_bins.glsl's BIN_HEADER
+constexpr GLuint kBinBinding = 1;
+
+// What both programs share: lighting, G-buffer, tile and bin defines.
+std::vector<std::string> commonDefines(const ParamSet& p) {
+  std::vector<std::string> defines = lighting::shadingDefines(p);
+  defines.push_back("TILE_SIZE=" + std::to_string(p.getInt("tile_size", 16)));
+  defines.push_back("BIN_TILES=" + std::to_string(binTiles(p)));
+  defines.push_back("MAX_BIN_LIGHTS=" + std::to_string(kMaxBinLights));
+  // With the far field the bins keep the lights within twice their radius,
+  // so that the tiles, not the coarse bins, sum the nearer unlisted ones.
+  defines.push_back(std::string("BIN_REACH=") + (p.getBool("far_field", false) ? "2.0" : "1.0"));
+  lighting::addFarFieldDefine(p, defines);
+  return defines;
 }
 
 std::vector<std::string> programDefines(const ParamSet& p, Format target) {
-  std::vector<std::string> defines = lighting::shadingDefines(p);
-  defines.push_back("TILE_SIZE=" + std::to_string(p.getInt("tile_size", 16)));
+  std::vector<std::string> defines = commonDefines(p);
   defines.push_back("MAX_TILE_LIGHTS=" + std::to_string(maxTileLights(p)));
   defines.push_back(std::string("TARGET_FORMAT=") + lighting::hdrImageQualifier(target));
   return defines;
@@ -40,6 +65,10 @@ std::vector<std::string> programDefines(const ParamSet& p, Format target) {
 
 class TiledDeferredPass final : public PassInstance {
  public:
+  ~TiledDeferredPass() override {
+    if (bins_) glDeleteBuffers(1, &bins_);
+  }
+
   void setup(PassContext& ctx) override {
     tile_ = static_cast<int>(ctx.params().getInt("tile_size", 16));
     GLint invocations = 0, groupX = 0, groupY = 0;
@@ -50,10 +79,19 @@ class TiledDeferredPass final : public PassInstance {
       throw RuntimeError("tiled_deferred pass '" + ctx.passName() + "': tile_size " + std::to_string(tile_) +
                          " needs " + std::to_string(tile_ * tile_) + " invocations per work group; this GL allows " +
                          std::to_string(invocations));
-    // programs() has one program per target format (the image format
-    // qualifier is a define), in the order of hdrFormats().
+    // programs(): the bin program, then one lighting program per target
+    // format (the image format qualifier is a define), in the order of hdrFormats().
     const auto& formats = lighting::hdrFormats();
-    program_ = ctx.program(std::find(formats.begin(), formats.end(), ctx.format("color")) - formats.begin());
+    program_ = ctx.program(1 + (std::find(formats.begin(), formats.end(), ctx.format("color")) - formats.begin()));
+    binProgram_ = ctx.program(0);
+    binLightCount_ = gl::Uniform(binProgram_, "u_pointLightCount");
+    binPixels_ = tile_ * binTiles(ctx.params());
+    const Extent size = ctx.extent("color");
+    const GLsizeiptr bins = static_cast<GLsizeiptr>((size.width + binPixels_ - 1) / binPixels_) *
+                            ((size.height + binPixels_ - 1) / binPixels_);
+    if (bins_) glDeleteBuffers(1, &bins_);
+    glCreateBuffers(1, &bins_);
+    glNamedBufferStorage(bins_, bins * (kBinHeader + kMaxBinLights) * 4, nullptr, 0);
     pointLightCount_ = gl::Uniform(program_, "u_pointLightCount");
     ambientAndSun_ = gl::Uniform(program_, "u_ambientAndSun");
     load_ = gl::Uniform(program_, "u_load");
@@ -62,13 +100,21 @@ class TiledDeferredPass final : public PassInstance {
   void execute(PassContext& ctx) override {
     GpuScene& scene = *ctx.gpuScene();
     const Extent size = ctx.extent("color");
-    glUseProgram(program_);
     const bool points = ctx.params().getBool("point_lights", true);
-    pointLightCount_.set(points ? static_cast<int>(scene.pointLightCount()) : 0);
-    ambientAndSun_.set(ctx.params().getBool("ambient_and_sun", true));
-    load_.set(ctx.loads("color"));
+    const int lights = points ? static_cast<int>(scene.pointLightCount()) : 0;
     scene.bindFrame();
     scene.bindPointLights(lighting::threshold(ctx.params()));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBinBinding, bins_);
+    if (lights > 0) {
+      glUseProgram(binProgram_);
+      binLightCount_.set(lights);
+      glDispatchCompute((size.width + binPixels_ - 1) / binPixels_, (size.height + binPixels_ - 1) / binPixels_, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    glUseProgram(program_);
+    pointLightCount_.set(lights);
+    ambientAndSun_.set(ctx.params().getBool("ambient_and_sun", true));
+    load_.set(ctx.loads("color"));
     glBindImageTexture(0, ctx.texture("color"), 0, GL_FALSE, 0, GL_READ_WRITE,
                        lighting::hdrImageFormat(ctx.format("color")));
     const GLuint groupsX = (size.width + tile_ - 1) / tile_, groupsY = (size.height + tile_ - 1) / tile_;
@@ -79,9 +125,9 @@ class TiledDeferredPass final : public PassInstance {
   }
 
  private:
-  uint32_t program_ = 0;
-  int tile_ = 16;
-  gl::Uniform pointLightCount_, ambientAndSun_, load_;
+  uint32_t program_ = 0, binProgram_ = 0, bins_ = 0;
+  int tile_ = 16, binPixels_ = 64;
+  gl::Uniform pointLightCount_, ambientAndSun_, load_, binLightCount_;
 };
 
 PassTypeDesc makeTiledDeferredPass() {
@@ -95,9 +141,16 @@ PassTypeDesc makeTiledDeferredPass() {
   d.params.push_back(ranged("max_tile_lights", ParamType::integer, int64_t{1024}, 16, 16384,
                             "lights one tile's list holds (shared memory, capped by the GL limit); a tile with "
                             "more shades every light"));
+  d.params.push_back(lighting::farFieldParam());
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
   d.programs = [](const ParamSet& p) {
     std::vector<ShaderProgramSpec> v;
+    ShaderProgramSpec bin;
+    bin.comp = "tiled_bin.comp";
+    bin.defines = commonDefines(p);
+    bin.samplers = lighting::gbufferSamplers();
+    bin.drawsToAttachments = false;
+    v.push_back(std::move(bin));
     for (Format target : lighting::hdrFormats()) {  // setup() takes the one of the bound target's format
       ShaderProgramSpec s;
       s.comp = "tiled_deferred.comp";

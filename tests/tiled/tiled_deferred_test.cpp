@@ -1,11 +1,12 @@
 // tiled_deferred against the fullscreen deferred_lighting pass: the same
 // G-buffer and lighting parameters must give the same HDR image (only the
 // order in which lights are summed differs), whatever the layout, with partial
-// tiles at the image edges, with more lights in a tile than its list holds,
+// tiles at the image edges, with more lights in a tile (or in a bin of tiles) than its list holds,
 // with no cut-off, when adding to an ambient pass's output, and with no lights.
 // The fullscreen reference itself must show its lights: against its own
 // ambient-only frame (the scene with every light removed) a stated share of
 // pixels gains kMinGain, so two black or two unlit frames cannot agree.
+#include <GL/glcorearb.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -94,13 +95,31 @@ PipelineConfig pipeline(const Options& o) {
   return testsupport::buildPipelineOrThrow(doc.dump(), "<tiled test>");
 }
 
-std::vector<float> renderHdr(const Options& o, const Scene& scene, Extent size) {
+// The bins of shaders/tiled_bin.comp whose count passed their list
+// (include/tile_bins.glsl: records of BIN_HEADER 200 + MAX_BIN_LIGHTS 512
+// uints, the count first), read from the buffer tiled_deferred leaves bound
+// on storage binding 1.
+size_t overflowedBins() {
+  constexpr size_t kRecord = 200 + 512, kMaxBinLights = 512;
+  GLint buffer = 0, bytes = 0;
+  glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, 1, &buffer);
+  if (buffer == 0) return 0;
+  glGetNamedBufferParameteriv(static_cast<GLuint>(buffer), GL_BUFFER_SIZE, &bytes);
+  std::vector<uint32_t> data(static_cast<size_t>(bytes) / 4);
+  glGetNamedBufferSubData(static_cast<GLuint>(buffer), 0, static_cast<GLsizeiptr>(data.size() * 4), data.data());
+  size_t n = 0;
+  for (size_t r = 0; r + kRecord <= data.size(); r += kRecord) n += data[r] > kMaxBinLights;
+  return n;
+}
+
+std::vector<float> renderHdr(const Options& o, const Scene& scene, Extent size, size_t* binsOverflowed = nullptr) {
   ShaderLibrary shaders;
   PipelineConfig cfg = pipeline(o);
   adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
   Executor exec(cfg, PassRegistry::builtins(), shaders, &scene);
   exec.resize(size);
   exec.renderFrame();
+  if (binsOverflowed) *binsOverflowed = overflowedBins();
   return exec.readTextureRGBA32F(o.lighting == "ambient+tiled" ? "hdr_lit" : "hdr");
 }
 
@@ -196,6 +215,19 @@ TEST_F(TiledDeferred, MoreLightsThanTheTileListHoldsStillShadesThemAll) {
   Options o;
   o.maxTileLights = 16;  // ~16 volumes overlap each point: many tiles overflow
   expectSame(o, makeManyLightsScene(256), {96, 64});
+}
+
+// Lights 4.5x the usual radius (cut at 1/256 of 1/4): more than the 512 a
+// bin of 64x64 pixels lists reach each bin, whose tiles then test every light.
+TEST_F(TiledDeferred, MoreLightsThanABinHoldsStillShadesThemAll) {
+  Options o;
+  o.threshold = 0.25 / 256.0;
+  const Scene scene = makeManyLightsScene(1024);
+  size_t overflowed = 0;
+  renderHdr(o, scene, {96, 64}, &overflowed);
+  std::printf("[ measure  ] %zu bins overflowed\n", overflowed);
+  EXPECT_GT(overflowed, 0u);
+  expectSame(o, scene, {96, 64});
 }
 
 TEST_F(TiledDeferred, NoCutOffKeepsEveryLight) {

@@ -1,0 +1,26 @@
+// The light bins of tiled_deferred: tiled_bin.comp lists, per bin of
+// BIN_TILES x BIN_TILES tiles, the point lights whose sphere (radius times
+// BIN_REACH) meets the bin's frustum over its pixels' depth range, so that
+// each tile culls its bin's list instead of every light: the culling cost
+// stays flat in the light count at constant overlap. With FAR_FIELD it also
+// sums the far field of the lights it does not list, at the bin's point.
+// Storage buffer 1: one record of BIN_RECORD uints per bin: the light count
+// (every light listed, also past MAX_BIN_LIGHTS: then the tiles test every
+// light), 3 unused, the point the far field was summed at (xyz floats, 1
+// unused), FAR_FIELD_VALUES far-field floats (radiance, weighted direction,
+// gradient, weighted offset per direction bin: far_field.glsl), then MAX_BIN_LIGHTS indices.
+#ifndef BIN_TILES
+#define BIN_TILES 4
+#endif
+#ifndef MAX_BIN_LIGHTS
+#define MAX_BIN_LIGHTS 1024
+#endif
+#ifndef BIN_REACH
+#define BIN_REACH 1.0
+#endif
+#define BIN_PIXELS (TILE_SIZE * BIN_TILES)
+#define BIN_HEADER 200  // 4 + 4 + far_field.glsl's FAR_FIELD_VALUES (192)
+#define BIN_RECORD (BIN_HEADER + MAX_BIN_LIGHTS)
+
+uvec2 binGrid() { return (uvec2(u_viewport.xy) + uint(BIN_PIXELS) - 1u) / uint(BIN_PIXELS); }
+uint binRecord(uvec2 bin) { return (bin.y * binGrid().x + bin.x) * uint(BIN_RECORD); }

@@ -1,0 +1,97 @@
+#version 450 core
+// tiled_deferred, step 1: one work group per bin of BIN_TILES x BIN_TILES
+// tiles (include/tile_bins.glsl) reduces the view-depth range of its pixels
+// and lists the point lights whose sphere, its radius times BIN_REACH, meets
+// the bin's frustum box over that range; tiled_deferred.comp's tiles then
+// cull only their bin's list. With FAR_FIELD the lights it does not list
+// are summed as the bin's far field (include/far_field.glsl) at the bin's
+// middle point; BIN_REACH > 1 keeps the lights near the bin in the list, so
+// that the tiles sum those at their own points.
+// Defines: as tiled_deferred.comp (GBUFFER_*, LIGHTING_*, ATTENUATION_*,
+// TILE_SIZE, FAR_FIELD) and BIN_TILES, MAX_BIN_LIGHTS, BIN_REACH.
+#include "include/frame.glsl"
+#include "include/gbuffer.glsl"
+#include "include/gbuffer_read.glsl"
+#include "include/lighting.glsl"
+#include "include/tile_cull.glsl"
+#ifndef TILE_SIZE
+#define TILE_SIZE 16
+#endif
+#include "include/tile_bins.glsl"
+#if defined(FAR_FIELD)
+#define FAR_FIELD_CUBES 1
+#include "include/far_field.glsl"
+#endif
+
+layout(local_size_x = 16, local_size_y = 16, local_size_z = 1) in;
+
+layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
+layout(std430, binding = 1) writeonly buffer Bins { uint bins[]; };
+uniform int u_pointLightCount;
+
+shared uint s_minDepth, s_maxDepth, s_count;
+
+void main() {
+  const uint local = gl_LocalInvocationIndex;
+  const uvec2 binMin = gl_WorkGroupID.xy * uint(BIN_PIXELS);
+  const ivec2 size = ivec2(u_viewport.xy);
+  if (local == 0u) {
+    s_minDepth = 0x7f7fffffu;
+    s_maxDepth = 0u;
+    s_count = 0u;
+  }
+#if defined(FAR_FIELD)
+  farFieldClear(local, 256u);
+#endif
+  barrier();
+  // Depth bounds: each invocation reads every 16th pixel in x and y.
+  float lo = 3.0e38, hi = 0.0;
+  for (uint y = gl_LocalInvocationID.y; y < uint(BIN_PIXELS); y += 16u)
+    for (uint x = gl_LocalInvocationID.x; x < uint(BIN_PIXELS); x += 16u) {
+      const ivec2 px = ivec2(binMin + uvec2(x, y));
+      if (px.x >= size.x || px.y >= size.y) continue;
+      const Surface s = readSurface(px);
+      if (!s.covered) continue;
+      const float depth = max(-(u_view * vec4(s.position, 1.0)).z, 0.0);
+      lo = min(lo, depth);
+      hi = max(hi, depth);
+    }
+  if (hi >= lo) {
+    atomicMin(s_minDepth, floatBitsToUint(lo));
+    atomicMax(s_maxDepth, floatBitsToUint(hi));
+  }
+  barrier();
+  const bool covered = s_maxDepth != 0u || s_minDepth != 0x7f7fffffu;
+  const float minDepth = uintBitsToFloat(s_minDepth), maxDepth = uintBitsToFloat(s_maxDepth);
+  const uint record = binRecord(gl_WorkGroupID.xy);
+  vec2 perDepth0, perDepth1;
+  frustumPerDepth(binMin, binMin + uvec2(BIN_PIXELS), perDepth0, perDepth1);
+  const vec3 point = covered ? frustumMidPoint(perDepth0, perDepth1, minDepth, maxDepth) : vec3(0.0);
+  if (covered) {
+    for (uint i = local; i < uint(u_pointLightCount); i += 256u) {
+      const vec4 pr = lights[i].positionRadius;
+      const vec3 c = (u_view * vec4(pr.xyz, 1.0)).xyz;
+      if (pr.w < 0.0 ||
+          sphereMeetsFrustumBox(vec3(c.xy, -c.z), slackRadius(pr.w) * BIN_REACH, minDepth, maxDepth, perDepth0,
+                                perDepth1)) {
+        const uint slot = atomicAdd(s_count, 1u);
+        if (slot < uint(MAX_BIN_LIGHTS)) bins[record + uint(BIN_HEADER) + slot] = i;
+      }
+#if defined(FAR_FIELD)
+      else {
+        farFieldAdd(0, lights[i], point);
+      }
+#endif
+    }
+  }
+  barrier();
+  if (local == 0u) {
+    bins[record] = s_count;
+    bins[record + 4u] = floatBitsToUint(point.x);
+    bins[record + 5u] = floatBitsToUint(point.y);
+    bins[record + 6u] = floatBitsToUint(point.z);
+  }
+#if defined(FAR_FIELD)
+  if (local < uint(FAR_FIELD_VALUES)) bins[record + 8u + local] = floatBitsToUint(farFieldFloat(s_farSums[0][local]));
+#endif
+}
