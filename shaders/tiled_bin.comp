@@ -64,10 +64,11 @@ void main() {
   const bool covered = s_maxDepth != 0u || s_minDepth != 0x7f7fffffu;
   const float minDepth = uintBitsToFloat(s_minDepth), maxDepth = uintBitsToFloat(s_maxDepth);
   const uint record = binRecord(gl_WorkGroupID.xy);
+  const bool fits = binFits(gl_WorkGroupID.xy, uint(bins.length()));  // the same for the whole group
   vec2 perDepth0, perDepth1;
   frustumPerDepth(binMin, binMin + uvec2(BIN_PIXELS), perDepth0, perDepth1);
   const vec3 point = covered ? frustumMidPoint(perDepth0, perDepth1, minDepth, maxDepth) : vec3(0.0);
-  if (covered) {
+  if (covered && fits) {
     for (uint i = local; i < uint(u_pointLightCount); i += 256u) {
       const vec4 pr = lights[i].positionRadius;
       const vec3 c = (u_view * vec4(pr.xyz, 1.0)).xyz;
@@ -85,13 +86,13 @@ void main() {
     }
   }
   barrier();
-  if (local == 0u) {
+  if (fits && local == 0u) {
     bins[record] = s_count;
     bins[record + 4u] = floatBitsToUint(point.x);
     bins[record + 5u] = floatBitsToUint(point.y);
     bins[record + 6u] = floatBitsToUint(point.z);
   }
 #if defined(FAR_FIELD)
-  if (local < uint(FAR_FIELD_VALUES)) bins[record + 8u + local] = floatBitsToUint(farFieldFloat(s_farSums[0][local]));
+  if (fits && local < uint(FAR_FIELD_VALUES)) bins[record + 8u + local] = floatBitsToUint(farFieldFloat(s_farSums[0][local]));
 #endif
 }

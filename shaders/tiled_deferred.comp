@@ -155,8 +155,9 @@ void main() {
 #endif
     // The lights of the tile's bin (tiled_bin.comp), or every light when the
     // bin's list overflowed.
-    const uint record = binRecord(gl_WorkGroupID.xy / uint(BIN_TILES));
-    const bool binned = bins[record] <= uint(MAX_BIN_LIGHTS);
+    const uvec2 bin = gl_WorkGroupID.xy / uint(BIN_TILES);
+    const uint record = binRecord(bin);
+    const bool binned = binFits(bin, uint(bins.length())) && bins[record] <= uint(MAX_BIN_LIGHTS);
     const uint candidates = binned ? bins[record] : uint(u_pointLightCount);
     for (uint j = local; j < candidates && local < kLanes; j += kLanes) {
       const uint i = binned ? bins[record + uint(BIN_HEADER) + j] : j;

@@ -24,3 +24,9 @@
 
 uvec2 binGrid() { return (uvec2(u_viewport.xy) + uint(BIN_PIXELS) - 1u) / uint(BIN_PIXELS); }
 uint binRecord(uvec2 bin) { return (bin.y * binGrid().x + bin.x) * uint(BIN_RECORD); }
+// false for a bin outside the viewport's grid or past the buffer's end (the
+// pass sized the buffer for its target; a viewport larger than the target):
+// then nothing is written there and the tiles test every light.
+bool binFits(uvec2 bin, uint bufferUints) {
+  return all(lessThan(bin, binGrid())) && binRecord(bin) + uint(BIN_RECORD) <= bufferUints;
+}
