@@ -24,6 +24,7 @@
 
 #include "bench.h"
 #include "bench_aa_metrics.h"
+#include "bench_post.h"
 #include "cli_common.h"
 #include "commands.h"
 #include "rgraph/error.h"
@@ -270,7 +271,7 @@ size_t runSweep(std::vector<Point>& points, Scenes& scenes, const RunPlan& plan,
 }
 
 const std::vector<std::string> kAxes = {"lights",    "lights_exact", "layout", "layout_exact",
-                                        "threshold", "resolution",   "aa"};
+                                        "threshold", "resolution",   "aa",          "post"};
 
 // --only lights keeps the exact loop at each N too (the methods' psnr_exact_db
 // and the reference time need it).
@@ -345,6 +346,11 @@ int runBench(const BenchOptions& options) {
       aa = planAa(aaSettings);
       failures += runAa(aa, aaSettings, pipelineDir, shaders, !options.figuresOnly);
     }
+    std::vector<PostRow> post;  // bloom and ssao methods (bench_post.h)
+    if (!options.smoke && (options.only.empty() || options.only == "post")) {
+      post = planPost(postPlan(options.quick));
+      failures += runPost(post, postPlan(options.quick), pipelineDir, shaders);
+    }
     // The shipped pipelines as they come, on the default scene and size.
     std::vector<ShippedResult> shipped;
     if (!options.smoke && options.only.empty()) {
@@ -362,6 +368,7 @@ int runBench(const BenchOptions& options) {
     std::vector<std::string> summary;
     json checks = headlineChecks(points, def, summary);
     aaChecks(aa, checks, summary);
+    postChecks(post, checks, summary);
     const double wallS = std::chrono::duration<double>(Clock::now() - start).count();
     json results = {{"tool", "rgraph bench"},
                     {"quick", options.quick},
@@ -401,6 +408,8 @@ int runBench(const BenchOptions& options) {
     for (const auto& r : shipped) results["shipped"].push_back(shippedJson(r));
     results["aa"] = json::array();
     for (const auto& r : aa) results["aa"].push_back(aaJson(r));
+    results["post"] = json::array();
+    for (const auto& r : post) results["post"].push_back(postJson(r));
     writeText(dir / "results.json", results.dump(2) + "\n");
     writeText(dir / "figures.md", figuresMarkdown(points, def, shipped, aa, scenes.spec()));
     if (!options.figuresOnly && !points.empty())
@@ -422,6 +431,8 @@ int runBench(const BenchOptions& options) {
         if (!p.ok()) std::cerr << "  " << describe(p.cfg) << ": " << p.error << "\n";
       for (const auto& r : aa)
         if (!r.ok()) std::cerr << "  aa " << r.aa << " on " << r.scene << ": " << r.error << "\n";
+      for (const auto& r : post)
+        if (!r.ok()) std::cerr << "  post " << r.effect << " " << r.method << ": " << r.error << "\n";
       return kExitFailure;
     }
   } catch (const RuntimeError& e) {

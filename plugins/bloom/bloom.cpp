@@ -3,8 +3,11 @@
 //
 //   bloom_bright     HDR image -> its bright part (threshold, knee), at the
 //                    size of the target the config binds (full or reduced)
-//   bloom_blur       separable 9-tap Gaussian, `iterations` times horizontal +
-//                    vertical, ping-ponging between its two targets
+//   bloom_blur       method "gaussian": separable 9-tap Gaussian,
+//                    `iterations` times horizontal + vertical, ping-ponging
+//                    between its two targets; method "mip_chain": Jimenez's
+//                    downsample/upsample chain (bloom_chain.h), its levels
+//                    side by side in 'temp'
 //   bloom_composite  HDR + intensity * blurred -> a new HDR image (or added
 //                    into the HDR target it loads)
 //
@@ -14,6 +17,8 @@
 // only (the blur renders into each of its two targets in turn).
 #include <GL/glcorearb.h>
 
+#include "bloom_chain.h"
+#include "bloom_chain_layout.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/objects.h"
@@ -51,7 +56,7 @@ class BrightPass final : public gl::FullscreenPass {
 
 // ------------------------------------------------------------ bloom_blur
 
-class BlurPass final : public gl::FullscreenPass {
+class GaussianBlur final : public gl::FullscreenPass {
   void prepare(PassContext& ctx) override {
     dstFbo_ = singleTargetFbo(ctx.texture("dst"), "bloom_blur pass '" + ctx.passName() + "' target 'dst'");
     tempFbo_ = singleTargetFbo(ctx.texture("temp"), "bloom_blur pass '" + ctx.passName() + "' target 'temp'");
@@ -88,6 +93,19 @@ class BlurPass final : public gl::FullscreenPass {
   ProgramUniform targetTexel_{this, "u_targetTexel"}, step_{this, "u_step"};
 };
 
+// The method a bloom_blur pass runs, chosen from its parameters at setup
+// (create() has no parameters).
+class BlurPass final : public PassInstance {
+  void setup(PassContext& ctx) override {
+    if (!impl_)
+      impl_ = ctx.params().getString("method", "gaussian") == "mip_chain" ? bloom::createChainBlur()
+                                                                           : std::make_unique<GaussianBlur>();
+    impl_->setup(ctx);
+  }
+  void execute(PassContext& ctx) override { impl_->execute(ctx); }
+  std::unique_ptr<PassInstance> impl_;
+};
+
 // ------------------------------------------------------------ bloom_composite
 
 class CompositePass final : public gl::FullscreenPass {
@@ -105,6 +123,41 @@ class CompositePass final : public gl::FullscreenPass {
 };
 
 // ------------------------------------------------------------ registration
+
+bool chainMethod(const ParamSet& p) { return p.getString("method", "gaussian") == "mip_chain"; }
+
+// mip_chain: temp holds every level of the source's chain side by side
+// (bloom_chain_layout.h). (That dst and temp have one size, the graph checks:
+// they are a pass's attachments.)
+void checkBlur(const PassCheckContext& ctx, PassChecks& checks) {
+  if (!chainMethod(ctx.params())) return;
+  const Extent src = ctx.extent("src"), temp = ctx.extent("temp");
+  if (src.width == 0 || temp.width == 0) return;  // unresolved: reported elsewhere
+  const int levels = int(ctx.params().getInt("levels", 6));
+  const Extent need = bloom::chainExtent(src, levels);
+  if (temp.width < need.width || temp.height < need.height)
+    checks.slotError("temp", "method 'mip_chain' keeps its " + std::to_string(levels) + " levels side by side in 'temp': "
+                     "it needs at least " + std::to_string(need.width) + "x" + std::to_string(need.height) +
+                     " texels for a " + std::to_string(src.width) + "x" + std::to_string(src.height) +
+                     " source, and is " + std::to_string(temp.width) + "x" + std::to_string(temp.height) +
+                     " (give it the source's size)");
+}
+
+// gaussian: one program; mip_chain: the downsample then the upsample (bloom_chain.cpp's order).
+std::function<std::vector<ShaderProgramSpec>(const ParamSet&)> blurPrograms(const PluginHost& host) {
+  ShaderProgramSpec gaussian = gl::fullscreenProgram(host.shaderPath("bloom_blur.frag"), {{"src", "u_image", 0}});
+  gaussian.drawsToAttachments = false;  // draws into dst and temp in turn through framebuffers of its own
+  std::vector<ShaderProgramSpec> chain;
+  for (const char* frag : {"bloom_down.frag", "bloom_up.frag"}) {
+    ShaderProgramSpec s = gl::fullscreenProgram(host.shaderPath(frag));
+    s.ownSamplers = {"u_image"};  // src or the atlas in 'temp', bound by the pass for each draw
+    s.drawsToAttachments = false;
+    chain.push_back(s);
+  }
+  return [gaussian, chain](const ParamSet& p) {
+    return chainMethod(p) ? chain : std::vector<ShaderProgramSpec>{gaussian};
+  };
+}
 
 // Either a separate HDR input or the bloom added into a loaded target.
 void checkComposite(const PassCheckContext& ctx, PassChecks& checks) {
@@ -139,25 +192,35 @@ void registerBloom(PluginHost& host) {
     host.addPassType(std::move(d));
   }
   {
-    const std::string frag = host.shaderPath("bloom_blur.frag");
     PassTypeDesc d;
     d.name = "bloom_blur";
-    d.description = "Bloom 2/3: separable Gaussian blur, ping-pong between 'temp' and 'dst' (LearnOpenGL)";
+    d.description = "Bloom 2/3: a Gaussian ping-pong between 'temp' and 'dst' (LearnOpenGL), or a mip chain "
+                    "(Jimenez 2014) kept in 'temp'";
     d.slots = {
         slot("src", Access::sampled, true, SlotDecl::Load::never, "image to blur (e.g. bloom_bright's output)",
              kHdrFormats),
-        slot("dst", Access::color_attachment, true, SlotDecl::Load::never, "the blurred image", kHdrFormats),
+        slot("dst", Access::color_attachment, true, SlotDecl::Load::never, "the blurred image (temp's size)", kHdrFormats),
         slot("temp", Access::color_attachment, true, SlotDecl::Load::never,
-             "scratch target of dst's size and format (the other half of the ping-pong)", kHdrFormats),
+             "scratch: gaussian, dst's twin (the other half of the ping-pong); mip_chain, the chain's levels side by "
+             "side (the source's size holds them)",
+             kHdrFormats),
     };
     d.params = {
+        param("method", ParamType::enumeration, std::string("gaussian"),
+              "gaussian: 9-tap ping-pong at dst's size; mip_chain: 13-tap downsamples from half the source's size, "
+              "3x3 tent upsamples added level by level",
+              {"gaussian", "mip_chain"}),
         ranged("iterations", ParamType::integer, int64_t{5}, 1.0, 64.0,
-               "horizontal + vertical passes (the blur widens with their square root)"),
-        ranged("radius", ParamType::number, 1.0, 0.0, 16.0, "spacing of the 9 taps in source texels"),
+               "gaussian: horizontal + vertical passes (the blur widens with their square root)"),
+        ranged("radius", ParamType::number, 1.0, 0.0, 16.0,
+               "spacing of the taps in source texels (gaussian: the 9 taps; mip_chain: the tent's)"),
+        ranged("levels", ParamType::integer, int64_t{6}, 1.0, double(bloom::kMaxLevels),
+               "mip_chain: levels below the source (each half the last; the blur widens about twofold per level)"),
+        param("karis", ParamType::boolean, true,
+              "mip_chain: weight the first downsample's boxes by 1 / (1 + luma) against fireflies"),
     };
-    ShaderProgramSpec blur = gl::fullscreenProgram(frag, {{"src", "u_image", 0}});
-    blur.drawsToAttachments = false;  // draws into dst and temp in turn through framebuffers of its own
-    d.programs = [blur](const ParamSet&) { return std::vector<ShaderProgramSpec>{blur}; };
+    d.programs = blurPrograms(host);
+    d.check = checkBlur;
     d.create = [] { return std::make_unique<BlurPass>(); };
     host.addPassType(std::move(d));
   }

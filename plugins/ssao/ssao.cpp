@@ -5,6 +5,9 @@
 //              r16f or r32f; 1 open, 0 occluded), hemisphere kernel turned by
 //              a 4x4 tile of random rotations
 //   ssao_blur  box blur over the 4x4 tile, removing the rotation pattern
+//   ssao_upsample  optional: SSAO run at a reduced size (ssao and ssao_blur
+//              into smaller targets, e.g. {"scale": 0.5}) back to the
+//              G-buffer's size, depth-aware (joint bilateral)
 //
 // The result goes to deferred_lighting's optional "ao" input, which scales
 // the ambient term. Both outputs are slots the config binds to transient
@@ -108,7 +111,64 @@ class SsaoBlurPass final : public gl::FullscreenPass {
   ProgramUniform size_{this, "u_size"};
 };
 
+// ------------------------------------------------------------ ssao_upsample
+
+class SsaoUpsamplePass final : public gl::FullscreenPass {
+  void update(PassContext& ctx) override {
+    const Extent g = ctx.framebufferExtent();
+    gbufferSize_.set(static_cast<float>(g.width), static_cast<float>(g.height));
+    tolerance_.set(static_cast<float>(ctx.params().getNumber("tolerance", 0.05)));
+    ctx.gpuScene()->bindFrame();
+  }
+  ProgramUniform gbufferSize_{this, "u_gbufferSize"}, tolerance_{this, "u_tolerance"};
+};
+
 // ------------------------------------------------------------ registration
+
+const std::vector<Format> kDepthFormats = {Format::depth24, Format::depth32f, Format::depth24_stencil8,
+                                           Format::depth32f_stencil8};
+
+// The G-buffer slot the layout reads positions from must be bound.
+void checkPositionSlot(const PassCheckContext& ctx, PassChecks& checks) {
+  const gbuffer::Layout& layout = gbuffer::of(ctx.params());
+  const std::string needed = layout.positionSlot();
+  if (!ctx.bound(needed))
+    checks.slotError(needed, "input '" + needed + "' is required by layout '" + layout.name + "' but not bound");
+}
+
+void registerUpsample(PluginHost& host) {
+  using namespace rgraph::decl;
+  const std::string frag = host.shaderPath("ssao_upsample.frag");
+  PassTypeDesc d;
+  d.name = "ssao_upsample";
+  d.description = "SSAO at a reduced size back to the G-buffer's size, depth-aware (joint bilateral upsample)";
+  d.slots = {
+      slot("src", Access::sampled, true, SlotDecl::Load::never, "ssao_blur's output at the reduced size", kAoFormats),
+      slot("position", Access::sampled, false, SlotDecl::Load::never,
+           "G-buffer world position (every layout but compact)"),
+      slot("depth", Access::sampled, false, SlotDecl::Load::never, "G-buffer depth (compact)", kDepthFormats),
+      slot("ao", Access::color_attachment, true, SlotDecl::Load::never,
+           "ambient visibility at the G-buffer's size (for deferred_lighting's 'ao')", kAoFormats),
+  };
+  d.params = {
+      lighting::layoutParam(),
+      ranged("tolerance", ParamType::number, 0.05, 1e-4, 10.0,
+             "relative view-depth difference at which a low-resolution texel's weight falls to 1/e"),
+  };
+  d.programs = [frag](const ParamSet& p) {
+    return std::vector<ShaderProgramSpec>{
+        gl::fullscreenProgram(frag, {{"src", "u_src", 0}, {"position", "g_position", 1}, {"depth", "g_depth", 4}},
+                              ssaoDefines(p))};
+  };
+  d.check = [](const PassCheckContext& ctx, PassChecks& checks) {
+    checkPositionSlot(ctx, checks);
+    const std::string g = gbuffer::of(ctx.params()).positionSlot();
+    if (ctx.bound(g)) checkSameSize(ctx, checks, g, "ao");
+  };
+  d.needsScene = true;  // for the camera
+  d.create = [] { return std::make_unique<SsaoUpsamplePass>(); };
+  host.addPassType(std::move(d));
+}
 
 void registerSsao(PluginHost& host) {
   using namespace rgraph::decl;
@@ -122,7 +182,7 @@ void registerSsao(PluginHost& host) {
              "G-buffer world position (every layout but compact)"),
         slot("normal", Access::sampled, true, SlotDecl::Load::never, "G-buffer normal"),
         slot("depth", Access::sampled, false, SlotDecl::Load::never, "G-buffer depth (compact: rebuilds position)",
-             {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}),
+             kDepthFormats),
         slot("ao", Access::color_attachment, true, SlotDecl::Load::never,
              "ambient visibility, 1 open .. 0 occluded (any size; noisy until ssao_blur)", kAoFormats),
     };
@@ -140,12 +200,7 @@ void registerSsao(PluginHost& host) {
       s.ownSamplers = {"u_noise"};  // the 4x4 rotation texture the pass binds on unit 5
       return std::vector<ShaderProgramSpec>{s};
     };
-    d.check = [](const PassCheckContext& ctx, PassChecks& checks) {
-      const gbuffer::Layout& layout = gbuffer::of(ctx.params());
-      const std::string needed = layout.positionSlot();
-      if (!ctx.bound(needed))
-        checks.slotError(needed, "input '" + needed + "' is required by layout '" + layout.name + "' but not bound");
-    };
+    d.check = checkPositionSlot;
     d.needsScene = true;  // for the camera
     d.create = [] { return std::make_unique<SsaoPass>(); };
     host.addPassType(std::move(d));
@@ -167,6 +222,7 @@ void registerSsao(PluginHost& host) {
     d.create = [] { return std::make_unique<SsaoBlurPass>(); };
     host.addPassType(std::move(d));
   }
+  registerUpsample(host);
 }
 
 }  // namespace

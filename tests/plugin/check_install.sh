@@ -25,13 +25,14 @@ need share/rgraph/shaders/include/frame.glsl
 need share/rgraph/pipelines/default.json
 need share/rgraph/pipelines/deferred-ssao-bloom.json
 need share/rgraph/plugins/bloom/bloom_blur.frag
+need share/rgraph/plugins/bloom/bloom_chain.glsl
 need share/rgraph/plugins/ssao/ssao.frag
 # The installed executable runs on its own (RUNPATH to its library) and finds
 # its default pipeline and the installed plugins (not the build tree's).
 unset RGRAPH_PLUGIN_PATH RGRAPH_SHADER_DIR RGRAPH_PIPELINE_DIR
 out=$("$prefix/bin/rgraph" passes --plugin bloom --plugin ssao 2>&1); rc=$?
 if [[ $rc -ne 0 ]]; then echo "FAIL: installed rgraph passes --plugin bloom: exit $rc: $out" >&2; fail=1; fi
-for t in bloom_bright bloom_blur bloom_composite ssao ssao_blur; do
+for t in bloom_bright bloom_blur bloom_composite ssao ssao_blur ssao_upsample; do
   if ! grep -Eq "^$t  \\($prefix/$libdir/rgraph/plugins/librgraph_(bloom|ssao)\\.so\\)" <<<"$out"; then
     echo "FAIL: '$t' not listed with its installed origin:" >&2; echo "$out" | grep -E "^(bloom|ssao)" >&2; fail=1
   fi

@@ -94,7 +94,7 @@ TEST_F(PluginLoaderTest, LoadsSsaoWithItsOrigin) {
   const LoadedPlugin* p = loader.load("ssao", {}, error);
   ASSERT_NE(p, nullptr) << error;
   EXPECT_EQ(p->path, canonical(kPlugins + "/librgraph_ssao.so"));
-  for (const char* t : {"ssao", "ssao_blur"}) {
+  for (const char* t : {"ssao", "ssao_blur", "ssao_upsample"}) {
     const PassTypeDesc* desc = registry.find(t);
     ASSERT_NE(desc, nullptr) << t;
     EXPECT_EQ(desc->origin, p->path);
@@ -112,7 +112,7 @@ TEST_F(PluginLoaderTest, PluginShadersResolveToTheirFolder) {
   std::string error;
   ASSERT_NE(loader.load("bloom", {}, error), nullptr) << error;
   ASSERT_NE(loader.load("ssao", {}, error), nullptr) << error;
-  for (const char* t : {"bloom_bright", "bloom_blur", "bloom_composite", "ssao", "ssao_blur"}) {
+  for (const char* t : {"bloom_bright", "bloom_blur", "bloom_composite", "ssao", "ssao_blur", "ssao_upsample"}) {
     const PassTypeDesc* desc = registry.find(t);
     ASSERT_NE(desc, nullptr);
     const std::vector<std::string> files = desc->shaderFiles();
