@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Mutation check of the plugin oracle tests (issue 9, OracleSsao and
-# OracleBloom in tests/plugin/plugin_oracle_*_test.cpp): applies single
-# changes to the bloom and ssao plugins' shaders, one at a time, runs
-# rgraph_plugin_tests --gtest_filter='Oracle*' on each and prints which
-# changes the tests caught (and by which tests).
+# OracleBloom in tests/plugin/plugin_oracle_*_test.cpp; issue 15,
+# OracleSsaoUpsample and BloomChainStability): applies single changes to the
+# bloom and ssao plugins' shaders, one at a time, runs rgraph_plugin_tests
+# --gtest_filter='Oracle*:BloomChain*' on each and prints which changes the
+# tests caught (and by which tests).
 #
 #   scripts/mutate-plugins.sh [BUILD_DIR]     (default: build)
 #
@@ -36,7 +37,7 @@ fresh_copy() {
   cp "$libs/librgraph_bloom.so" "$libs/librgraph_ssao.so" "$work/lib/rgraph/plugins/"
   for p in bloom ssao; do cp -r "plugins/$p/shaders" "$work/share/rgraph/plugins/$p"; done
 }
-run_tests() { "$tests" --gtest_filter='Oracle*' >"$work/log" 2>&1; }
+run_tests() { "$tests" --gtest_filter='Oracle*:BloomChain*' >"$work/log" 2>&1; }
 
 # plugin/shader@name@original text@replacement (each original must occur exactly once)
 mutations=$(cat <<'EOF'
@@ -63,6 +64,9 @@ ssao/ssao.frag@ssao power ignored@, u_power);@, 1.0);
 ssao/ssao.frag@ssao hemisphere below the surface@mat3 TBN = mat3(T, cross(N, T), N);@mat3 TBN = mat3(T, cross(N, T), -N);
 ssao/ssao_blur.frag@ssao_blur normalisation off@sum / float(4 * u_size * u_size)@sum / float(4 * u_size * u_size + 1)
 ssao/ssao_blur.frag@ssao_blur one row short@for (int y = -u_size; y < u_size; ++y)@for (int y = -u_size; y < u_size - 1; ++y)
+ssao/ssao_upsample.frag@ssao_upsample depth weight off@ * exp(-d * d);@;
+bloom/bloom_down.frag@chain downsample point-sampled@outColor = vec4(sum / total, 1.0);@outColor = vec4(texelFetch(u_image, ivec2(c), 0).rgb, 1.0);
+bloom/bloom_up.frag@chain tent centre weight halved@vec3 sum = 4.0 * tap(c, vec2(0.0));@vec3 sum = 2.0 * tap(c, vec2(0.0));
 EOF
 )
 

@@ -50,8 +50,14 @@ std::string variant(const json& shipped, const PostRow& row, const std::string& 
     auto& passes = p.at("passes");
     passes.erase(std::remove_if(passes.begin(), passes.end(), [](const json& q) { return q.at("name") == "ssao_upsample"; }),
                  passes.end());
+  } else if (row.method == "half_bilinear") {  // half size, sampled bilinearly by the lighting pass
+    passNamed(p, "lighting")["inputs"]["ao"] = "ao_half";
+    p.at("resources").erase("ao");
+    auto& passes = p.at("passes");
+    passes.erase(std::remove_if(passes.begin(), passes.end(), [](const json& q) { return q.at("name") == "ssao_upsample"; }),
+                 passes.end());
   } else {
-    passNamed(p, "ssao_upsample");  // as shipped: half size, upsampled
+    passNamed(p, "ssao_upsample");  // as shipped: half size, depth-aware upsample
   }
   if (!output.empty()) p["output"] = output;
   return p.dump();
@@ -167,27 +173,44 @@ void bloomRowError(const json& shipped, PostRow& row, const Scene& scene, Shader
              bloomReference(exec->readTextureRGBA32F("bright"), row.size, mix), row);
 }
 
+// The ambient visibility the lighting pass sees, at the output size (R of
+// RGBA): "ao", or for half_bilinear "ao_half" upsampled bilinearly as the
+// lighting pass's sampler does (texel centres, edges clamped).
 std::vector<float> aoOf(const json& shipped, const PostRow& row, const Scene& scene, ShaderLibrary& shaders) {
-  PipelineConfig cfg = build(variant(shipped, row, "ao"), row);
+  const bool bilinear = row.method == "half_bilinear";
+  PipelineConfig cfg = build(variant(shipped, row, bilinear ? "ao_half" : "ao"), row);
   const std::unique_ptr<Executor> exec = makeExecutor(cfg, scene, row.size, shaders);
   exec->renderFrame();
-  return exec->readTextureRGBA32F("ao");
+  if (!bilinear) return exec->readTextureRGBA32F("ao");
+  const std::vector<float> half = exec->readTextureRGBA32F("ao_half");
+  const Extent h = extentOf(*exec, "ao_half");
+  const int W = int(row.size.width), H = int(row.size.height), w = int(h.width), hh = int(h.height);
+  auto at = [&](int x, int y) { return half[(size_t(std::clamp(y, 0, hh - 1)) * w + std::clamp(x, 0, w - 1)) * 4]; };
+  std::vector<float> out(size_t(W) * H * 4, 0.0f);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const double sx = (x + 0.5) * w / W - 0.5, sy = (y + 0.5) * hh / H - 0.5;
+      const int bx = int(std::floor(sx)), by = int(std::floor(sy));
+      const double fx = sx - bx, fy = sy - by;
+      out[(size_t(y) * W + x) * 4] = float((1 - fy) * ((1 - fx) * at(bx, by) + fx * at(bx + 1, by)) +
+                                           fy * ((1 - fx) * at(bx, by + 1) + fx * at(bx + 1, by + 1)));
+    }
+  return out;
 }
 
-// Rows a and b of one effect, timed alternately frame by frame.
-void timePair(const json& shipped, PostRow& a, PostRow& b, const PostPlan& plan, const Scene& scene,
-              ShaderLibrary& shaders, std::vector<uint8_t> images[2]) {
-  PostRow* rows[2] = {&a, &b};
-  std::unique_ptr<Executor> execs[2];
-  for (int i = 0; i < 2; ++i) {
-    PipelineConfig cfg = build(variant(shipped, *rows[i], ""), *rows[i]);
-    execs[i] = makeExecutor(cfg, scene, rows[i]->size, shaders);
-    rows[i]->allocatedBytes = execs[i]->plan().allocatedBytes;
-    rows[i]->naiveBytes = execs[i]->plan().naiveBytes;
+// The rows of one effect, timed in turn frame by frame; their last images.
+std::vector<std::vector<uint8_t>> timeGroup(const json& shipped, const std::vector<PostRow*>& rows,
+                                            const PostPlan& plan, const Scene& scene, ShaderLibrary& shaders) {
+  std::vector<std::unique_ptr<Executor>> execs;
+  for (PostRow* r : rows) {
+    PipelineConfig cfg = build(variant(shipped, *r, ""), *r);
+    execs.push_back(makeExecutor(cfg, scene, r->size, shaders));
+    r->allocatedBytes = execs.back()->plan().allocatedBytes;
+    r->naiveBytes = execs.back()->plan().naiveBytes;
   }
-  const std::set<std::string>& passes = kEffectPasses.at(a.effect);
+  const std::set<std::string>& passes = kEffectPasses.at(rows.front()->effect);
   for (int f = 0; f < plan.warm + plan.timedFrames; ++f)
-    for (int i = 0; i < 2; ++i) {
+    for (size_t i = 0; i < rows.size(); ++i) {
       const double ms = timedFrame(*execs[i]);
       if (f < plan.warm) continue;
       double effect = 0.0;
@@ -196,28 +219,30 @@ void timePair(const json& shipped, PostRow& a, PostRow& b, const PostPlan& plan,
       rows[i]->frameMs.push_back(ms);
       rows[i]->effectMs.push_back(effect);
     }
-  for (int i = 0; i < 2; ++i) images[i] = execs[i]->readOutputRGBA8();
+  std::vector<std::vector<uint8_t>> images;
+  for (const auto& e : execs) images.push_back(e->readOutputRGBA8());
+  return images;
 }
 
-void runEffect(const json& shipped, PostRow& a, PostRow& b, const PostPlan& plan, const Scene& scene,
+void runEffect(const json& shipped, const std::vector<PostRow*>& rows, const PostPlan& plan, const Scene& scene,
                ShaderLibrary& shaders) {
-  std::vector<uint8_t> images[2];
-  timePair(shipped, a, b, plan, scene, shaders, images);
-  if (a.effect == "bloom") {
-    bloomRowError(shipped, a, scene, shaders);
-    bloomRowError(shipped, b, scene, shaders);
+  const std::vector<std::vector<uint8_t>> images = timeGroup(shipped, rows, plan, scene, shaders);
+  if (rows.front()->effect == "bloom") {
+    for (PostRow* r : rows) bloomRowError(shipped, *r, scene, shaders);
     return;
   }
-  // ssao: b (half) against a (full); a against itself is exact.
-  const std::vector<float> full = aoOf(shipped, a, scene, shaders);
-  const std::vector<float> half = aoOf(shipped, b, scene, shaders);
-  double err = 0.0;
-  for (size_t i = 0; i < full.size(); i += 4) err += (half[i] - full[i]) * (half[i] - full[i]);
-  const double mse = err / double(full.size() / 4);
-  b.relError = std::sqrt(mse);
-  b.psnr = mse > 0.0 ? std::min(kPsnrCap, 10.0 * std::log10(1.0 / mse)) : kPsnrCap;
-  b.imagePsnr = compareImages(images[1], images[0]).psnr;
-  a.psnr = a.imagePsnr = kPsnrCap;
+  // ssao: every row against the first (full size), which is exact.
+  const std::vector<float> full = aoOf(shipped, *rows.front(), scene, shaders);
+  rows.front()->psnr = rows.front()->imagePsnr = kPsnrCap;
+  for (size_t k = 1; k < rows.size(); ++k) {
+    const std::vector<float> ao = aoOf(shipped, *rows[k], scene, shaders);
+    double err = 0.0;
+    for (size_t i = 0; i < full.size(); i += 4) err += (ao[i] - full[i]) * (ao[i] - full[i]);
+    const double mse = err / double(full.size() / 4);
+    rows[k]->relError = std::sqrt(mse);
+    rows[k]->psnr = mse > 0.0 ? std::min(kPsnrCap, 10.0 * std::log10(1.0 / mse)) : kPsnrCap;
+    rows[k]->imagePsnr = compareImages(images[k], images[0]).psnr;
+  }
 }
 
 }  // namespace
@@ -231,7 +256,7 @@ PostPlan postPlan(bool quick) {
 std::vector<PostRow> planPost(const PostPlan& plan) {
   std::vector<PostRow> rows;
   for (const auto& [effect, method] : std::vector<std::pair<const char*, const char*>>{
-           {"bloom", "gaussian"}, {"bloom", "mip_chain"}, {"ssao", "full"}, {"ssao", "half"}}) {
+           {"bloom", "gaussian"}, {"bloom", "mip_chain"}, {"ssao", "full"}, {"ssao", "half"}, {"ssao", "half_bilinear"}}) {
     PostRow r;
     r.effect = effect, r.method = method, r.size = plan.size;
     rows.push_back(r);
@@ -255,20 +280,26 @@ size_t runPost(std::vector<PostRow>& rows, const PostPlan& plan, const std::stri
   }
   // Bloom: the default scene (its light markers glow). SSAO: objects on a
   // floor (the default scene's objects float: next to nothing occludes).
-  for (size_t i = 0; i + 1 < rows.size(); i += 2) {
-    PostRow &a = rows[i], &b = rows[i + 1];
-    a.scene = b.scene = a.effect == "bloom" ? "learnopengl:overview" : "many-lights:32";
-    std::fprintf(stderr, "[post] %s: %s against %s at %s: ", a.effect.c_str(), a.method.c_str(), b.method.c_str(),
-                 sizeText(a.size).c_str());
+  for (size_t i = 0; i < rows.size();) {
+    std::vector<PostRow*> group;
+    for (; i < rows.size() && (group.empty() || rows[i].effect == group.front()->effect); ++i) group.push_back(&rows[i]);
+    std::string methods;
+    for (PostRow* r : group) {
+      r->scene = r->effect == "bloom" ? "learnopengl:overview" : "many-lights:32";
+      methods += (methods.empty() ? "" : ", ") + r->method;
+    }
+    std::fprintf(stderr, "[post] %s (%s) at %s:", group.front()->effect.c_str(), methods.c_str(),
+                 sizeText(group.front()->size).c_str());
     try {
-      const Scene scene = loadSceneAny(a.scene);
-      runEffect(shipped, a, b, plan, scene, shaders);
-      std::fprintf(stderr, "%s %.1f ms (frame %.1f), %s %.1f ms (frame %.1f)\n", a.method.c_str(), median(a.effectMs),
-                   median(a.frameMs), b.method.c_str(), median(b.effectMs), median(b.frameMs));
+      const Scene scene = loadSceneAny(group.front()->scene);
+      runEffect(shipped, group, plan, scene, shaders);
+      for (PostRow* r : group)
+        std::fprintf(stderr, " %s %.1f ms (frame %.1f);", r->method.c_str(), median(r->effectMs), median(r->frameMs));
+      std::fprintf(stderr, "\n");
     } catch (const std::exception& e) {
-      a.error = b.error = e.what();
-      std::fprintf(stderr, "failed: %s\n", e.what());
-      failures += 2;
+      for (PostRow* r : group) r->error = e.what();
+      std::fprintf(stderr, " failed: %s\n", e.what());
+      failures += group.size();
     }
   }
   return failures;
@@ -328,18 +359,28 @@ void postChecks(const std::vector<PostRow>& rows, json& checks, std::vector<std:
   }
   if (const PostRow *f = find("ssao", "full"), *h = find("ssao", "half"); f && h) {
     const double speedup = median(f->effectMs) / median(h->effectMs);
+    const PostRow* b = find("ssao", "half_bilinear");
     checks["post_ssao"] = {{"speedup", speedup},
                            {"full_ms", median(f->effectMs)},
                            {"half_ms", median(h->effectMs)},
                            {"ao_rms_error", h->relError},
                            {"ao_psnr_db", h->psnr},
                            {"image_psnr_db", h->imagePsnr}};
+    if (b) checks["post_ssao"]["half_bilinear"] = {{"ms", median(b->effectMs)}, {"ao_rms_error", b->relError},
+                                                   {"ao_psnr_db", b->psnr}, {"image_psnr_db", b->imagePsnr}};
     std::snprintf(buf, sizeof buf,
                   "ssao at %s: half %.1f ms vs full %.1f ms (%.2fx), visibility RMS error %.4f (%.1f dB), image "
                   "%.1f dB against full",
                   sizeText(h->size).c_str(), median(h->effectMs), median(f->effectMs), speedup, h->relError, h->psnr,
                   h->imagePsnr);
     summary.push_back(buf);
+    if (b) {
+      std::snprintf(buf, sizeof buf,
+                    "ssao half size, plain bilinear upsample instead: %.1f ms, visibility RMS error %.4f (%.1f dB), "
+                    "image %.1f dB against full",
+                    median(b->effectMs), b->relError, b->psnr, b->imagePsnr);
+      summary.push_back(buf);
+    }
   }
 }
 

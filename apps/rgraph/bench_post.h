@@ -6,16 +6,19 @@
 // many-lights:32 (objects on a floor). Rows carry the axis name "post".
 //
 //   time: the effect's passes (per-pass clock, glFinish after each) and the
-//         whole frame, medians over timed frames; the two methods of an
-//         effect are rendered alternately, frame by frame;
+//         whole frame, medians over timed frames; the methods of an effect
+//         are rendered in turn, frame by frame;
 //   bloom error: each method's blurred bright image (bloom_blur's dst)
 //         against a wide-blur reference computed on the CPU from the same
 //         bright image: the blur the method stands for, exactly and
 //         shift-invariantly (bloomReference() below); relative RMS error and
 //         PSNR (peak: the reference's maximum), on every 8th pixel of every
 //         8th row;
-//   ssao error: the half-size method's ambient visibility against the full-
-//         size method's, and the final images against each other.
+//   ssao error: the half-size methods' ambient visibility (as the lighting
+//         pass sees it) against the full-size method's, and the final images
+//         against each other; half_bilinear is the half-size SSAO without the
+//         depth-aware upsample (the lighting pass samples it bilinearly), to
+//         show what the upsample buys.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -32,7 +35,7 @@ namespace rgraph::cli::bench {
 
 struct PostRow {
   std::string effect;  // bloom, ssao
-  std::string method;  // bloom: gaussian, mip_chain; ssao: full, half
+  std::string method;  // bloom: gaussian, mip_chain; ssao: full, half, half_bilinear
   std::string scene;   // loadSceneAny spec
   Extent size{1920, 1080};
   std::vector<double> frameMs, effectMs;

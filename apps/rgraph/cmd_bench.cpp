@@ -346,8 +346,11 @@ int runBench(const BenchOptions& options) {
       aa = planAa(aaSettings);
       failures += runAa(aa, aaSettings, pipelineDir, shaders, !options.figuresOnly);
     }
-    std::vector<PostRow> post;  // bloom and ssao methods (bench_post.h)
-    if (!options.smoke && (options.only.empty() || options.only == "post")) {
+    // Bloom and SSAO methods at 1080p (bench_post.h): on their own (--only
+    // post) or in a timed run (untimed, they are a minute of renders for a
+    // few figures).
+    std::vector<PostRow> post;
+    if (!options.smoke && (options.only == "post" || (options.only.empty() && !options.figuresOnly))) {
       post = planPost(postPlan(options.quick));
       failures += runPost(post, postPlan(options.quick), pipelineDir, shaders);
     }
