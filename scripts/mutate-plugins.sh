@@ -106,7 +106,7 @@ PY
     result="INVALID (does not compile)"
     missed=$((missed + 1))
   else
-    result="caught by $(grep '^\[  FAILED  \] Oracle' "$work/log" | sed 's/^\[  FAILED  \] //; s/ (.*//' | sort -u |
+    result="caught by $(grep -E '^\[  FAILED  \] (Oracle|BloomChain)' "$work/log" | sed 's/^\[  FAILED  \] //; s/ (.*//' | sort -u |
       sed 's/^Oracle//' | paste -sd, -)"
   fi
   printf '%-44s  %s\n' "$name" "$result"
