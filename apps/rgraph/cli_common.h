@@ -23,8 +23,8 @@ constexpr int kExitFailure = 1;
 // Appends every problem to diags; returns nullopt when any is an error.
 std::optional<PipelineConfig> loadPipeline(const std::string& path, Diagnostics& diags);
 
-// Plugins. --plugin-path folders are searched before $RGRAPH_PLUGIN_PATH, the
-// install's plugin folder and the build tree's (see rgraph/plugin.h).
+// Plugins. --plugin-path folders are searched before $RGRAPH_PLUGIN_PATH and
+// rgraph's own plugin folder (see rgraph/plugin.h).
 void addPluginSearchDirectory(const std::string& dir);
 // Loads plugins named on the command line (names, or paths relative to the
 // working directory). Prints `error: plugin 'NAME': reason` per failure;

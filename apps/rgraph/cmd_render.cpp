@@ -204,6 +204,9 @@ int runRender(const RenderOptions& options) {
     std::cout << "wrote " << options.out << " (" << extent.width << "x" << extent.height << ", " << frames
               << (frames == 1 ? " frame" : " frames") << ", median " << median(frameMs) << " ms)\n";
     if (!options.stats.empty()) writeStats(options.stats, frameMs, passMs, passOrder, renderer->plan());
+  } catch (const LocatedError& e) {
+    std::cerr << e.what() << "\n";  // `FILE:LINE: error: ...` already
+    return kExitFailure;
   } catch (const RuntimeError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return kExitFailure;

@@ -6,29 +6,35 @@ namespace rgraph::gbuffer {
 
 namespace {
 // What gbuffer.frag writes to each target, once for every layout that has it.
-constexpr const char* kPosition = "world position xyz, w 1 where covered";
-constexpr const char* kNormal = "world normal xyz, w 1 where covered";
+constexpr const char* kPosition = "world position xyz, w 1 where covered (0 where nothing was drawn)";
+constexpr const char* kNormal = "world normal xyz (unit length), w 1 where covered: the coverage flag readers test";
 constexpr const char* kAlbedo = "albedo rgb, specular intensity a";
-constexpr const char* kMaterial = "metallic, roughness, ambient occlusion";
+constexpr const char* kMaterial = "metallic r, roughness g, ambient occlusion b";
+constexpr const char* kOctahedral =
+    "world normal, octahedral rg (encodeOctahedral / decodeOctahedral in include/gbuffer.glsl); no coverage flag";
+constexpr const char* kDepth = "window-space depth, non-linear (0 near .. 1 far), 1 where nothing was drawn";
+constexpr const char* kDepthOnly =
+    "window-space depth, non-linear (0 near .. 1 far): covered where < 1; readers rebuild the world position from it "
+    "with u_invProj and u_invView (positionFromDepth in include/gbuffer.glsl)";
 }  // namespace
 
 // clang-format off
 // One row per layout: name, define, summary, targets in slot order, depth,
-// normal components, position rebuilt from depth.
+// normal components, position rebuilt from depth, what the depth holds.
 const std::vector<Layout>& layouts() {
   static const std::vector<Layout> table = {
       {"learnopengl", "GBUFFER_LEARNOPENGL", "",
        {{"position", Format::rgba16f, kPosition}, {"normal", Format::rgba16f, kNormal},
-        {"albedo", Format::rgba8, kAlbedo}}, Format::depth24_stencil8, 3, false},
+        {"albedo", Format::rgba8, kAlbedo}}, Format::depth24_stencil8, 3, false, kDepth},
       {"pbr", "GBUFFER_PBR", "4x rgba16f",
        {{"position", Format::rgba16f, kPosition}, {"normal", Format::rgba16f, kNormal},
-        {"albedo", Format::rgba16f, kAlbedo}, {"material", Format::rgba16f, kMaterial}}, Format::depth24_stencil8, 3, false},
+        {"albedo", Format::rgba16f, kAlbedo}, {"material", Format::rgba16f, kMaterial}}, Format::depth24_stencil8, 3, false, kDepth},
       {"compact", "GBUFFER_COMPACT", "no position, octahedral normal",
-       {{"normal", Format::rg16f, "world normal, octahedral rg"}, {"albedo", Format::rgba8, kAlbedo},
-        {"material", Format::rg8, "metallic, roughness"}}, Format::depth32f, 2, true},
+       {{"normal", Format::rg16f, kOctahedral}, {"albedo", Format::rgba8, kAlbedo},
+        {"material", Format::rg8, "metallic r, roughness g"}}, Format::depth32f, 2, true, kDepthOnly},
       {"fp32", "GBUFFER_FP32", "",
        {{"position", Format::rgba32f, kPosition}, {"normal", Format::rgba32f, kNormal},
-        {"albedo", Format::rgba32f, kAlbedo}, {"material", Format::rgba32f, kMaterial}}, Format::depth32f, 3, false},
+        {"albedo", Format::rgba32f, kAlbedo}, {"material", Format::rgba32f, kMaterial}}, Format::depth32f, 3, false, kDepth},
   };
   return table;
 }

@@ -1,24 +1,33 @@
 // Per-frame data shared by every scene pass (std140, binding 0), filled by the
 // executor's GPU scene from the scene camera and lights. Keep in sync with
 // core/src/gl/gpu_scene.cpp (FrameBlock).
+// Each member's comment is its documentation: the Frame table in
+// docs/writing-a-pass.md is generated from this block (rgraph_doc_tables; the
+// ctest docs.generated_tables fails when they differ). A comment line indented
+// deeper than the members continues the member above it.
 layout(std140, binding = 0) uniform Frame {
-  mat4 u_view;
-  mat4 u_proj;
-  mat4 u_viewProj;
-  mat4 u_invView;
-  mat4 u_invProj;
-  vec4 u_cameraPos;      // xyz world position
-  vec4 u_viewport;       // width, height, 1/width, 1/height
-  vec4 u_ambient;        // rgb: ambient factor applied to albedo
-  vec4 u_dirLightDir;    // xyz: direction the light travels (world), w: 1 when present
-  vec4 u_dirLightColor;  // rgb * intensity
-  ivec4 u_counts;        // x: point lights
-  // Motion and jitter (docs/writing-a-pass.md, "Frame block"). u_proj,
+  mat4 u_view;             // world -> view (the camera; glm::lookAt)
+  mat4 u_proj;             // view -> clip (OpenGL clip space, depth -1..1), with this frame's jitter when the
+                           // pipeline jitters
+  mat4 u_viewProj;         // u_proj * u_view (jittered): what scene.vert draws with
+  mat4 u_invView;          // inverse of u_view
+  mat4 u_invProj;          // inverse of u_proj (jittered too, so positions rebuilt from this frame's depth are
+                           // right)
+  vec4 u_cameraPos;        // xyz: camera position (world)
+  vec4 u_viewport;         // width, height, 1/width, 1/height (pixels)
+  vec4 u_ambient;          // rgb: ambient factor applied to albedo
+  vec4 u_dirLightDir;      // xyz: the direction the first directional light travels (world); w: 1 when there
+                           // is one
+  vec4 u_dirLightColor;    // rgb: its colour * intensity
+  ivec4 u_counts;          // x: point lights
+  // Motion and jitter (docs/writing-a-pass.md, "The Frame block"). u_proj,
   // u_viewProj and u_invProj above carry the jitter; these do not.
-  mat4 u_prevViewProj;     // the previous frame's unjittered view-projection (= u_viewProjNoJitter after a cut)
+  mat4 u_prevViewProj;     // the previous frame's unjittered view-projection; equal to u_viewProjNoJitter on
+                           // the first frame, after a camera cut, and without motion
   mat4 u_viewProjNoJitter; // this frame's unjittered view-projection
-  vec4 u_jitter;           // xy: jitter in pixels (-0.5..0.5), zw: the NDC offset added to clip xy / w
-  ivec4 u_frame;           // x: frame index (mod 2^31), y: jitter phases (0: none)
+  vec4 u_jitter;           // xy: this block's jitter in pixels (each in -0.5..0.5); zw: the same in NDC
+                           // (2 * xy / size), added to clip xy / w. 0 without jitter and in the unjittered block
+  ivec4 u_frame;           // x: the executor's frame index (mod 2^31); y: jitter phases (0: off)
 };
 
 // A point light (std430, binding 0 of the lights buffer).

@@ -45,6 +45,27 @@ out=$("$prefix/bin/rgraph" render "$prefix/share/rgraph/pipelines/deferred-ssao-
       --out "$png" 2>&1); rc=$?
 if [[ $rc -ne 0 || ! -s "$png" ]]; then echo "FAIL: installed rgraph render deferred-ssao-bloom.json: exit $rc: $out" >&2; fail=1; fi
 rm -f "$png"
+# The installed rgraph searches for plugins only in its own prefix (issue 16):
+# no folder of the build tree it was built in is baked in. Its debug log names
+# the search path; with no --plugin-path and no RGRAPH_PLUGIN_PATH that is
+# exactly <prefix>/<libdir>/rgraph/plugins (the build tree's rgraph finds its
+# own plugins the same way: tests/plugin/plugin_cli_test.cpp).
+want=$(realpath -m "$prefix/$libdir/rgraph/plugins")
+out=$("$prefix/bin/rgraph" --log-level debug validate "$prefix/share/rgraph/pipelines/deferred-ssao-bloom.json" 2>&1); rc=$?
+if [[ $rc -ne 0 ]]; then echo "FAIL: installed rgraph --log-level debug validate: exit $rc: $out" >&2; fail=1; fi
+search=$(grep -o "plugin 'ssao': search path .*" <<<"$out" | head -1)
+if [[ "$search" != "plugin 'ssao': search path $want" ]]; then
+  echo "FAIL: the installed rgraph's plugin search path is not only its prefix's folder ($want):" >&2
+  echo "${search:-(no search path logged)}" >&2; fail=1
+else
+  echo "ok: plugin search path is $want alone"
+fi
+# A plugin that is nowhere in the prefix is not found, and the folders the
+# error lists are that one folder.
+out=$("$prefix/bin/rgraph" passes --plugin no_such_plugin 2>&1); rc=$?
+if [[ $rc -ne 1 || "$out" != *"no_such_plugin.so in $want; add a folder"* ]]; then
+  echo "FAIL: installed rgraph passes --plugin no_such_plugin (exit $rc) should search $want alone: $out" >&2; fail=1
+fi
 # `rgraph render` with no pipeline finds share/rgraph/pipelines/default.json.
 png=$(mktemp --suffix=.png)
 out=$("$prefix/bin/rgraph" render --width 64 --height 48 --out "$png" 2>&1); rc=$?

@@ -292,8 +292,9 @@ TEST_F(PluginLoaderTest, SearchOrderPluginPathThenEnvironment) {
     EXPECT_EQ(dirs[0], canonical(a.path()));
     EXPECT_EQ(dirs[1], "/nonexistent");
     EXPECT_EQ(dirs[2], canonical(b.path()));
-    // The build tree's plugin folder is searched last of all.
-    EXPECT_NE(std::find(dirs.begin(), dirs.end(), canonical(kPlugins)), dirs.end());
+    // rgraph's own plugin folder comes last: found from where this program
+    // and librgraph.so are (<build>/bin, <build>/lib), not baked in.
+    EXPECT_EQ(dirs.back(), canonical(kPlugins));
   }
   {
     // <name>.so, and a name that is a file name.
@@ -318,4 +319,43 @@ TEST_F(PluginLoaderTest, GoodFixtureRegistersThroughTheMacro) {
   ASSERT_NE(registry.find("fixture_noop"), nullptr);
   EXPECT_EQ(registry.find("fixture_noop")->origin, canonical(fixture("good")));
   EXPECT_TRUE(registry.find("fixture_noop")->create() != nullptr);
+}
+
+// "unknown pass type": which plugin on the path has it. Every fixture is
+// probed (wrong ABI, no entry point, a registration that throws, an
+// unresolved symbol, a duplicate: each skipped without a crash); only the
+// good one provides fixture_noop, and nothing reaches the registry.
+TEST_F(PluginLoaderTest, FindProviderProbesThePathWithoutRegistering) {
+  PassRegistry registry;
+  PluginLoader loader(registry);
+  loader.addSearchDirectory(kFixtures);
+  const std::optional<PluginLoader::Provider> p = loader.findProvider("fixture_noop");
+  ASSERT_TRUE(p.has_value());
+  EXPECT_EQ(p->name, "fixture_good");
+  EXPECT_EQ(p->path, canonical(fixture("good")));
+  EXPECT_FALSE(loader.findProvider("fixture_twice").has_value());  // dup_self's registration is refused
+  EXPECT_FALSE(loader.findProvider("no_plugin_has_this").has_value());
+  EXPECT_TRUE(registry.all().empty());
+  EXPECT_TRUE(loader.loaded().empty());
+  // Loading it afterwards registers its types as usual; a loaded plugin is
+  // not offered again.
+  std::string error;
+  ASSERT_NE(loader.load("fixture_good", {}, error), nullptr) << error;
+  EXPECT_NE(registry.find("fixture_noop"), nullptr);
+  EXPECT_FALSE(loader.findProvider("fixture_noop").has_value());
+}
+
+// A file that another of the same name shadows earlier on the path is named
+// by its path: the name would load the other one.
+TEST_F(PluginLoaderTest, FindProviderNamesAShadowedPluginByItsPath) {
+  TempDir first;
+  std::ofstream(first.path() + "/librgraph_fixture_good.so") << "not a library";
+  PassRegistry registry;
+  PluginLoader loader(registry);
+  loader.addSearchDirectory(first.path());
+  loader.addSearchDirectory(kFixtures);
+  const std::optional<PluginLoader::Provider> p = loader.findProvider("fixture_noop");
+  ASSERT_TRUE(p.has_value());
+  EXPECT_EQ(p->name, canonical(fixture("good")));
+  EXPECT_EQ(p->path, canonical(fixture("good")));
 }

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,9 @@ class ConfigDocument {
   // "/passes/0/inputs/albedo" -> the opening quote of "albedo"); falls back
   // to locate() when the pointer names no object member.
   SourceLocation locateKey(const std::string& jsonPointer) const;
+  // The string at a JSON pointer (e.g. "/passes/1/type"); nullopt when there
+  // is none or it is not a string.
+  std::optional<std::string> stringAt(const std::string& jsonPointer) const;
 
  private:
   struct Impl;

@@ -9,4 +9,12 @@ class RuntimeError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// A RuntimeError whose message already starts with where and what it is
+// (`FILE:LINE: error: ...`, e.g. a shader the driver refuses): front ends
+// print it as it is, without an "error: " of their own in front.
+class LocatedError : public RuntimeError {
+ public:
+  using RuntimeError::RuntimeError;
+};
 }  // namespace rgraph

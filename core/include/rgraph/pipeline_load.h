@@ -26,8 +26,8 @@ class PassRegistry;
 class PluginLoader;
 
 struct PipelineLoadOptions {
-  // Folders searched for plugin names before $RGRAPH_PLUGIN_PATH, the
-  // install's plugin folder and the build tree's (rgraph/plugin.h).
+  // Folders searched for plugin names before $RGRAPH_PLUGIN_PATH and
+  // rgraph's own plugin folder (rgraph/plugin.h).
   std::vector<std::string> pluginDirectories;
   // Where plugins are registered and loaded. nullptr: PassRegistry::builtins()
   // and the process-wide processPluginLoader() (plugins stay loaded until exit).

@@ -38,6 +38,8 @@
 #include <cstdint>
 #include <deque>
 #include <exception>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -155,10 +157,11 @@ struct LoadedPlugin {
 // <name>.so (a name ending in ".so" is looked up as is) in, in order:
 //   1. directories given to addSearchDirectory (e.g. --plugin-path), in order;
 //   2. $RGRAPH_PLUGIN_PATH (':'-separated);
-//   3. the install's plugin folder: <libdir>/rgraph/plugins beside
-//      librgraph.so, and <exe>/../<libdir>/rgraph/plugins, and the configured
-//      install prefix;
-//   4. the build tree's plugin output folder (<build>/lib/rgraph/plugins).
+//   3. rgraph's own plugin folder: <libdir>/rgraph/plugins beside
+//      librgraph.so, and <exe>/../<libdir>/rgraph/plugins. A build tree has
+//      the install's layout (<build>/lib/rgraph/plugins), so the rgraph of a
+//      build tree finds that tree's plugins and an installed one only its
+//      prefix's: no folder is baked in at build time.
 //
 // Every failure is a one-line message naming the plugin and the reason:
 // not found (with the folders searched), a name with a NUL byte, a file that
@@ -191,10 +194,25 @@ class PluginLoader {
 
   const std::deque<LoadedPlugin>& loaded() const { return loaded_; }
 
+  // A plugin on the search path, not loaded, that provides pass type `type`:
+  // what "unknown pass type" suggests adding to a config's "plugins". Every
+  // librgraph_*.so in searchDirectories() is probed (once per loader) the way
+  // loadFile loads it (file check, dlopen, ABI check) and its registration
+  // runs into a scratch registry: its types never reach this loader's
+  // registry. A file that fails any step is skipped (a damaged plugin on the
+  // path costs nothing but its own suggestion). Libraries stay mapped, as
+  // loaded ones do (their initialisers have run).
+  struct Provider {
+    std::string name;  // what a config's "plugins" names it by: its name, or its path when another file shadows it
+    std::string path;  // the library
+  };
+  std::optional<Provider> findProvider(const std::string& type) const;
+
  private:
   PassRegistry& registry_;
   std::vector<std::string> dirs_;
   std::deque<LoadedPlugin> loaded_;  // stable addresses
+  mutable std::map<std::string, std::vector<std::string>> probed_;  // library -> the types it registers
 };
 
 }  // namespace rgraph

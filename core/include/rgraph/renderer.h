@@ -120,7 +120,7 @@ class RenderScene {
 
 struct RendererOptions {
   // Folders searched for the plugins the config names, before
-  // $RGRAPH_PLUGIN_PATH, the installed plugin folder and the build tree's.
+  // $RGRAPH_PLUGIN_PATH and rgraph's own plugin folder (rgraph/plugin.h).
   std::vector<std::string> pluginDirectories;
   // Folders searched for shader files before the built-in shaders.
   std::vector<std::string> shaderDirectories;

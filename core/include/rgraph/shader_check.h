@@ -97,6 +97,25 @@ std::string resolveShaderFile(const std::string& file, const std::vector<std::st
 // A path as shown in messages: relative to the working directory when inside it.
 std::string shaderDisplayPath(const std::string& path);
 
+// Where a shader file came from, for messages. rgraph_add_plugin copies a
+// plugin's shaders into <build>/share/rgraph/plugins/<name>/ and writes
+// kShaderSourcesManifest there, one `COPY<TAB>SOURCE` line per shader (the
+// copy's file name, the absolute path it was copied from). Messages about a
+// copy name the source the author edits instead:
+//   - the source exists with the copy's contents: `display` is the source
+//     (shaderDisplayPath of it), `note` is empty;
+//   - the source exists but differs (edited since the last build): `display`
+//     is the copy and `note` says which source it is a copy of and to rebuild;
+//   - no manifest, no line for the file, or the source is gone (a package
+//     built elsewhere): `display` is the file itself.
+// `text` is the file's contents (already read by the caller).
+inline constexpr const char* kShaderSourcesManifest = "rgraph-shader-sources.txt";
+struct ShaderOrigin {
+  std::string display;
+  std::string note;
+};
+ShaderOrigin shaderOrigin(const std::string& path, const std::string& text);
+
 // A load failure with a location: a missing include or a nested #include.
 // what() is `FILE:LINE: error: message`.
 class ShaderSourceError : public RuntimeError {
@@ -115,9 +134,10 @@ class ShaderSourceError : public RuntimeError {
 struct ShaderSource {
   std::string path;                        // the resolved file
   std::string text;                        // after #include expansion and defines
-  std::vector<std::string> files;          // display paths: 0 the shader, then included files
+  std::vector<std::string> files;          // display paths (shaderOrigin): 0 the shader, then included files
   std::vector<std::string> resolvedFiles;  // the same files as found on disk (for watching them)
   std::vector<std::pair<int, int>> lines;  // expanded line - 1 -> (file index, line in that file)
+  std::vector<std::string> notes;          // per file: ShaderOrigin::note ("" for most); last, for older plugins
 };
 
 // Loads a shader: `#include "file"` (or <file>) expanded one level deep
@@ -141,8 +161,15 @@ struct ShaderMessage {
 // Parses a compiler log (glslang `ERROR: 0:12: ...`, Mesa `0:12(5): error: ...`,
 // NVIDIA `0(12) : error C0000: ...`) into messages located in the original
 // files. Lines that name no location are kept with line 0; glslang's
-// "N compilation errors" summary is dropped.
+// "N compilation errors" summary is dropped. A message in a file with a note
+// (a stale copy, see shaderOrigin) ends with that note in parentheses.
 std::vector<ShaderMessage> parseShaderLog(const std::string& log, const ShaderSource& src);
+// What `rgraph render` shows of a driver's compile log, the way `validate`
+// shows glslang's: one `FILE:LINE: error: text` line per source line with an
+// error (its first message: Mesa follows "no matching function ...;
+// candidates are:" with one line per overload, which this drops along with
+// the "; candidates are:" tail), at most `maxLines` lines. Warnings are left out.
+std::string shaderErrorSummary(const std::vector<ShaderMessage>& messages, size_t maxLines = 8);
 // The same log with locations rewritten to `FILE:LINE: ...` (what
 // ShaderLibrary throws on a compile error).
 std::string mapShaderLog(const std::string& log, const ShaderSource& src);

@@ -54,7 +54,7 @@ struct Options {
   // scale-sized resources, hence memory).
   Extent size{1280, 720};
   // Folders searched for the plugins the config names, before
-  // $RGRAPH_PLUGIN_PATH, the installed plugin folder and the build tree's.
+  // $RGRAPH_PLUGIN_PATH and rgraph's own plugin folder (rgraph/plugin.h).
   std::vector<std::string> pluginDirectories;
   // "Model no more than a scene needs": when set, the pipeline is adapted to
   // a scene with these features before it is compiled (rgraph/adapt.h), as

@@ -138,4 +138,16 @@ SourceLocation ConfigDocument::locateKey(const std::string& jsonPointer) const {
   return {impl_->file, lc.line, lc.column, jsonPointer};
 }
 
+std::optional<std::string> ConfigDocument::stringAt(const std::string& jsonPointer) const {
+  if (!ok()) return std::nullopt;
+  try {
+    const Json::json_pointer pointer(jsonPointer);
+    if (!impl_->root.contains(pointer)) return std::nullopt;
+    const Json& value = impl_->root.at(pointer);
+    if (value.is_string()) return value.get<std::string>();
+  } catch (const Json::exception&) {  // not a valid pointer
+  }
+  return std::nullopt;
+}
+
 }  // namespace rgraph

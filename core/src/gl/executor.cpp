@@ -322,8 +322,10 @@ void Executor::Impl::createRuns() {
       if (w.known())
         at = " at " + w.file + ":" + std::to_string(w.line) + ":" + std::to_string(w.column) +
              (w.path.empty() ? "" : " (" + w.path + ")");
-      throw RuntimeError(std::string(e.what()) + "\n  (in setup of pass '" + run->name + "' of type '" +
-                         run->typeName + "'" + at + ")");
+      std::string message = std::string(e.what()) + "\n  (in setup of pass '" + run->name + "' of type '" +
+                            run->typeName + "'" + at + ")";
+      if (dynamic_cast<const LocatedError*>(&e)) throw LocatedError(message);
+      throw RuntimeError(message);
     }
   }
 }
@@ -467,7 +469,9 @@ void Executor::renderFrame() {
       run.programs.unbindSlots();
     } catch (const RuntimeError& e) {
       if (run.query) glEndQuery(GL_TIME_ELAPSED);
-      throw RuntimeError(std::string(e.what()) + "\n  (in pass '" + run.name + "' of type '" + run.typeName + "')");
+      std::string message = std::string(e.what()) + "\n  (in pass '" + run.name + "' of type '" + run.typeName + "')";
+      if (dynamic_cast<const LocatedError*>(&e)) throw LocatedError(message);
+      throw RuntimeError(message);
     }
     if (run.query) glEndQuery(GL_TIME_ELAPSED);
     if (cpuTiming) {

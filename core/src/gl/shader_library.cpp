@@ -78,7 +78,12 @@ std::string ShaderLibrary::preprocess(const std::string& file, const std::vector
 
 gl::Shader ShaderLibrary::compileStage(unsigned stage, const std::string& file, const std::vector<std::string>& defines,
                                        std::vector<WatchedFile>& read) const {
-  ShaderSource src = loadShaderSource(file, defines, searchDirectories());
+  ShaderSource src;
+  try {
+    src = loadShaderSource(file, defines, searchDirectories());
+  } catch (const ShaderSourceError& e) {
+    throw LocatedError(e.what());  // already FILE:LINE: error: ...
+  }
   for (const auto& path : src.resolvedFiles) {
     std::error_code ec;
     read.push_back({path, std::filesystem::last_write_time(path, ec)});
@@ -91,9 +96,15 @@ gl::Shader ShaderLibrary::compileStage(unsigned stage, const std::string& file, 
   glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
   std::string log = shaderLog(shader.id());
   if (!ok) {
-    std::string mapped = mapShaderLog(log, src);
-    if (mapped.empty()) mapped = src.files[0] + ": error: " + stageName(stage) + " shader failed to compile";
-    throw RuntimeError(mapped);
+    // The clean form `validate` prints (one line per line with an error);
+    // the driver's own log, which can run to dozens of lines (Mesa lists
+    // every overload of a builtin), only at debug level.
+    spdlog::debug("{} ({} shader): the driver's compile log:\n{}", src.files[0], stageName(stage),
+                  mapShaderLog(log, src));
+    std::string summary = shaderErrorSummary(parseShaderLog(log, src));
+    if (summary.empty()) summary = src.files[0] + ": error: " + stageName(stage) + " shader failed to compile";
+    throw LocatedError(summary + "\n  (the driver refused this " + stageName(stage) +
+                       " shader; its full log is logged at debug level: rgraph --log-level debug)");
   }
   if (!log.empty()) spdlog::debug("{} ({} shader): {}", src.files[0], stageName(stage), mapShaderLog(log, src));
   return shader;

@@ -1,6 +1,7 @@
 #include "rgraph/pipeline_load.h"
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
 #include "rgraph/error.h"
 #include "rgraph/plugin.h"
@@ -14,6 +15,26 @@ PluginLoader& processPluginLoader() {
 }
 
 namespace {
+
+// "unknown pass type 'ssao'" when librgraph_ssao.so is on the plugin search
+// path: say which plugin has it and what to add to the config (instead of a
+// "did you mean" spelling: the type exists, only not loaded).
+void suggestPlugins(const ConfigDocument& doc, const PluginLoader& loader, Diagnostics& diags, size_t from) {
+  const bool hasPlugins = !doc.plugins().empty();
+  for (size_t i = from; i < diags.size(); ++i) {
+    Diagnostic& d = diags[i];
+    if (d.code != DiagCode::unknown_pass_type) continue;
+    const std::optional<std::string> type = doc.stringAt(d.where.path);
+    if (!type) continue;
+    const std::optional<PluginLoader::Provider> provider = loader.findProvider(*type);
+    if (!provider) continue;
+    const std::string entry = nlohmann::json(provider->name).dump();
+    if (const size_t guess = d.message.find(" (did you mean"); guess != std::string::npos) d.message.erase(guess);
+    d.message += "; plugin " + entry + " (" + provider->path + ") provides it: " +
+                 (hasPlugins ? "add " + entry + " to the config's \"plugins\" array"
+                             : "add \"plugins\": [" + entry + "] at the top level of the config");
+  }
+}
 
 std::optional<PipelineConfig> finishLoad(const ConfigDocument& doc, const std::string& baseDir,
                                          const PipelineLoadOptions& options, Diagnostics& diags) {
@@ -33,7 +54,9 @@ std::optional<PipelineConfig> finishLoad(const ConfigDocument& doc, const std::s
     diags.push_back(std::move(d));
   }
   if (hasErrors(diags)) return std::nullopt;
+  const size_t before = diags.size();
   PipelineConfig pipeline = doc.build(registry, diags);
+  suggestPlugins(doc, loader, diags, before);
   if (hasErrors(diags)) return std::nullopt;
   return pipeline;
 }

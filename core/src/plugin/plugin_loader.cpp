@@ -13,12 +13,6 @@
 #include "rgraph/registry.h"
 #include "rgraph/shader_check.h"
 
-#ifndef RGRAPH_PLUGIN_BUILD_DIR
-#define RGRAPH_PLUGIN_BUILD_DIR ""
-#endif
-#ifndef RGRAPH_PLUGIN_INSTALL_DIR
-#define RGRAPH_PLUGIN_INSTALL_DIR ""
-#endif
 #ifndef RGRAPH_PLUGIN_INSTALL_RELDIR
 #define RGRAPH_PLUGIN_INSTALL_RELDIR "lib/rgraph/plugins"
 #endif
@@ -204,12 +198,14 @@ std::vector<std::string> PluginLoader::searchDirectories() const {
   };
   for (const auto& d : dirs_) add(d);
   for (const auto& d : splitPath(std::getenv("RGRAPH_PLUGIN_PATH"))) add(d);
-  // The install's plugin folder: beside librgraph.so, then relative to the
-  // executable, then the configured prefix.
+  // rgraph's own plugin folder, found from where the running code is: beside
+  // librgraph.so, then relative to the executable. A build tree has the
+  // install's layout (<build>/lib/rgraph/plugins), so this one rule serves
+  // both. No folder is baked in at build time: an installed rgraph must never
+  // load stale plugins from the build tree it was built in, or from the
+  // prefix it was configured for when it was installed elsewhere.
   if (fs::path lib = libraryDir(); !lib.empty()) add(lib / "rgraph" / "plugins");
   if (fs::path exe = executableDir(); !exe.empty()) add(exe / ".." / RGRAPH_PLUGIN_INSTALL_RELDIR);
-  if (*RGRAPH_PLUGIN_INSTALL_DIR) add(RGRAPH_PLUGIN_INSTALL_DIR);
-  if (*RGRAPH_PLUGIN_BUILD_DIR) add(RGRAPH_PLUGIN_BUILD_DIR);
   return out;
 }
 
@@ -233,6 +229,8 @@ const LoadedPlugin* PluginLoader::load(const std::string& nameOrPath, const std:
     return nullptr;
   }
   if (error = nulByteError(nameOrPath); !error.empty()) return nullptr;
+  if (!isPathLike(nameOrPath))
+    spdlog::debug("plugin '{}': search path {}", nameOrPath, joined(searchDirectories(), ":"));
   const std::string file = find(nameOrPath, baseDir);
   if (file.empty()) {
     if (isPathLike(nameOrPath)) {
@@ -248,18 +246,10 @@ const LoadedPlugin* PluginLoader::load(const std::string& nameOrPath, const std:
   return loadFile(file, error, nameOrPath);
 }
 
-const LoadedPlugin* PluginLoader::loadFile(const std::string& pathIn, std::string& error, const std::string& displayName) {
-  if (error = nulByteError(pathIn); !error.empty()) return nullptr;
-  const std::string path = normal(pathIn);
-  const std::string label =
-      "plugin '" + (displayName.empty() ? nameFromFile(path) : displayName) + "' (" + path + ")";
-  for (const auto& p : loaded_)
-    if (p.path == path) return &p;
-  if (!isFile(path)) {
-    error = label + ": file not found";
-    return nullptr;
-  }
-
+namespace {
+// The file check, dlopen and the ABI check: the library's registration entry
+// point, or nullptr with `error` set (starting with `label`).
+rgraph_plugin_register_fn openPlugin(const std::string& path, const std::string& label, std::string& error) {
   // dlopen maps the file and reads it through the mapping: a file cut short
   // inside a segment kills the process with SIGBUS there. Check it first.
   if (std::string why = checkPluginFile(path); !why.empty()) {
@@ -296,6 +286,55 @@ const LoadedPlugin* PluginLoader::loadFile(const std::string& pathIn, std::strin
                     "' (define it with RGRAPH_PLUGIN in rgraph/plugin.h)";
     return nullptr;
   }
+  return reg;
+}
+}  // namespace
+
+std::optional<PluginLoader::Provider> PluginLoader::findProvider(const std::string& type) const {
+  for (const auto& dir : searchDirectories()) {
+    std::error_code ec;
+    std::vector<std::string> files;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+      const std::string file = it->path().filename().string();
+      if (file.rfind("librgraph_", 0) == 0 && file.size() > 3 && file.compare(file.size() - 3, 3, ".so") == 0)
+        files.push_back(normal(it->path()));
+    }
+    std::sort(files.begin(), files.end());
+    for (const auto& path : files) {
+      const bool loaded = std::any_of(loaded_.begin(), loaded_.end(), [&](const LoadedPlugin& p) { return p.path == path; });
+      if (loaded || !isFile(path)) continue;
+      auto [probe, fresh] = probed_.try_emplace(path);
+      if (fresh) {
+        std::string error;
+        if (rgraph_plugin_register_fn reg = openPlugin(path, "plugin " + path, error)) {
+          const PassRegistry none;
+          Host host(none, path);
+          if (reg(&host) == 0 && !host.failed())
+            for (const auto& desc : host.types()) probe->second.push_back(desc.name);
+        }
+        spdlog::debug("probed {} for pass types: {}", path, error.empty() ? joined(probe->second, ", ") : error);
+      }
+      if (std::find(probe->second.begin(), probe->second.end(), type) == probe->second.end()) continue;
+      const std::string name = nameFromFile(path);
+      return Provider{find(name) == path ? name : path, path};
+    }
+  }
+  return std::nullopt;
+}
+
+const LoadedPlugin* PluginLoader::loadFile(const std::string& pathIn, std::string& error, const std::string& displayName) {
+  if (error = nulByteError(pathIn); !error.empty()) return nullptr;
+  const std::string path = normal(pathIn);
+  const std::string label =
+      "plugin '" + (displayName.empty() ? nameFromFile(path) : displayName) + "' (" + path + ")";
+  for (const auto& p : loaded_)
+    if (p.path == path) return &p;
+  if (!isFile(path)) {
+    error = label + ": file not found";
+    return nullptr;
+  }
+  rgraph_plugin_register_fn reg = openPlugin(path, label, error);
+  if (!reg) return nullptr;
 
   Host host(registry_, path);
   const int rc = reg(&host);

@@ -124,6 +124,10 @@ void appendPrograms(std::ostringstream& k, const PipelineConfig& pipeline, const
         try {
           const ShaderSource src = loadShaderSource(*file, spec.defines, dirs);
           k << src.path << "\n" << src.text << "\n";
+          // The names messages give the files (a plugin shader's copy names
+          // its source, or says it is stale): part of the cached result.
+          for (size_t f = 0; f < src.files.size(); ++f)
+            k << "shown " << src.files[f] << "\t" << (f < src.notes.size() ? src.notes[f] : "") << "\n";
         } catch (const std::exception& e) {
           k << "unloadable: " << e.what() << "\n";
         }

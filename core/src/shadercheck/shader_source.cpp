@@ -218,6 +218,42 @@ std::string shaderDisplayPath(const std::string& path) {
   return fs::path(path).lexically_normal().generic_string();
 }
 
+namespace {
+// The source a copy was made from, per the manifest beside it; "" when none.
+std::string manifestSource(const fs::path& copy) {
+  std::ifstream in(copy.parent_path() / kShaderSourcesManifest);
+  if (!in) return {};
+  const std::string name = copy.filename().string();
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const size_t tab = line.find('\t');
+    if (line.empty() || line[0] == '#' || tab == std::string::npos) continue;
+    if (line.compare(0, tab, name) == 0 && tab == name.size()) return line.substr(tab + 1);
+  }
+  return {};
+}
+}  // namespace
+
+ShaderOrigin shaderOrigin(const std::string& path, const std::string& text) {
+  ShaderOrigin origin{shaderDisplayPath(path), {}};
+  const std::string source = manifestSource(fs::path(path));
+  std::error_code ec;
+  if (source.empty() || !fs::is_regular_file(source, ec)) return origin;
+  std::string sourceText;
+  try {
+    sourceText = readFile(source);
+  } catch (const RuntimeError&) {
+    return origin;
+  }
+  if (sourceText == text) {
+    origin.display = shaderDisplayPath(source);
+  } else {
+    origin.note = origin.display + " is a copy of " + shaderDisplayPath(source) +
+                  ", which has changed since it was copied: rebuild the plugin to copy it again";
+  }
+  return origin;
+}
+
 ShaderSource loadShaderSource(const std::string& file, const std::vector<std::string>& defines,
                               const std::vector<std::string>& dirs) {
   // Expanded into one source string without #line directives (drivers disagree
@@ -226,9 +262,14 @@ ShaderSource loadShaderSource(const std::string& file, const std::vector<std::st
   ShaderSource src;
   src.path = resolveShaderFile(file, dirs);
   const std::string& path = src.path;
-  src.files.push_back(shaderDisplayPath(path));
+  const std::string mainText = readFile(path);
+  {
+    ShaderOrigin origin = shaderOrigin(path, mainText);
+    src.files.push_back(std::move(origin.display));
+    src.notes.push_back(std::move(origin.note));
+  }
   src.resolvedFiles.push_back(path);
-  std::vector<std::string> lines = splitLines(readFile(path));
+  std::vector<std::string> lines = splitLines(mainText);
 
   std::string out;
   auto emit = [&](const std::string& line, int fileIndex, int lineNo) {
@@ -276,9 +317,12 @@ ShaderSource loadShaderSource(const std::string& file, const std::vector<std::st
         throw ShaderSourceError(src.files[0], lineNo, why.empty() ? "included file '" + inc + "' not found" : why);
       }
       int id = static_cast<int>(src.files.size());
-      src.files.push_back(shaderDisplayPath(incPath));
+      const std::string incText = readFile(incPath);
+      ShaderOrigin origin = shaderOrigin(incPath, incText);
+      src.files.push_back(std::move(origin.display));
+      src.notes.push_back(std::move(origin.note));
       src.resolvedFiles.push_back(incPath);
-      std::vector<std::string> incLines = splitLines(readFile(incPath));
+      std::vector<std::string> incLines = splitLines(incText);
       for (size_t j = 0; j < incLines.size(); ++j) {
         std::string nested;
         if (parseInclude(incLines[j], nested))
@@ -298,14 +342,19 @@ ShaderSource loadShaderSource(const std::string& file, const std::vector<std::st
 std::vector<ShaderMessage> parseShaderLog(const std::string& log, const ShaderSource& src) {
   const std::string main = src.files.empty() ? std::string("<shader>") : src.files[0];
   // Source string 0, expanded line L -> the file and line of the original text.
+  // The note of the file a message ends up in (a stale plugin shader copy).
+  std::string note;
+  auto noteOf = [&](size_t f) { return f < src.notes.size() ? src.notes[f] : std::string(); };
   auto locate = [&](ShaderMessage& m, const std::string& srcNo, const std::string& lineNo) {
     size_t l = std::stoul(lineNo);
     m.file = main;
     m.line = static_cast<int>(l);
+    note = noteOf(0);
     if (std::stoul(srcNo) != 0 || l == 0 || l > src.lines.size()) return;
     const auto& [f, orig] = src.lines[l - 1];
     m.file = static_cast<size_t>(f) < src.files.size() ? src.files[f] : main;
     m.line = orig;
+    note = noteOf(static_cast<size_t>(f));
   };
   // "error: text" / "warning: text" at the start of a driver message.
   auto severityOf = [](std::string& text) {
@@ -331,6 +380,7 @@ std::vector<ShaderMessage> parseShaderLog(const std::string& log, const ShaderSo
   for (const auto& line : splitLines(log)) {
     if (trimLeft(line).empty()) continue;
     ShaderMessage m;
+    note = noteOf(0);
     std::string srcNo, ln, col;
     Cursor c{line};
     c.spaces();
@@ -378,8 +428,34 @@ std::vector<ShaderMessage> parseShaderLog(const std::string& log, const ShaderSo
     }
     while (!m.text.empty() && (m.text.back() == ' ' || m.text.back() == '\t')) m.text.pop_back();
     if (m.text.rfind("'' :", 0) == 0) m.text = trimLeft(m.text.substr(4));  // glslang names no token
+    if (!note.empty()) m.text += " (" + note + ")";
     out.push_back(std::move(m));
   }
+  return out;
+}
+
+std::string shaderErrorSummary(const std::vector<ShaderMessage>& messages, size_t maxLines) {
+  static const std::string kCandidates = "; candidates are:";
+  std::vector<std::pair<std::string, int>> seen;
+  std::string out;
+  size_t shown = 0, left = 0;
+  for (const auto& m : messages) {
+    if (m.severity != Severity::error) continue;
+    const std::pair<std::string, int> at{m.file, m.line};
+    if (m.line > 0 && std::find(seen.begin(), seen.end(), at) != seen.end()) continue;
+    seen.push_back(at);
+    if (shown == maxLines) {
+      ++left;
+      continue;
+    }
+    std::string text = m.text;
+    if (const size_t c = text.find(kCandidates); c != std::string::npos) text.erase(c, kCandidates.size());
+    if (!out.empty()) out += "\n";
+    out += (m.file.empty() ? std::string("<shader>") : m.file) + (m.line > 0 ? ":" + std::to_string(m.line) : "") +
+           ": error: " + text;
+    ++shown;
+  }
+  if (left) out += "\n(" + std::to_string(left) + " more lines with errors)";
   return out;
 }
 

@@ -4,6 +4,8 @@
 // bound and compile with: lighting_options.h, the ssao plugin) and rgraph bench
 // (the targets its pipelines declare) read it instead of restating layouts.
 // Its GLSL side is shaders/include/gbuffer.glsl and shaders/gbuffer.frag.
+// docs/writing-a-pass.md's G-buffer tables are generated from it
+// (rgraph_doc_tables; the ctest docs.generated_tables fails when they differ).
 #pragma once
 
 #include <cstdint>
@@ -31,6 +33,7 @@ struct Layout {
   Format depth;                 // the depth format rgraph bench declares
   uint32_t normalComponents;    // components the normal target needs at least
   bool positionFromDepth;       // no position target: readers rebuild position from depth
+  std::string depthStores;      // what the depth target holds for a reader (docs/writing-a-pass.md's table)
 
   const Target* target(std::string_view slot) const;
   bool writes(std::string_view slot) const { return target(slot) != nullptr; }
