@@ -5,6 +5,7 @@
     scripts/update-bench-figures.py build --replot   # no rendering: tables and charts from the committed run
     scripts/update-bench-figures.py build --aa-only  # timed `rgraph bench --quick --only aa`, merged into the run
     scripts/update-bench-figures.py build --lights-only  # timed `rgraph bench --quick --only lights`, merged
+    scripts/update-bench-figures.py build --pillars-only  # timed `rgraph bench --quick --only pillars`, merged
 
 The timed run writes docs/images/bench/{results.csv,results.json,figures.md}
 and the charts; then every `<!-- bench-figures:NAME -->` ...
@@ -40,6 +41,9 @@ def main() -> int:
     ap.add_argument("--lights-only", action="store_true",
                     help="rerun only the light-count axis (with the exact loop at each count) and merge its points "
                          "into the committed run (the rest is kept)")
+    ap.add_argument("--pillars-only", action="store_true",
+                    help="rerun only the pillars axis (tiled and clustered on many-lights:N:pillars, and on the "
+                         "field at the same counts) and merge its points into the committed run")
     args = ap.parse_args()
     rgraph = pathlib.Path(args.build_dir) / "bin" / "rgraph"
     if not rgraph.exists():
@@ -50,7 +54,11 @@ def main() -> int:
             return 1
         args.replot = True
     if args.lights_only:
-        if merge_lights_run(rgraph) != 0:
+        if merge_axis_run(rgraph, "lights") != 0:
+            return 1
+        args.replot = True
+    if args.pillars_only:
+        if merge_axis_run(rgraph, "pillars") != 0:
             return 1
         args.replot = True
     cmd = [str(rgraph), "bench", "--out", str(BENCH_DIR)]
@@ -96,15 +104,22 @@ def merge_aa_run(rgraph: pathlib.Path) -> int:
 
 
 def point_key(p: dict) -> tuple:
-    return (p["method"], p["layout"], round(p["threshold"], 8), p["lights"], p["width"], p["height"])
+    return (p["method"], p["layout"], round(p["threshold"], 8), p["lights"], p["width"], p["height"],
+            p.get("scene_variant", ""))
 
 
-def merge_lights_run(rgraph: pathlib.Path) -> int:
-    """Runs the light-count axis alone (and the exact loop at each count) and merges its points into the
-    committed results.json and results.csv: a point the run already has keeps its other axes and takes the
-    fresh figures; new points are added; the lights checks are replaced."""
+# The checks each axis's run replaces.
+AXIS_CHECKS = {"lights": ("exact_reference_1024", "flat_cost_64_to_1024", "culling_vs_fullscreen_1024"),
+               "pillars": ("tiles_vs_clusters_pillars",)}
+
+
+def merge_axis_run(rgraph: pathlib.Path, axis: str) -> int:
+    """Runs one lighting axis alone (lights: with the exact loop at each count) and merges its points into the
+    committed results.json and results.csv: new points are added; a point the run already has keeps its
+    other axes and takes the fresh figures (lights), or is left as it was (pillars: the field's points it
+    renders only to compare with, in its own check); the axis's checks are replaced."""
     with tempfile.TemporaryDirectory() as tmp:
-        if subprocess.call([str(rgraph), "bench", "--quick", "--only", "lights", "--out", tmp]) != 0:
+        if subprocess.call([str(rgraph), "bench", "--quick", "--only", axis, "--out", tmp]) != 0:
             return 1
         fresh = json.loads((pathlib.Path(tmp) / "results.json").read_text())
         run = json.loads((BENCH_DIR / "results.json").read_text())
@@ -114,11 +129,13 @@ def merge_lights_run(rgraph: pathlib.Path) -> int:
             i = by_key.get(point_key(p))
             if i is None:
                 run["points"].append(p)
+            elif axis == "pillars":
+                continue
             else:
                 p["axes"] = run["points"][i]["axes"] + [a for a in p["axes"] if a not in run["points"][i]["axes"]]
                 run["points"][i] = p
             axes_of[point_key(p)] = ";".join(p["axes"])
-        for name in ("exact_reference_1024", "flat_cost_64_to_1024", "culling_vs_fullscreen_1024"):
+        for name in AXIS_CHECKS[axis]:
             if name in fresh["checks"]:
                 run["checks"][name] = fresh["checks"][name]
         (BENCH_DIR / "results.json").write_text(json.dumps(run, indent=2) + "\n")
@@ -127,13 +144,14 @@ def merge_lights_run(rgraph: pathlib.Path) -> int:
         with open(BENCH_DIR / "results.csv", newline="") as f:
             rows = [r for r in csv.reader(f) if r]
         header = fresh_rows[0]
-        col = {name: header.index(name) for name in ("method", "layout", "threshold", "lights", "width", "height")}
+        col = {name: header.index(name)
+               for name in ("method", "layout", "threshold", "lights", "width", "height", "scene")}
 
         def row_key(r):
             return (r[col["method"]], r[col["layout"]] or None, round(float(r[col["threshold"]]), 8),
-                    int(r[col["lights"]]), int(r[col["width"]]), int(r[col["height"]]))
+                    int(r[col["lights"]]), int(r[col["width"]]), int(r[col["height"]]), r[col["scene"]])
 
-        fresh_by_key = {row_key(r): r for r in fresh_rows[1:] if r and r[0] != "aa"}
+        fresh_by_key = {row_key(r): r for r in fresh_rows[1:] if r and r[0] != "aa" and row_key(r) in axes_of}
         merged = [header]
         for r in rows[1:]:
             r = r + [""] * (len(header) - len(r))

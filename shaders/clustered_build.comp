@@ -14,6 +14,7 @@
 // than MAX_CLUSTER_LIGHTS lights keeps counting (the lighting pass then shades
 // every light there) and adds one to the header's overflow counter.
 #include "include/frame.glsl"
+#define CLUSTER_LISTS_BUILD
 #include "include/clusters.glsl"
 #include "include/light_bounds.glsl"
 
@@ -24,11 +25,6 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 #define MAX_TILE_CANDIDATES 1024
 
 layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
-layout(std430, binding = 1) buffer Clusters {
-  uint overflowedClusters;
-  uint header[3];
-  uint data[];  // counts[clusterCount()], then indices[clusterCount() * MAX_CLUSTER_LIGHTS]
-};
 uniform int u_pointLightCount;
 
 // View-space point on the ray through NDC `ndc` at positive depth `d`

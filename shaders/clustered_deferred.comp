@@ -2,14 +2,12 @@
 // Clustered shading, step 2: every pixel finds its cluster (its tile and the
 // depth slice of its view depth, include/clusters.glsl) and shades ambient,
 // the directional light and the lights clustered_build.comp listed there,
-// storing the HDR result. A cluster whose count passed MAX_CLUSTER_LIGHTS
-// shades every light (correct, slow) unless CLUSTER_OVERFLOW_TRUNCATE, which
-// keeps the first MAX_CLUSTER_LIGHTS (wrong where the rest reach; the tests
-// use it to show that overflow happened).
+// storing the HDR result (include/cluster_shading.glsl, as forward+ does;
+// overflowing clusters are handled there).
 // The maths is include/lighting.glsl's, as in deferred_lighting.frag and
 // tiled_deferred.comp, so the methods agree.
-// Defines: one GBUFFER_*, one LIGHTING_*, one ATTENUATION_*; TILE_SIZE,
-// SLICES, MAX_CLUSTER_LIGHTS, TARGET_FORMAT (rgba16f, rgba32f or r11f_g11f_b10f).
+// Defines: one GBUFFER_*, one LIGHTING_*, one ATTENUATION_*; TARGET_FORMAT
+// (rgba16f, rgba32f or r11f_g11f_b10f). The grid is the list buffer's.
 #include "include/frame.glsl"
 #include "include/gbuffer.glsl"
 #include "include/gbuffer_read.glsl"
@@ -23,11 +21,7 @@
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
-layout(std430, binding = 1) readonly buffer Clusters {
-  uint overflowedClusters;
-  uint header[3];
-  uint data[];
-};
+#include "include/cluster_shading.glsl"
 layout(TARGET_FORMAT, binding = 0) uniform image2D u_target;
 uniform int u_pointLightCount;
 uniform int u_ambientAndSun;  // 1: add ambient and the directional light
@@ -42,22 +36,7 @@ void main() {
   vec3 color = vec3(0.0);
   if (u_load != 0) color = imageLoad(u_target, px).rgb;
   if (u_ambientAndSun != 0) color += ambientTerm(s) + shadeDirectionalLight(s, V);
-  if (u_pointLightCount > 0) {
-    const float viewDepth = max(-(u_view * vec4(s.position, 1.0)).z, 0.0);
-    const int cluster = clusterIndex(px / TILE_SIZE, clusterSlice(viewDepth));
-    const bool fits = clusterListsFit(uint(data.length()));
-    const uint count = fits ? data[cluster] : uint(u_pointLightCount);
-    const uint base = uint(clusterCount()) + uint(cluster) * uint(MAX_CLUSTER_LIGHTS);
-#ifdef CLUSTER_OVERFLOW_TRUNCATE
-    const bool all = !fits;
-#else
-    const bool all = !fits || count > uint(MAX_CLUSTER_LIGHTS);
-#endif
-    if (!all) {
-      for (uint i = 0u; i < min(count, uint(MAX_CLUSTER_LIGHTS)); ++i) color += shadePointLight(lights[data[base + i]], s, V);
-    } else {
-      for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(lights[i], s, V);
-    }
-  }
+  const float viewDepth = max(-(u_view * vec4(s.position, 1.0)).z, 0.0);
+  color += shadeClusterLights(px, viewDepth, u_pointLightCount, s, V);
   imageStore(u_target, px, vec4(color, 1.0));
 }

@@ -37,6 +37,9 @@ struct Config {
   double threshold = kDefaultThreshold;
   int lights = 256;
   Extent size{640, 360};
+  // The many-lights:N:pillars scene (axis "pillars": depth discontinuities,
+  // tiles against clusters) instead of the sweep's scene.
+  bool pillars = false;
 
   bool deferred() const { return method != "forward_lit"; }
   std::string key() const;  // equal keys: the same configuration
@@ -63,7 +66,7 @@ class Scenes {
   int defaultLights() const { return defaultLights_; }
   const std::string& spec() const { return spec_; }
   std::vector<int> lightCounts(bool quick) const;
-  const Scene& get(int lights);  // built once per count
+  const Scene& get(int lights, bool pillars = false);  // built once per count (pillars: procedural only)
 
  private:
   std::string spec_;
@@ -71,7 +74,7 @@ class Scenes {
   int defaultLights_ = 256;
   uint32_t seed_ = 1;
   std::unique_ptr<Scene> base_;
-  std::map<int, std::unique_ptr<Scene>> cache_;
+  std::map<std::pair<int, bool>, std::unique_ptr<Scene>> cache_;
 };
 
 // ---------------------------------------------------------------- measuring one point
@@ -165,8 +168,9 @@ struct Point {
 // image at each N).
 Config exactConfig(const Config& c, const Config& def);
 
-// One axis at a time around `def`, plus the method x light-count grid; each
-// configuration once, with every axis it belongs to; cheap points first.
+// One axis at a time around `def`, plus the method x light-count grid (and,
+// on a procedural scene, tiled against clustered on its pillars variant);
+// each configuration once, with every axis it belongs to; cheap points first.
 std::vector<Point> planSweep(const Config& def, const Scenes& scenes, bool quick, bool smoke);
 // Fills errExact/hasExact of every point whose exact loop (exactConfig) is in
 // `points` with an image, from the points' images (Measured::image).

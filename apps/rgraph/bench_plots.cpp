@@ -1,5 +1,6 @@
-// `rgraph bench`, the three charts: frame time against light count, frame
-// time against error (with the Pareto front), G-buffer bytes against error.
+// `rgraph bench`, the charts: frame time against light count, frame time
+// against error (with the Pareto front), G-buffer bytes against error, and
+// tiles against clusters on the pillars scene.
 #include <algorithm>
 
 #include "bench.h"
@@ -63,7 +64,9 @@ void drawCharts(const std::string& dir, const std::vector<Point>& points, const 
       s.color = static_cast<int>(mi);
       s.line = false;
       for (const auto& p : points) {
-        if (!p.ok() || p.cfg.method != kMethods[mi] || p.cfg.lights != def.lights || p.cfg.size != def.size) continue;
+        if (!p.ok() || p.cfg.method != kMethods[mi] || p.cfg.lights != def.lights || p.cfg.size != def.size ||
+            p.cfg.pillars)
+          continue;
         s.points.push_back({p.err.psnr, median(p.m.frameMs), ""});
         all.push_back(s.points.back());
         src.push_back(&p);
@@ -114,6 +117,45 @@ void drawCharts(const std::string& dir, const std::vector<Point>& points, const 
       if (!s.points.empty()) c.series.push_back(std::move(s));
     }
     writeChart(c, dir, "bytes_vs_error");
+  }
+  // 4. Tiles against clusters: frame ms against light count for tiled and
+  // clustered on the field and on its pillars variant (strong depth
+  // discontinuities), when the sweep has the pillars axis.
+  {
+    Chart c;
+    c.title = "Tiles against clusters (" + sizeText(def.size) + ", " + def.layout + " G-buffer, cut-off " +
+              thresholdText(def.threshold) + ")";
+    c.notes = {machine, "field: many-lights:N; pillars: many-lights:N:pillars (thin pillars near the camera over "
+                        "the field and a far wall)"};
+    c.xLabel = "point lights";
+    c.yLabel = "frame ms (median)";
+    c.logX = c.logY = true;
+    struct Line {
+      const char* method;
+      const char* axis;
+      const char* name;
+      int color;
+      bool dashed;
+    };
+    const Line lines[] = {{"tiled", "lights", "tiled, field", 4, true},
+                          {"clustered", "lights", "clustered, field", 5, true},
+                          {"tiled", "pillars", "tiled, pillars", 4, false},
+                          {"clustered", "pillars", "clustered, pillars", 5, false}};
+    bool pillars = false;
+    for (const Line& l : lines) {
+      Series s;
+      s.name = l.name;
+      s.color = l.color;
+      s.dashed = l.dashed;
+      for (const auto& p : points)
+        if (p.ok() && p.cfg.method == l.method && std::count(p.axes.begin(), p.axes.end(), l.axis))
+          s.points.push_back({double(p.cfg.lights), median(p.m.frameMs), ""});
+      std::sort(s.points.begin(), s.points.end(),
+                [](const chart::Point& a, const chart::Point& b) { return a.x < b.x; });
+      pillars = pillars || (!s.points.empty() && std::string(l.axis) == "pillars");
+      if (!s.points.empty()) c.series.push_back(std::move(s));
+    }
+    if (pillars) writeChart(c, dir, "tiles_vs_clusters");
   }
 }
 

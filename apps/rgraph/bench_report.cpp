@@ -57,7 +57,7 @@ void writeCsv(const std::string& path, const std::vector<Point>& points, const s
       << fr.size() << "," << n(median(fr)) << "," << n(mn) << "," << n(mx) << "," << n(p.err.psnr, "%.3f") << ","
       << p.err.maxAbs << "," << n(p.err.over1, "%.6f") << "," << p.m.gbufferBytes << "," << p.m.gbufferBytesAdapted
       << "," << p.m.allocatedBytes << "," << p.m.naiveBytes << "," << csvEscape(p.ok() ? "ok" : "error: " + p.error)
-      << ",,,,," << (p.hasExact ? n(p.errExact.psnr, "%.3f") + "," + std::to_string(p.errExact.maxAbs) : ",") << "\n";
+      << "," << (p.cfg.pillars ? "pillars" : "") << ",,,," << (p.hasExact ? n(p.errExact.psnr, "%.3f") + "," + std::to_string(p.errExact.maxAbs) : ",") << "\n";
   }
   // aa rows: the pipeline file in the method column, the scene's point lights
   // unknown here (empty), no G-buffer figures.
@@ -98,6 +98,7 @@ json pointJson(const Point& p) {
             {"allocated_bytes", p.m.allocatedBytes},
             {"naive_bytes", p.m.naiveBytes},
             {"gl_errors", p.m.glErrors}};
+  if (p.cfg.pillars) j["scene_variant"] = "pillars";
   if (p.hasExact) j["psnr_exact_db"] = p.errExact.psnr, j["max_abs_error_exact"] = p.errExact.maxAbs;
   if (!p.ok()) j["error"] = p.error;
   return j;
@@ -122,6 +123,7 @@ Point pointFromJson(const json& pj, const Config& def) {
   p.cfg.lights = pj.at("lights");
   p.cfg.size = {pj.at("width").get<uint32_t>(), pj.at("height").get<uint32_t>()};
   p.axes = pj.at("axes").get<std::vector<std::string>>();
+  p.cfg.pillars = pj.value("scene_variant", std::string()) == "pillars";
   p.m.frameMs = pj.at("frame_ms").get<std::vector<double>>();
   p.m.gbufferBytes = pj.at("gbuffer_bytes_per_pixel");
   p.m.gbufferBytesAdapted = pj.value("gbuffer_bytes_per_pixel_adapted", 0u);
@@ -180,7 +182,6 @@ void exactReferenceCheck(const std::vector<Point>& points, const Config& def, js
                          std::vector<std::string>& summary) {
   Config at = def;
   at.lights = 1024;
-  at.size = {640, 360};
   const Point* exact = findPoint(points, exactConfig(at, def));
   if (!exact || exact->m.frameMs.empty()) return;
   const double exactMs = median(exact->m.frameMs);
@@ -231,19 +232,59 @@ void flatCostCheck(const std::vector<Point>& points, const Config& def, json& ch
   summary.push_back(line);
 }
 
+// Tiles against clusters where depth is discontinuous: tiled's median over
+// clustered's at each light count of the pillars axis, and the same on the
+// field at those counts (the chart tiles_vs_clusters draws them).
+void pillarsCheck(const std::vector<Point>& points, const Config& def, json& checks,
+                  std::vector<std::string>& summary) {
+  json rows = json::array();
+  std::string line = "tiled / clustered median, " + sizeText(def.size) + ", pillars (field):";
+  for (const auto& p : points) {
+    if (!p.ok() || p.cfg.method != "tiled" || !onAxis(p, "pillars") || p.m.frameMs.empty()) continue;
+    Config c = p.cfg;
+    c.method = "clustered";
+    const Point* clustered = findPoint(points, c);
+    c.pillars = false;
+    const Point* fieldClustered = findPoint(points, c);
+    c.method = "tiled";
+    const Point* fieldTiled = findPoint(points, c);
+    if (!clustered || clustered->m.frameMs.empty()) continue;
+    json r = {{"lights", p.cfg.lights},
+              {"tiled_ms", median(p.m.frameMs)},
+              {"clustered_ms", median(clustered->m.frameMs)},
+              {"tiled_psnr_db", p.err.psnr},
+              {"clustered_psnr_db", clustered->err.psnr},
+              {"ratio", median(p.m.frameMs) / median(clustered->m.frameMs)}};
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " %d: %.2fx", p.cfg.lights, r["ratio"].get<double>());
+    line += buf;
+    if (fieldTiled && fieldClustered && !fieldTiled->m.frameMs.empty() && !fieldClustered->m.frameMs.empty()) {
+      r["field_tiled_ms"] = median(fieldTiled->m.frameMs);
+      r["field_clustered_ms"] = median(fieldClustered->m.frameMs);
+      r["field_ratio"] = median(fieldTiled->m.frameMs) / median(fieldClustered->m.frameMs);
+      std::snprintf(buf, sizeof buf, " (%.2fx)", r["field_ratio"].get<double>());
+      line += buf;
+    }
+    rows.push_back(r);
+  }
+  if (rows.empty()) return;
+  checks["tiles_vs_clusters_pillars"] = rows;
+  summary.push_back(line);
+}
+
 }  // namespace
 
 json headlineChecks(const std::vector<Point>& points, const Config& def, std::vector<std::string>& summary) {
   json checks = json::object();
   exactReferenceCheck(points, def, checks, summary);
   flatCostCheck(points, def, checks, summary);
+  pillarsCheck(points, def, checks, summary);
   char line[512];
   const bool timed = std::any_of(points.begin(), points.end(), [](const Point& p) { return !p.m.frameMs.empty(); });
   {
-    // Light volumes or tiled against the fullscreen loop at 1,024 lights, 640x360.
+    // Light volumes or tiled against the fullscreen loop at 1,024 lights.
     Config c = def;
     c.lights = 1024;
-    c.size = {640, 360};
     c.method = "fullscreen";
     const Point* full = findPoint(points, c);
     c.method = "light_volumes";
@@ -453,13 +494,14 @@ std::string pointsTable(const std::vector<Point>& points) {
   });
   for (const Point* p : sorted) {
     if (!p->ok()) {
-      t += row({p->cfg.method, layoutText(p->cfg), thresholdText(p->cfg.threshold), countText(p->cfg.lights),
-                sizeText(p->cfg.size), "failed", "", "", "", "", ""});
+      t += row({p->cfg.method, layoutText(p->cfg), thresholdText(p->cfg.threshold),
+                countText(p->cfg.lights) + (p->cfg.pillars ? " pillars" : ""), sizeText(p->cfg.size), "failed", "", "",
+                "", "", ""});
       continue;
     }
     const double ratio = p->m.naiveBytes ? double(p->m.allocatedBytes) / double(p->m.naiveBytes) : 0.0;
-    t += row({p->cfg.method, layoutText(p->cfg), thresholdText(p->cfg.threshold), countText(p->cfg.lights),
-              sizeText(p->cfg.size), psnrText(p->err.psnr), errText(p->err.maxAbs), shareText(p->err.over1),
+    t += row({p->cfg.method, layoutText(p->cfg), thresholdText(p->cfg.threshold),
+              countText(p->cfg.lights) + (p->cfg.pillars ? " pillars" : ""), sizeText(p->cfg.size), psnrText(p->err.psnr), errText(p->err.maxAbs), shareText(p->err.over1),
               std::to_string(p->m.gbufferBytes), std::to_string(p->m.gbufferBytesAdapted), fmt("%.2f", ratio)});
   }
   return t;

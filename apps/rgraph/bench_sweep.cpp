@@ -23,8 +23,8 @@ const std::vector<std::string> kLayouts = {"pbr", "learnopengl", "compact", "fp3
 
 std::string Config::key() const {
   char buf[160];
-  std::snprintf(buf, sizeof buf, "%s|%s|%.8f|%d|%ux%u", method.c_str(), deferred() ? layout.c_str() : "-", threshold,
-                lights, size.width, size.height);
+  std::snprintf(buf, sizeof buf, "%s|%s|%.8f|%d|%ux%u%s", method.c_str(), deferred() ? layout.c_str() : "-", threshold,
+                lights, size.width, size.height, pillars ? "|pillars" : "");
   return buf;
 }
 
@@ -55,7 +55,7 @@ std::string sizeText(Extent e) { return std::to_string(e.width) + "x" + std::to_
 std::string describe(const Config& c) {
   std::string s = c.method + " " + std::to_string(c.lights) + " lights";
   if (c.deferred()) s += " " + c.layout;
-  return s + " cut-off " + thresholdText(c.threshold) + " " + sizeText(c.size);
+  return s + " cut-off " + thresholdText(c.threshold) + " " + sizeText(c.size) + (c.pillars ? " pillars" : "");
 }
 
 // ---------------------------------------------------------------- pipelines as JSON
@@ -225,17 +225,17 @@ std::vector<int> Scenes::lightCounts(bool quick) const {
   return {counts.begin(), counts.end()};
 }
 
-const Scene& Scenes::get(int lights) {
-  auto it = cache_.find(lights);
+const Scene& Scenes::get(int lights, bool pillars) {
+  auto it = cache_.find({lights, pillars});
   if (it != cache_.end()) return *it->second;
   std::unique_ptr<Scene> s;
   if (procedural_) {
-    s = std::make_unique<Scene>(makeManyLightsScene(lights, seed_));
+    s = std::make_unique<Scene>(pillars ? makeManyLightsPillarsScene(lights, seed_) : makeManyLightsScene(lights, seed_));
   } else {
     s = std::make_unique<Scene>(*base_);
     if (static_cast<size_t>(lights) < s->pointLights.size()) s->pointLights.resize(static_cast<size_t>(lights));
   }
-  return *cache_.emplace(lights, std::move(s)).first->second;
+  return *cache_.emplace(std::make_pair(lights, pillars), std::move(s)).first->second;
 }
 
 // ---------------------------------------------------------------- the sweep
@@ -295,6 +295,19 @@ std::vector<Point> planSweep(const Config& def, const Scenes& scenes, bool quick
         c.threshold = t;
         add(c, "threshold");
       }
+    // Depth discontinuities: tiled against clustered on the pillars variant
+    // of the procedural scene, where a screen tile holds pixels near the
+    // camera and at the far wall (the field's points are on "lights").
+    if (scenes.procedural())
+      for (int n : scenes.lightCounts(quick))
+        for (const char* m : {"tiled", "clustered"}) {
+          if (n < 64) continue;
+          Config c = def;
+          c.method = m;
+          c.lights = n;
+          c.pillars = true;
+          add(c, "pillars");
+        }
     // Resolutions.
     std::vector<std::string> resMethods = {"light_volumes", "tiled"};
     if (!quick) resMethods = {"forward_lit", "fullscreen", "light_volumes", "tiled"};
@@ -321,6 +334,7 @@ Config exactConfig(const Config& c, const Config& def) {
   e.threshold = 0.0;
   e.lights = c.lights;
   e.size = c.size;
+  e.pillars = c.pillars;
   return e;
 }
 

@@ -189,7 +189,11 @@ Config refConfig(const Config& c) {
   return r;
 }
 
-std::string groupOf(const Config& c) { return sizeText(c.size) + "/" + std::to_string(c.lights); }
+constexpr double kDearFrameMs = 3000;
+
+std::string groupOf(const Config& c) {
+  return sizeText(c.size) + "/" + std::to_string(c.lights) + (c.pillars ? "/pillars" : "");
+}
 
 // Renders every point once per round (and each group's reference once);
 // returns the number of points that failed.
@@ -204,7 +208,8 @@ size_t runSweep(std::vector<Point>& points, Scenes& scenes, const RunPlan& plan,
   {
     std::set<std::string> groups;
     for (const auto& p : points) {
-      totalWeight += plan.rounds * weightOf(p.cfg, plan.budget);
+      const bool dear = estimateFrameMs(p.cfg) > kDearFrameMs;
+      totalWeight += (dear ? 1 : plan.rounds) * weightOf(p.cfg, plan.budget);
       if (groups.insert(groupOf(p.cfg)).second) totalWeight += weightOf(refConfig(p.cfg), plan.refBudget);
     }
   }
@@ -216,13 +221,18 @@ size_t runSweep(std::vector<Point>& points, Scenes& scenes, const RunPlan& plan,
     for (size_t i = 0; i < points.size(); ++i) {
       Point& p = points[i];
       if (!p.ok()) continue;
+      // A dear point (seconds a frame: the every-light loops at thousands of
+      // lights) is timed in the first round only; its frames already span
+      // the load, and later rounds would cost most of the run.
+      if (round > 0 && !p.m.frameMs.empty() && median(p.m.frameMs) > kDearFrameMs) continue;
       const size_t step = static_cast<size_t>(round) * points.size() + i;
-      const Scene& scene = scenes.get(p.cfg.lights);
+      const Scene& scene = scenes.get(p.cfg.lights, p.cfg.pillars);
       const std::string group = groupOf(p.cfg);
       if (!references.count(group)) {
         const Config rc = refConfig(p.cfg);
         const std::string what =
-            "reference (forward_lit, no cut-off) " + std::to_string(p.cfg.lights) + " lights " + sizeText(p.cfg.size);
+            "reference (forward_lit, no cut-off) " + std::to_string(p.cfg.lights) + " lights " + sizeText(p.cfg.size) +
+            (p.cfg.pillars ? " pillars" : "");
         progress.begin(step, steps, what);
         Measured ref =
             measure(pipelineJson(rc, true), "<bench reference>", scene, rc.size, shaders, context, plan.refBudget);
@@ -271,13 +281,16 @@ size_t runSweep(std::vector<Point>& points, Scenes& scenes, const RunPlan& plan,
 }
 
 const std::vector<std::string> kAxes = {"lights",    "lights_exact", "layout", "layout_exact",
-                                        "threshold", "resolution",   "aa",          "post"};
+                                        "threshold", "resolution",   "pillars",     "aa",          "post"};
 
 // --only lights keeps the exact loop at each N too (the methods' psnr_exact_db
-// and the reference time need it).
+// and the reference time need it); --only pillars keeps tiled and clustered
+// on the field at the same counts (what the pillars are compared with).
 bool keptByOnly(const Point& p, const std::string& only) {
   auto on = [&](const char* axis) { return std::count(p.axes.begin(), p.axes.end(), axis) > 0; };
-  return on(only.c_str()) || (only == "lights" && on("lights_exact"));
+  const bool pillarsPeer = only == "pillars" && on("lights") && p.cfg.lights >= 64 &&
+                           (p.cfg.method == "tiled" || p.cfg.method == "clustered");
+  return on(only.c_str()) || (only == "lights" && on("lights_exact")) || pillarsPeer;
 }
 
 // One line per scene: the methods' edge PSNR, and whether taa > fxaa > none
@@ -334,7 +347,10 @@ int runBench(const BenchOptions& options) {
 
     Config def;
     def.lights = scenes.defaultLights();
-    if (options.smoke) def.size = {64, 64};
+    if (options.smoke)
+      def.size = {64, 64};
+    else if (!options.quick)
+      def.size = {1280, 720};  // the full sweep: every axis at 720p, lights up to 10,000
     std::vector<Point> points = planSweep(def, scenes, options.quick, options.smoke);
     if (!options.only.empty()) std::erase_if(points, [&](const Point& p) { return !keptByOnly(p, options.only); });
     const RunPlan plan = runPlan(options);

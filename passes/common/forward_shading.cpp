@@ -4,6 +4,7 @@
 
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/shader_library.h"
+#include "rgraph/passes/cluster_lists.h"
 #include "rgraph/passes/lighting_options.h"
 #include "rgraph/passes/velocity.h"
 #include "rgraph/scene.h"
@@ -20,7 +21,8 @@ std::vector<ShaderProgramSpec> programs(const ParamSet& params, bool blendsSourc
 }
 
 SurfaceDrawer::SurfaceDrawer(uint32_t program)
-    : program_(program), pointLightCount_(program, "u_pointLightCount"), blendPass_(program, "u_blendPass") {}
+    : program_(program), pointLightCount_(program, "u_pointLightCount"), blendPass_(program, "u_blendPass"),
+      clustered_(program, "u_clustered") {}
 
 void SurfaceDrawer::draw(PassContext& ctx, bool blended) const {
   GpuScene& scene = *ctx.gpuScene();
@@ -32,6 +34,9 @@ void SurfaceDrawer::draw(PassContext& ctx, bool blended) const {
   glUseProgram(prog);
   pointLightCount_.set(static_cast<int>(scene.pointLightCount()));
   blendPass_.set(blended);
+  const bool clustered = ctx.bound(clusters::kSlot);
+  clustered_.set(clustered);
+  if (clustered) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, clusters::kBinding, ctx.buffer(clusters::kSlot));
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   if (blended) {

@@ -1,12 +1,15 @@
 // forward: what a G-buffer cannot hold, drawn over the deferred image with the
 // G-buffer's depth (blitted into `depth` beforehand): small cubes marking each
-// point light (LearnOpenGL's light boxes) and BLEND materials, back to front.
+// point light (LearnOpenGL's light boxes) and BLEND materials, back to front,
+// lit by every light or, with `clusters` bound, by their cluster's lists
+// (forward+, the lists the deferred lighting used too).
 #include <GL/glcorearb.h>
 
 #include "rgraph/error.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/cluster_lists.h"
 #include "rgraph/passes/forward_shading.h"
 #include "rgraph/passes/lighting_options.h"
 #include "rgraph/registry.h"
@@ -65,7 +68,10 @@ PassTypeDesc makeForwardPass() {
       slot("depth", Access::depth_attachment, true, SlotDecl::Load::required,
            "the scene depth (a blit of the G-buffer depth); markers write it, blended surfaces only test it",
            {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}),
+      clusters::readerSlot("light lists a cluster_lights pass built: blended surfaces shade their cluster's lights "
+                           "only (forward+); unbound: every light"),
   };
+  d.check = clusters::checkReaderSlot;
   d.params = lighting::params();
   d.params.push_back(param("markers", ParamType::boolean, true, "draw a small cube in each point light's colour"));
   d.params.push_back(decl::ranged("marker_size", ParamType::number, 0.125, 0.0, 100.0, "half extent of a light marker"));
@@ -78,6 +84,7 @@ PassTypeDesc makeForwardPass() {
     if (!f.blendMaterials && a.params.getBool("blend", true)) {
       a.params.set("blend", false);
       a.notes.push_back("no BLEND materials: no forward blend");
+      a.unbindSlots.push_back(clusters::kSlot);  // markers need no lists: their builder may be culled
     }
     if (!a.params.getBool("markers", true) && !a.params.getBool("blend", true)) {
       a.disable = true;

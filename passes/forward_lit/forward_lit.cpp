@@ -1,11 +1,14 @@
 // forward_lit: the classic forward renderer. Every surface shades every light
 // per fragment; blended materials follow, back to front. It is the reference
 // the deferred pipelines are checked against, and the baseline they must beat.
+// With `clusters` bound (a cluster_lights pass's lists) it is forward+: each
+// fragment shades only the lights listed for its cluster.
 #include <GL/glcorearb.h>
 
 #include "rgraph/error.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/cluster_lists.h"
 #include "rgraph/passes/forward_shading.h"
 #include "rgraph/passes/lighting_options.h"
 #include "rgraph/passes/velocity.h"
@@ -48,11 +51,16 @@ PassTypeDesc makeForwardLitPass() {
       slot("depth", Access::depth_attachment, true, SlotDecl::Load::never, "depth buffer (cleared here)",
            {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}),
       velocity::slot(),
+      clusters::readerSlot("light lists a cluster_lights pass built: each fragment shades its cluster's lights only "
+                           "(forward+); unbound: every light"),
   };
   d.params = lighting::params();
   d.params.push_back(param("blend", ParamType::boolean, true, "also draw BLEND materials, back to front"));
   d.params.push_back(velocity::param());
-  d.check = velocity::check;
+  d.check = [](const PassCheckContext& ctx, PassChecks& checks) {
+    velocity::check(ctx, checks);
+    clusters::checkReaderSlot(ctx, checks);
+  };
   d.adapt = [](const SceneFeatures& f, PassAdaptation& a) {
     if (!f.blendMaterials && a.params.getBool("blend", true)) {
       a.params.set("blend", false);

@@ -1,11 +1,28 @@
-// The cluster grid shared by clustered_build.comp and clustered_deferred.comp:
+// The cluster grid shared by clustered_build.comp, which builds the lists,
+// and the passes that read them (clustered_deferred.comp, forward_lit.frag):
 // screen tiles of TILE_SIZE pixels times SLICES depth slices spaced
 // exponentially from the camera's near to its far plane (both read from
 // u_proj), so that a cluster's depth extent grows with its distance like its
 // width does. Needs include/frame.glsl first.
-// The list buffer (storage buffer 1): a header, then one count per cluster
-// (every light that reaches it, also past MAX_CLUSTER_LIGHTS), then
-// MAX_CLUSTER_LIGHTS light indices per cluster.
+// The list buffer (storage buffer 1): a header (clusters that overflowed this
+// frame, then the grid it was built with: tile size, slices, list length),
+// one count per cluster (every light that reaches it, also past
+// MAX_CLUSTER_LIGHTS), then MAX_CLUSTER_LIGHTS light indices per cluster.
+// The builder (CLUSTER_LISTS_BUILD) takes the grid from its defines and the
+// pass that dispatches it writes the header; readers take the grid from the
+// header, so that it is stated once, by the pass that builds the lists
+// (passes/common/cluster_lists.cpp).
+#ifdef CLUSTER_LISTS_BUILD
+layout(std430, binding = 1) buffer Clusters {
+#else
+layout(std430, binding = 1) readonly buffer Clusters {
+#endif
+  uint overflowedClusters;
+  uint clusterGrid[3];  // tile size, slices, list length (MAX_CLUSTER_LIGHTS) the lists were built with
+  uint data[];          // counts[clusterCount()], then indices[clusterCount() * MAX_CLUSTER_LIGHTS]
+};
+
+#ifdef CLUSTER_LISTS_BUILD
 #ifndef TILE_SIZE
 #define TILE_SIZE 32
 #endif
@@ -14,6 +31,11 @@
 #endif
 #ifndef MAX_CLUSTER_LIGHTS
 #define MAX_CLUSTER_LIGHTS 256
+#endif
+#else
+#define TILE_SIZE int(clusterGrid[0])
+#define SLICES int(clusterGrid[1])
+#define MAX_CLUSTER_LIGHTS int(clusterGrid[2])
 #endif
 
 ivec2 clusterTiles() { return (ivec2(u_viewport.xy) + TILE_SIZE - 1) / TILE_SIZE; }
@@ -41,10 +63,13 @@ vec2 clusterDepthRange(int slice) {
   return nf.x * vec2(pow(ratio, float(slice) / float(SLICES)), pow(ratio, float(slice + 1) / float(SLICES)));
 }
 
-// false when the bound list buffer is too small for this viewport's grid
-// (the pass sized it for its target; a target smaller than the viewport):
-// then no list is built and every pixel shades every light.
-bool clusterListsFit(uint bufferUints) { return uint(clusterCount()) * uint(1 + MAX_CLUSTER_LIGHTS) <= bufferUints; }
+// false when the bound list buffer is too small for this viewport's grid (a
+// target smaller than the viewport; the passes' checks refuse a buffer too
+// small for the target) or, for a reader, holds no grid: then no list is
+// built and every pixel shades every light.
+bool clusterListsFit(uint bufferUints) {
+  return TILE_SIZE > 0 && SLICES > 0 && uint(clusterCount()) * uint(1 + MAX_CLUSTER_LIGHTS) <= bufferUints;
+}
 
 int clusterIndex(ivec2 tile, int slice) {
   const ivec2 tiles = clusterTiles();

@@ -159,6 +159,44 @@ TEST(BenchCli, LightsAxisHasTheExactLoopAtEveryCount) {
   fs::remove_all(dir.parent_path());
 }
 
+// The pillars axis: tiled and clustered on many-lights:N:pillars (64 lights
+// and up), kept apart from the field's points, with tiled on the field at the
+// same counts (--only pillars keeps those; untimed: figures only).
+TEST(BenchCli, PillarsAxisRendersTheDiscontinuousScene) {
+  const fs::path dir = freshDir("pillars");
+  const RunResult r = run("bench --quick --figures-only --only pillars --out " + dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(slurp(dir / "results.json"));
+  std::map<int, std::map<std::string, nlohmann::json>> pillars, field;  // lights -> method -> row
+  for (const auto& p : j.at("points")) {
+    const auto axes = p.at("axes").get<std::vector<std::string>>();
+    if (p.value("scene_variant", std::string()) == "pillars") {
+      EXPECT_EQ(axes, std::vector<std::string>{"pillars"});
+      pillars[p.at("lights").get<int>()][p.at("method").get<std::string>()] = p;
+    } else {
+      EXPECT_NE(std::count(axes.begin(), axes.end(), "lights"), 0) << p.dump();
+      field[p.at("lights").get<int>()][p.at("method").get<std::string>()] = p;
+    }
+  }
+  ASSERT_EQ(pillars.size(), 3u) << "64, 256 and 1,024 lights";
+  for (const auto& [n, methods] : pillars) {
+    SCOPED_TRACE("lights " + std::to_string(n));
+    ASSERT_EQ(methods.size(), 2u);
+    ASSERT_TRUE(field[n].count("tiled"));
+    const double tiled = methods.at("tiled").at("psnr_db").get<double>();
+    // A lit image of its own scene (not black, not the field's), and both
+    // methods cull only what adds nothing at the same cut-off.
+    EXPECT_GT(tiled, 12.0);
+    EXPECT_NEAR(methods.at("clustered").at("psnr_db").get<double>(), tiled, 0.5);
+    EXPECT_NE(field[n].at("tiled").at("psnr_db").get<double>(), tiled);
+  }
+  const std::string csv = slurp(dir / "results.csv");
+  EXPECT_NE(csv.find(",pillars,"), std::string::npos) << csv;
+  const std::string figures = slurp(dir / "figures.md");
+  EXPECT_NE(figures.find("| 1,024 pillars |"), std::string::npos) << figures;
+  fs::remove_all(dir.parent_path());
+}
+
 TEST(BenchCli, UnwritableOutputFolderFails) {
   const RunResult r = run("bench --smoke --out /proc/rgraph-no-such-dir/x");
   EXPECT_EQ(r.exitCode, 1) << r.out;

@@ -54,10 +54,10 @@ std::map<std::string, std::string> blocks(const std::string& text) {
 
 std::string pointKey(const json& p) {
   char buf[200];
-  std::snprintf(buf, sizeof buf, "%s|%s|%.8f|%d|%dx%d", p.at("method").get<std::string>().c_str(),
+  std::snprintf(buf, sizeof buf, "%s|%s|%.8f|%d|%dx%d|%s", p.at("method").get<std::string>().c_str(),
                 p.at("layout").is_null() ? "-" : p.at("layout").get<std::string>().c_str(),
                 p.at("threshold").get<double>(), p.at("lights").get<int>(), p.at("width").get<int>(),
-                p.at("height").get<int>());
+                p.at("height").get<int>(), p.value("scene_variant", std::string()).c_str());
   return buf;
 }
 

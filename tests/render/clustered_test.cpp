@@ -106,6 +106,16 @@ TEST_F(Clustered, ManyLightsMatchesFullscreen) {
   EXPECT_EQ(overflowed, 0u) << "~16 lights reach each point: no cluster should pass 256";
 }
 
+TEST_F(Clustered, PillarsSceneMatchesFullscreen) {
+  // many-lights:N:pillars: thin pillars close to the camera over the field
+  // and a far wall, so tiles hold pixels at both ends of the depth range and
+  // slices near the camera are a fraction of a pillar deep.
+  uint32_t overflowed = 99;
+  expectMatchesFullscreen(makeManyLightsPillarsScene(256), {160, 90}, 0.3, "clustered-pillars-256", json::object(),
+                          &overflowed);
+  EXPECT_EQ(overflowed, 0u);
+}
+
 TEST_F(Clustered, ListsHoldOnlyNearbyLights) {
   // Culling works: 160x90 at 32-pixel tiles and 24 slices is 5 x 3 x 24
   // clusters; with ~16 of the 256 lights reaching each point, the lists

@@ -1,6 +1,9 @@
 // Procedural scenes, the PRNG, light radii and camera helpers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <glm/glm.hpp>
+
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -203,11 +206,47 @@ TEST(ManyLightsScene, SeededAndSized) {
   EXPECT_GT(makeManyLightsScene(32).pointLights[0].radius, makeManyLightsScene(4096).pointLights[0].radius);
 }
 
+TEST(ManyLightsScene, PillarsVariantKeepsTheFieldAndAddsDepthDiscontinuities) {
+  const Scene field = makeManyLightsScene(256, 3), pillars = makeManyLightsPillarsScene(256, 3);
+  EXPECT_EQ(pillars.source, "many-lights:256:pillars");
+  ASSERT_EQ(pillars.pointLights.size(), field.pointLights.size());
+  for (size_t i = 0; i < field.pointLights.size(); ++i)
+    EXPECT_EQ(pillars.pointLights[i].position, field.pointLights[i].position);
+  // The field's primitives, a far wall and 7 pillars.
+  ASSERT_EQ(pillars.primitives.size(), field.primitives.size() + 8);
+  const Camera& cam = pillars.camera;
+  const glm::mat4 view = cam.view();
+  auto depth = [&](const Bounds& b) { return -(view * glm::vec4(b.center(), 1.0f)).z; };
+  float wallDepth = 0, nearestPillar = 1e30f, farthestPillar = 0;
+  int pillarCount = 0;
+  for (const Primitive& p : pillars.primitives) {
+    if (p.name == "far_wall") wallDepth = depth(p.bounds);
+    if (p.name.rfind("pillar", 0) == 0) {
+      ++pillarCount;
+      nearestPillar = std::min(nearestPillar, depth(p.bounds));
+      farthestPillar = std::max(farthestPillar, depth(p.bounds));
+      // Taller than the view at their distance: they cross the whole frame.
+      EXPECT_GT(p.bounds.max.y, cam.position.y + depth(p.bounds) * std::tan(glm::radians(cam.fovY * 0.5f)));
+    }
+  }
+  EXPECT_EQ(pillarCount, 7);
+  // Pillars close to the camera, the wall at the far end: a 2D tile over a
+  // pillar's edge spans more than 5x in depth.
+  EXPECT_GT(nearestPillar, cam.near);
+  EXPECT_GT(wallDepth, 5.0f * farthestPillar);
+  EXPECT_LT(wallDepth, cam.far);
+}
+
 TEST(LoadSceneAny, ProceduralSpecs) {
   EXPECT_EQ(loadSceneAny("learnopengl").pointLights.size(), 32u);
   EXPECT_EQ(loadSceneAny("many-lights:10000").pointLights.size(), 10000u);
   EXPECT_EQ(loadSceneAny("many-lights:16:3").pointLights[0].position, makeManyLightsScene(16, 3).pointLights[0].position);
-  for (const char* bad : {"many-lights:", "many-lights:abc", "many-lights:-5", "many-lights:100001", "many-lights:10:x",
+  EXPECT_EQ(loadSceneAny("many-lights:16:pillars").source, "many-lights:16:pillars");
+  EXPECT_EQ(loadSceneAny("many-lights:16:3:pillars").primitives.size(), makeManyLightsPillarsScene(16, 3).primitives.size());
+  EXPECT_EQ(loadSceneAny("many-lights:16:3:pillars").pointLights[0].position,
+            makeManyLightsScene(16, 3).pointLights[0].position);
+  for (const char* bad : {"many-lights:", "many-lights:pillars", "many-lights::pillars", "many-lights:16:pillars:3",
+                          "many-lights:16:x:pillars", "many-lights:abc", "many-lights:-5", "many-lights:100001", "many-lights:10:x",
                           "nonsense", "model.obj", ""}) {
     EXPECT_THROW(loadSceneAny(bad), RuntimeError) << bad;
   }

@@ -30,6 +30,8 @@ struct CheckedSlot {
   Access access = Access::sampled;
   std::string resource;          // the version the config names (for messages)
   std::optional<Format> format;  // unknown for a buffer or a binding the graph could not resolve
+  ResourceKind kind = ResourceKind::texture;
+  uint64_t bufferBytes = 0;      // a buffer's buffer_bytes (0: a texture or unresolved)
   Extent extent;                 // at the plan's output size; 0x0 when unknown
   uint32_t samples = 1;
   bool loads = false;    // a writing slot that also loads its previous version

@@ -368,6 +368,7 @@ Scene parseSceneText(const std::string& text, const std::string& file, const std
 // "path.json" -> loadSceneFile; "path.gltf" / "path.glb" -> loadGltf + applySceneDefaults;
 // "learnopengl" -> makeLearnOpenGLScene(); "learnopengl:overview" -> the same
 // scene seen from above and behind, all 9 objects in view (rgraph render's default); "many-lights:N[:seed]" -> makeManyLightsScene(N, seed);
+// "many-lights:N[:seed]:pillars" -> makeManyLightsPillarsScene(N, seed);
 // "thin" -> makeThinScene().
 Scene loadSceneAny(const std::string& spec);
 
@@ -385,6 +386,12 @@ Scene makeLearnOpenGLScene();
 // spread over it from a seeded PRNG. The field grows with n; each light's
 // attenuation is chosen so its radius keeps ~16 lights overlapping on average.
 Scene makeManyLightsScene(int n, uint32_t seed = 1);
+// The same field and lights seen from low at its near end along the floor to
+// a wall across the far end ("far_wall"), through a row of 7 tall, thin
+// pillars ("pillar<i>") close to the camera: strong depth discontinuities,
+// where a 2D screen tile holds pixels near the camera and at the far wall
+// (what clustered shading is for). loadSceneAny "many-lights:N[:seed]:pillars".
+Scene makeManyLightsPillarsScene(int n, uint32_t seed = 1);
 
 // Edges that alias, for anti-aliasing measurements (rgraph bench's aa axis;
 // loadSceneAny "thin"): a dark floor (one primitive "floor"), a fence of

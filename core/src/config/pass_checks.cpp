@@ -73,6 +73,8 @@ std::vector<CheckedSlot> planSlots(const GraphDesc& g, const Plan& plan, size_t 
     if (bu && bu->resource.valid()) {
       const ResourceDecl& rd = g.resources[bu->resource.value()];
       s.historyOf = rd.historyOf;
+      s.kind = rd.kind;
+      if (rd.kind == ResourceKind::buffer) s.bufferBytes = rd.bufferBytes;
       if (rd.kind == ResourceKind::texture) {
         s.format = rd.texture.format;
         s.samples = std::max<uint32_t>(1, rd.texture.samples);

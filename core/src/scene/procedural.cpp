@@ -246,6 +246,40 @@ Scene makeManyLightsScene(int n, uint32_t seed) {
   return s;
 }
 
+Scene makeManyLightsPillarsScene(int n, uint32_t seed) {
+  Scene s = makeManyLightsScene(n, seed);
+  s.source += ":pillars";
+  // The field's size, as makeManyLightsScene chose it (its floor is mesh 2,
+  // half extent 0.55 side; its grid spacing is at least 1).
+  const float side = s.meshes[2].bounds.max.x / 0.55f;
+  const float spacing = side / float(std::clamp(int(side / 2.5f), 6, 16));
+  const int grey = 5;  // makeManyLightsScene's object materials are 1..6
+
+  // The far background: a wall across the far end of the field.
+  const float wallHeight = 3.0f * spacing;
+  addDraw(s, 0, 0,
+          glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, wallHeight * 0.5f, -side * 0.5f - 0.5f)),
+                     glm::vec3(side * 0.55f, wallHeight * 0.5f, 0.25f)),
+          "far_wall");
+  // The camera low at the near end, looking along the field to the wall.
+  s.camera.position = glm::vec3(0.0f, 0.8f * spacing, side * 0.5f + 0.5f * spacing);
+  s.camera.target = glm::vec3(0.0f, 0.6f * spacing, -side * 0.5f);
+  // A row of tall, thin pillars a little way in front of it, across the
+  // whole view: every tile a pillar's edge crosses holds pixels near the
+  // camera and pixels at the far wall.
+  const float dist = spacing;  // from the camera, along z
+  const float z = s.camera.position.z - dist;
+  const float halfWidth = dist * std::tan(glm::radians(s.camera.fovY * 0.5f)) * (16.0f / 9.0f);
+  const int pillars = 7;
+  for (int i = 0; i < pillars; ++i) {
+    const float x = -halfWidth + (2.0f * halfWidth) * (float(i) + 0.5f) / float(pillars);
+    const glm::mat4 xf = glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(x, 2.0f * spacing, z)),
+                                    glm::vec3(0.03f * spacing, 2.0f * spacing, 0.03f * spacing));
+    addDraw(s, 0, grey, xf, "pillar" + std::to_string(i));
+  }
+  return s;
+}
+
 // ---------------------------------------------------------------- thin geometry
 
 // Edges that alias (the bench's aa axis): at 640x360 the fence posts are

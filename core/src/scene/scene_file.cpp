@@ -477,6 +477,12 @@ Scene loadSceneAny(const std::string& spec) {
   if (spec.rfind(prefix, 0) == 0) {
     std::string_view rest(spec);
     rest.remove_prefix(prefix.size());
+    // N, then an optional seed, then an optional "pillars".
+    bool pillars = false;
+    if (rest.size() >= 8 && rest.substr(rest.size() - 8) == ":pillars") {
+      pillars = true;
+      rest.remove_suffix(8);
+    }
     std::string_view countText = rest, seedText;
     if (size_t colon = rest.find(':'); colon != std::string_view::npos) {
       countText = rest.substr(0, colon);
@@ -484,10 +490,10 @@ Scene loadSceneAny(const std::string& spec) {
     }
     uint64_t count = 0, seed = 1;
     if (!parseUint(countText, count) || count > kMaxSceneLights)
-      throw RuntimeError("scene '" + spec + "': expected many-lights:N[:seed] with N in 0.." + std::to_string(kMaxSceneLights));
+      throw RuntimeError("scene '" + spec + "': expected many-lights:N[:seed][:pillars] with N in 0.." + std::to_string(kMaxSceneLights));
     if (!seedText.empty() && (!parseUint(seedText, seed) || seed > UINT32_MAX))
-      throw RuntimeError("scene '" + spec + "': the seed must be an unsigned 32-bit integer");
-    return makeManyLightsScene(int(count), uint32_t(seed));
+      throw RuntimeError("scene '" + spec + "': the seed must be an unsigned 32-bit integer (or 'pillars')");
+    return pillars ? makeManyLightsPillarsScene(int(count), uint32_t(seed)) : makeManyLightsScene(int(count), uint32_t(seed));
   }
   const std::string ext = lowerExtension(spec);
   if (ext == ".json") return loadSceneFile(spec);

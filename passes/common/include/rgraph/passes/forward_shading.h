@@ -20,6 +20,8 @@ std::vector<ShaderProgramSpec> programs(const ParamSet& params, bool blendsSourc
 // Draws the scene's surfaces of one kind with a forward_lit program: opaque
 // (depth written) or blended (back to front, alpha blending, depth tested but
 // not written). Its uniforms are looked up once, at construction (setup).
+// With the pass's `clusters` slot bound (cluster_lists.h), each fragment
+// shades its cluster's lights only (forward+), else every light.
 class SurfaceDrawer {
  public:
   SurfaceDrawer() = default;
@@ -28,7 +30,7 @@ class SurfaceDrawer {
 
  private:
   uint32_t program_ = 0;
-  gl::Uniform pointLightCount_, blendPass_;
+  gl::Uniform pointLightCount_, blendPass_, clustered_;
 };
 
 }  // namespace rgraph::forward
