@@ -52,7 +52,7 @@ PassTypeDesc makeForwardLitPass() {
   d.params = lighting::params();
   d.params.push_back(param("blend", ParamType::boolean, true, "also draw BLEND materials, back to front"));
   d.params.push_back(velocity::param());
-  d.check = velocity::check;
+  d.rules = {velocity::rule()};
   d.adapt = [](const SceneFeatures& f, PassAdaptation& a) {
     if (!f.blendMaterials && a.params.getBool("blend", true)) {
       a.params.set("blend", false);

@@ -52,7 +52,8 @@
 // PassTypeDesc::check and needsScene, gl::FullscreenPass and gl::Uniform.
 // 3: PassContext::historyValid and frameIndex (history resources), the Frame
 // block's motion and jitter members, GpuScene::updateFrame with FrameMotion.
-#define RGRAPH_PLUGIN_ABI_VERSION 3u
+// 4: PassTypeDesc::rules (PassRule: a check with the sentence `rgraph passes` prints).
+#define RGRAPH_PLUGIN_ABI_VERSION 4u
 
 #define RGRAPH_PLUGIN_ABI_SYMBOL "rgraph_plugin_abi_version"
 #define RGRAPH_PLUGIN_REGISTER_SYMBOL "rgraph_plugin_register"
