@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "rgraph/plugin.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -81,7 +83,8 @@ TEST(PluginCli, RenderWithWrongAbiPluginIsOneLineAndExit1) {
   EXPECT_EQ(r.exit, 1) << r.out;
   ASSERT_EQ(r.lines().size(), 1u) << r.out;
   EXPECT_NE(r.out.find("plugin 'fixture_wrong_abi' (" + canonical(kFixtures + "/librgraph_fixture_wrong_abi.so") +
-                       "): ABI version mismatch: expected 3, found 999"),
+                       "): ABI version mismatch: expected " + std::to_string(RGRAPH_PLUGIN_ABI_VERSION) +
+                       ", found 999"),
             std::string::npos)
       << r.out;
 }
