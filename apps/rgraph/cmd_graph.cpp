@@ -1,4 +1,4 @@
-// validate, plan, dot, passes: everything that needs no GL context.
+// validate, plan, dot: everything that needs no GL context (and cmd_passes.cpp).
 #include <algorithm>
 #include <iomanip>
 #include <iostream>
@@ -190,96 +190,6 @@ int runDot(const std::string& path, const SizeOptions& size) {
   if (!result || hasErrors(diags)) return kExitFailure;
   std::cout << toDot(result->first.graph, result->second);
   return kExitOk;
-}
-
-namespace {
-nlohmann::json paramValueJson(const ParamValue& v) {
-  return std::visit([](const auto& x) { return nlohmann::json(x); }, v);
-}
-
-std::string_view loadName(SlotDecl::Load l) {
-  switch (l) {
-    case SlotDecl::Load::never: return "never";
-    case SlotDecl::Load::optional: return "optional";
-    case SlotDecl::Load::required: return "required";
-  }
-  return "never";
-}
-}  // namespace
-
-int runPasses(bool json) {
-  const auto types = PassRegistry::builtins().all();
-  for (const auto& e : PassRegistry::builtinErrors()) std::cerr << "error: built-in pass failed to register: " << e << "\n";
-  nlohmann::json out = nlohmann::json::array();
-  for (const PassTypeDesc* t : types) {
-    nlohmann::json slots = nlohmann::json::array();
-    for (const auto& s : t->slots) {
-      nlohmann::json formats = nlohmann::json::array();
-      for (Format f : s.formats) formats.push_back(formatName(f));
-      slots.push_back({{"name", s.name},
-                       {"access", accessName(s.access)},
-                       {"required", s.required},
-                       {"load", loadName(s.load)},
-                       {"formats", formats},
-                       {"description", s.description}});
-    }
-    nlohmann::json params = nlohmann::json::array();
-    for (const auto& p : t->params) {
-      nlohmann::json pj = {{"name", p.name},
-                           {"type", paramTypeName(p.type)},
-                           {"default", paramValueJson(p.defaultValue)},
-                           {"description", p.description}};
-      if (p.min) pj["min"] = *p.min;
-      if (p.max) pj["max"] = *p.max;
-      if (!p.choices.empty()) pj["choices"] = p.choices;
-      params.push_back(pj);
-    }
-    out.push_back({{"type", t->name},
-                   {"description", t->description},
-                   {"origin", t->origin},
-                   {"side_effect", t->sideEffect},
-                   {"shaders", t->shaderFiles()},
-                   {"slots", slots},
-                   {"params", params}});
-  }
-  if (json) {
-    std::cout << out.dump(2) << "\n";
-    return kExitOk;
-  }
-  // Columns as wide as their longest entry over every type (plus two spaces),
-  // so that no name runs into the next column (constant_material, bool).
-  size_t nameWidth = 0, kindWidth = 0;
-  for (const auto& t : out) {
-    for (const auto& s : t["slots"]) {
-      nameWidth = std::max(nameWidth, s["name"].get<std::string>().size());
-      kindWidth = std::max(kindWidth, s["access"].get<std::string>().size());
-    }
-    for (const auto& p : t["params"]) {
-      nameWidth = std::max(nameWidth, p["name"].get<std::string>().size());
-      kindWidth = std::max(kindWidth, p["type"].get<std::string>().size());
-    }
-  }
-  const int nameCol = static_cast<int>(nameWidth + 2), kindCol = static_cast<int>(kindWidth + 2);
-  for (const auto& t : out) {
-    std::cout << t["type"].get<std::string>() << "  (" << t["origin"].get<std::string>() << ")\n    "
-              << t["description"].get<std::string>() << "\n";
-    for (const auto& s : t["slots"]) {
-      std::cout << "    slot  " << std::left << std::setw(nameCol) << s["name"].get<std::string>() << std::setw(kindCol)
-                << s["access"].get<std::string>() << std::right
-                << (s["required"].get<bool>() ? "required" : "optional");
-      if (s["load"] != "never") std::cout << ", load " << s["load"].get<std::string>();
-      std::cout << "\n";
-    }
-    for (const auto& p : t["params"]) {
-      std::cout << "    param " << std::left << std::setw(nameCol) << p["name"].get<std::string>() << std::setw(kindCol)
-                << p["type"].get<std::string>() << std::right << "= " << p["default"].dump();
-      if (p.contains("min") || p.contains("max"))
-        std::cout << "  [" << (p.contains("min") ? p["min"].dump() : "") << ", "
-                  << (p.contains("max") ? p["max"].dump() : "") << "]";
-      std::cout << "  " << p["description"].get<std::string>() << "\n";
-    }
-  }
-  return PassRegistry::builtinErrors().empty() ? kExitOk : kExitFailure;
 }
 
 }  // namespace rgraph::cli

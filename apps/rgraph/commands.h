@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace rgraph::cli {
 
@@ -20,7 +21,15 @@ int runValidate(const std::string& pipeline, const SizeOptions& size, bool json,
 // (PassTypeDesc::adapt) and the plan reports G-buffer bytes per pixel before and after.
 int runPlan(const std::string& pipeline, const SizeOptions& size, bool json, const std::string& scene = {});
 int runDot(const std::string& pipeline, const SizeOptions& size);
-int runPasses(bool json);
+
+// `rgraph passes` (cmd_passes.cpp): the registered pass types, their slots,
+// params and rules, as text or JSON.
+struct PassesOptions {
+  std::vector<std::string> types;    // only these (unknown: an error, exit 1)
+  std::vector<std::string> plugins;  // --plugin: load these; list only their types unless `types` says
+  bool json = false;
+};
+int runPasses(const PassesOptions& options);
 
 struct RenderOptions {
   std::string pipeline;   // empty: the default pipeline

@@ -22,7 +22,7 @@ struct Options {
   std::vector<std::string> shaderPaths;
   bool noShaders = false;                // validate
   std::string planScene;                 // plan
-  std::vector<std::string> passPlugins;  // passes
+  PassesOptions passes;
   RenderOptions render;
   ViewOptions view;
   BenchOptions bench;
@@ -93,9 +93,13 @@ CLI::App* addDot(CLI::App& app, Options& o) {
 }
 
 CLI::App* addPasses(CLI::App& app, Options& o) {
-  auto* cmd = app.add_subcommand("passes", "list every registered pass type with its slots and parameters");
-  cmd->add_flag("--json", o.json, "print as JSON");
-  cmd->add_option("--plugin", o.passPlugins, "also load this plugin (name or path; repeatable) and list its types")
+  auto* cmd = app.add_subcommand(
+      "passes", "list the pass types: what each binds in inputs and outputs, its params and its rules");
+  cmd->add_option("type", o.passes.types, "only these types (with --plugin: the plugin's types too)")
+      ->type_name("TYPE");
+  cmd->add_flag("--json", o.passes.json, "print as JSON");
+  cmd->add_option("--plugin", o.passes.plugins,
+                  "load this plugin (name or path; repeatable) and list only its types")
       ->type_name("NAME")
       ->allow_extra_args(false);
   addPluginPath(cmd, o);
@@ -204,7 +208,7 @@ int main(int argc, char** argv) {
     if (*validate) return runValidate(o.pipeline, o.size, o.json, !o.noShaders);
     if (*plan) return runPlan(o.pipeline, o.size, o.json, o.planScene);
     if (*dot) return runDot(o.pipeline, o.size);
-    if (*passes) return loadPlugins(o.passPlugins) ? runPasses(o.json) : kExitFailure;
+    if (*passes) return runPasses(o.passes);
     if (*render) return runRender(o.render);
     if (*bench) return runBench(o.bench);
     if (*view) return runView(o.view);

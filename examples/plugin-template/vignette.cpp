@@ -27,15 +27,16 @@ void registerTypes(PluginHost& host) {
   d.description = "Darkens the image towards its corners";
   d.slots = {
       slot("src", Access::sampled, true, SlotDecl::Load::never, "image to darken (any colour format)"),
-      slot("dst", Access::color_attachment, true, SlotDecl::Load::never, "result (same size as src)"),
+      slot("dst", Access::color_attachment, true, SlotDecl::Load::never, "the darkened image"),
   };
   d.params = {ranged("strength", ParamType::number, 0.6, 0.0, 1.0, "darkening at the corners (0: none, 1: black)")};
   // The program: rgraph's fullscreen.vert + shaders/vignette.frag (its absolute
   // path where rgraph_add_plugin put it), whose sampler u_src reads "src" on
   // unit 0. `rgraph validate` checks exactly this program against the config.
   d.programs = gl::fullscreenPrograms(host.shaderPath("vignette.frag"), {{"src", "u_src", 0}});
-  // Checked before anything runs, by validate and render alike.
-  d.check = [](const PassCheckContext& ctx, PassChecks& checks) { checkSameSize(ctx, checks, "src", "dst"); };
+  // Checked before anything runs, by validate and render alike; `rgraph passes`
+  // prints the sentence.
+  d.rules = {sameSizeRule({"src", "dst"})};
   d.create = [] { return std::make_unique<VignettePass>(); };
   host.addPassType(std::move(d));
 }

@@ -69,12 +69,18 @@ class BlitPass final : public PassInstance {
 
 // What glBlitFramebuffer refuses, refused before the GPU (the graph itself
 // refuses depth and colour mixed: depth_blit_format_mismatch).
-void checkBlit(const PassCheckContext& ctx, PassChecks& checks) {
-  if (ctx.samples("dst") > 1) checks.slotError("dst", "the destination may not be multisampled");
-  const Extent se = ctx.extent("src"), de = ctx.extent("dst");
-  if (ctx.samples("src") > 1 && se.width > 0 && de.width > 0 && se != de)
-    checks.slotError("dst", "resolving a multisampled image needs equal sizes (src " + extentText(se) + ", dst " +
-                                extentText(de) + ")");
+std::vector<PassRule> blitRules() {
+  PassRule single{"dst is not multisampled", [](const PassCheckContext& ctx, PassChecks& checks) {
+                    if (ctx.samples("dst") > 1) checks.slotError("dst", "the destination may not be multisampled");
+                  }};
+  PassRule resolve{"a multisampled src (a resolve) and dst must have the same size",
+                   [](const PassCheckContext& ctx, PassChecks& checks) {
+                     const Extent se = ctx.extent("src"), de = ctx.extent("dst");
+                     if (ctx.samples("src") > 1 && se.width > 0 && de.width > 0 && se != de)
+                       checks.slotError("dst", "resolving a multisampled image needs equal sizes (src " +
+                                                   extentText(se) + ", dst " + extentText(de) + ")");
+                   }};
+  return {single, resolve};
 }
 
 PassTypeDesc makeBlitPass() {
@@ -89,7 +95,7 @@ PassTypeDesc makeBlitPass() {
   };
   d.params = {decl::param("filter", ParamType::enumeration, std::string("linear"),
                         "filter when sizes differ (depth always uses nearest)", {"nearest", "linear"})};
-  d.check = checkBlit;
+  d.rules = blitRules();
   d.create = [] { return std::make_unique<BlitPass>(); };
   return d;
 }

@@ -120,11 +120,23 @@ void adaptPointLightShading(const SceneFeatures& f, PassAdaptation& a) {
 
 float threshold(const ParamSet& p) { return static_cast<float>(p.getNumber("threshold", 5.0 / 256.0)); }
 
-void checkGBuffer(const PassCheckContext& ctx, PassChecks& checks) {
-  const gbuffer::Layout& layout = gbuffer::of(ctx.params());
-  for (const auto& slot : layout.readerSlots(ctx.params().getBool("constant_material", false)))
-    if (!ctx.bound(slot))
-      checks.slotError(slot, "input '" + slot + "' is required by layout '" + layout.name + "' but not bound");
+PassRule gbufferReaderRule() {
+  PassRule rule;
+  rule.text = "bind the inputs \"layout\" reads:";
+  for (const auto& layout : gbuffer::layouts()) {
+    const auto slots = layout.readerSlots(false);
+    rule.text += std::string(&layout == &gbuffer::layouts().front() ? " " : ", ") + layout.name + " (";
+    for (size_t i = 0; i < slots.size(); ++i) rule.text += (i ? ", " : "") + slots[i];
+    rule.text += ")";
+  }
+  rule.text += "; no material with constant_material";
+  rule.check = [](const PassCheckContext& ctx, PassChecks& checks) {
+    const gbuffer::Layout& layout = gbuffer::of(ctx.params());
+    for (const auto& slot : layout.readerSlots(ctx.params().getBool("constant_material", false)))
+      if (!ctx.bound(slot))
+        checks.slotError(slot, "input '" + slot + "' is required by layout '" + layout.name + "' but not bound");
+  };
+  return rule;
 }
 
 std::vector<std::string> materialSamplers() {
@@ -141,7 +153,7 @@ PassTypeDesc gbufferReader(std::string name, std::string description) {
   d.name = std::move(name);
   d.description = std::move(description);
   d.slots = gbufferSlots();
-  d.check = checkGBuffer;
+  d.rules = {gbufferReaderRule()};
   d.needsScene = true;
   d.adapt = adaptGBuffer;
   return d;

@@ -22,11 +22,16 @@ void addDefine(const ParamSet& params, std::vector<std::string>& defines) {
   if (enabled(params)) defines.push_back("HAS_VELOCITY");
 }
 
-void check(const PassCheckContext& ctx, PassChecks& checks) {
-  const bool wanted = enabled(ctx.params());
-  if (ctx.bound("velocity") == wanted) return;
-  checks.slotError("velocity", wanted ? "\"velocity\": true writes motion vectors: bind the 'velocity' output"
-                                      : "a 'velocity' output needs the pass parameter \"velocity\": true");
+PassRule rule() {
+  PassRule r;
+  r.text = "bind the velocity output exactly when \"velocity\" is true";
+  r.check = [](const PassCheckContext& ctx, PassChecks& checks) {
+    const bool wanted = enabled(ctx.params());
+    if (ctx.bound("velocity") == wanted) return;
+    checks.slotError("velocity", wanted ? "\"velocity\": true writes motion vectors: bind the 'velocity' output"
+                                        : "a 'velocity' output needs the pass parameter \"velocity\": true");
+  };
+  return r;
 }
 
 }  // namespace rgraph::velocity

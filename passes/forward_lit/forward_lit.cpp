@@ -57,10 +57,8 @@ PassTypeDesc makeForwardLitPass() {
   d.params = lighting::params();
   d.params.push_back(param("blend", ParamType::boolean, true, "also draw BLEND materials, back to front"));
   d.params.push_back(velocity::param());
-  d.check = [](const PassCheckContext& ctx, PassChecks& checks) {
-    velocity::check(ctx, checks);
-    clusters::checkReaderSlot(ctx, checks);
-  };
+  d.rules = {velocity::rule()};
+  d.check = clusters::checkReaderSlot;
   d.adapt = [](const SceneFeatures& f, PassAdaptation& a) {
     if (!f.blendMaterials && a.params.getBool("blend", true)) {
       a.params.set("blend", false);

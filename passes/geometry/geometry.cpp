@@ -52,20 +52,43 @@ class GeometryPass final : public PassInstance {
   bool velocity_ = false;
 };
 
-// The targets the layout writes are exactly the bound ones (gbuffer_layout.h).
-void checkGeometry(const PassCheckContext& ctx, PassChecks& checks) {
-  const gbuffer::Layout& layout = gbuffer::of(ctx.params());
-  auto require = [&](const std::string& slot, bool wanted) {
-    if (ctx.bound(slot) != wanted)
-      checks.slotError(slot, "layout '" + layout.name + "' " + (wanted ? "writes" : "does not write") + " a '" + slot +
-                                 "' target; " + (wanted ? "bind it in outputs" : "remove it from outputs"));
+// The targets the layout writes are exactly the bound ones (gbuffer_layout.h),
+// each sentence listing what every layout of the table asks.
+PassRule targetsRule() {
+  PassRule rule;
+  rule.text = "bind the targets \"layout\" writes, and no other:";
+  for (const auto& layout : gbuffer::layouts()) {
+    rule.text += std::string(&layout == &gbuffer::layouts().front() ? " " : ", ") + layout.name + " (";
+    for (size_t i = 0; i < layout.targets.size(); ++i) rule.text += (i ? ", " : "") + layout.targets[i].slot;
+    rule.text += ")";
+  }
+  rule.text += "; no material with constant_material";
+  rule.check = [](const PassCheckContext& ctx, PassChecks& checks) {
+    const gbuffer::Layout& layout = gbuffer::of(ctx.params());
+    auto require = [&](const std::string& slot, bool wanted) {
+      if (ctx.bound(slot) != wanted)
+        checks.slotError(slot, "layout '" + layout.name + "' " + (wanted ? "writes" : "does not write") + " a '" +
+                                   slot + "' target; " + (wanted ? "bind it in outputs" : "remove it from outputs"));
+    };
+    require("position", layout.writes("position"));
+    require("material", layout.writes("material") && !ctx.params().getBool("constant_material", false));
   };
-  require("position", layout.writes("position"));
-  require("material", layout.writes("material") && !ctx.params().getBool("constant_material", false));
-  velocity::check(ctx, checks);
-  if (auto normal = ctx.format("normal"); normal && formatInfo(*normal).components < layout.normalComponents)
-    checks.slotError("normal", "layout '" + layout.name + "' needs " + std::to_string(layout.normalComponents) +
-                                   " components in 'normal', got " + std::string(formatName(*normal)));
+  return rule;
+}
+
+PassRule normalRule() {
+  PassRule rule;
+  rule.text = "normal has the components \"layout\" needs:";
+  const auto& table = gbuffer::layouts();
+  for (size_t i = 0; i < table.size(); ++i)
+    rule.text += (i ? ", " : " ") + table[i].name + " " + std::to_string(table[i].normalComponents);
+  rule.check = [](const PassCheckContext& ctx, PassChecks& checks) {
+    const gbuffer::Layout& layout = gbuffer::of(ctx.params());
+    if (auto normal = ctx.format("normal"); normal && formatInfo(*normal).components < layout.normalComponents)
+      checks.slotError("normal", "layout '" + layout.name + "' needs " + std::to_string(layout.normalComponents) +
+                                     " components in 'normal', got " + std::string(formatName(*normal)));
+  };
+  return rule;
 }
 
 PassTypeDesc makeGeometryPass() {
@@ -101,7 +124,7 @@ PassTypeDesc makeGeometryPass() {
     s.ownSamplers = lighting::materialSamplers();
     return lighting::normalMapVariants(s);
   };
-  d.check = checkGeometry;
+  d.rules = {targetsRule(), velocity::rule(), normalRule()};
   d.needsScene = true;
   d.create = [] { return std::make_unique<GeometryPass>(); };
   return d;

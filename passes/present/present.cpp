@@ -27,15 +27,18 @@ PassTypeDesc makePresentPass() {
   d.description = "Copies a colour image into the output image, converting to 8 bits";
   d.slots = {
       decl::slot("src", Access::sampled, true, SlotDecl::Load::never, "the image to show"),
-      decl::slot("dst", Access::color_attachment, true, SlotDecl::Load::never, "the output image (rgba8 or srgb8_alpha8)",
+      decl::slot("dst", Access::color_attachment, true, SlotDecl::Load::never, "the output image",
                {Format::rgba8, Format::srgb8_alpha8}),
   };
   d.params = {decl::param("gamma", ParamType::boolean, false, "apply the sRGB transfer when the target is linear rgba8")};
   d.programs = gl::fullscreenPrograms("present.frag", {{"src", "src", 0}});
-  d.check = [](const PassCheckContext& ctx, PassChecks& checks) {
+  PassRule colour;
+  colour.text = "src is a colour image, not depth";
+  colour.check = [](const PassCheckContext& ctx, PassChecks& checks) {
     if (auto f = ctx.format("src"); f && isDepthFormat(*f))
       checks.slotError("src", "src has a depth format (" + std::string(formatName(*f)) + "); present shows colour images");
   };
+  d.rules = {colour};
   d.create = [] { return std::make_unique<PresentPass>(); };
   return d;
 }

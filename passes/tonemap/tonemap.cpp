@@ -33,19 +33,19 @@ PassTypeDesc makeTonemapPass() {
   d.name = "tonemap";
   d.description = "HDR to the display: exposure, Reinhard or ACES, sRGB transfer";
   d.slots = {
-      slot("hdr", Access::sampled, true, SlotDecl::Load::never, "HDR input (rgba16f, rgba32f, r11g11b10f)",
-           lighting::hdrFormats()),
-      slot("output", Access::color_attachment, true, SlotDecl::Load::never, "display image (rgba8 or srgb8_alpha8)",
+      slot("hdr", Access::sampled, true, SlotDecl::Load::never, "the HDR image", lighting::hdrFormats()),
+      slot("output", Access::color_attachment, true, SlotDecl::Load::never,
+           "the display image (srgb8_alpha8 encodes on write; rgba8 gets the curve in the shader)",
            {Format::rgba8, Format::srgb8_alpha8}),
   };
   d.params = {
-      param("operator", ParamType::enumeration, std::string("aces"), "tone curve: reinhard, aces, or none (clamp)",
+      param("operator", ParamType::enumeration, std::string("aces"), "tone curve (none: clamp to 1)",
             {"reinhard", "aces", "none"}),
       ranged("exposure", ParamType::number, 1.0, 0.0, 1000.0, "multiplies the HDR colour before the curve"),
       ranged("gamma", ParamType::number, 0.0, 0.0, 5.0, "0: the exact sRGB curve; otherwise pow(c, 1/gamma)"),
   };
   d.programs = gl::fullscreenPrograms("tonemap.frag", {{"hdr", "u_hdr", 0}});
-  d.check = [](const PassCheckContext& ctx, PassChecks& checks) { checkSameSize(ctx, checks, "hdr", "output"); };
+  d.rules = {sameSizeRule({"hdr", "output"})};
   d.create = [] { return std::make_unique<TonemapPass>(); };
   return d;
 }

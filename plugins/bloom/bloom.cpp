@@ -160,14 +160,16 @@ std::function<std::vector<ShaderProgramSpec>(const ParamSet&)> blurPrograms(cons
 }
 
 // Either a separate HDR input or the bloom added into a loaded target.
-void checkComposite(const PassCheckContext& ctx, PassChecks& checks) {
-  const bool loads = ctx.loads("color");
-  if (loads == ctx.bound("hdr"))
-    checks.slotError(loads ? "hdr" : "color",
-                     "bind either 'hdr' (writes hdr + bloom into 'color') or load 'color' (adds the bloom into it), "
-                     "not " + std::string(loads ? "both" : "neither"));
-  else
-    checkSameSize(ctx, checks, "hdr", "color");
+std::vector<PassRule> compositeRules() {
+  PassRule either{"bind either hdr or color in inputs (load: add the bloom into it), not both",
+                  [](const PassCheckContext& ctx, PassChecks& checks) {
+                    const bool loads = ctx.loads("color");
+                    if (loads == ctx.bound("hdr"))
+                      checks.slotError(loads ? "hdr" : "color",
+                                       "bind either 'hdr' (writes hdr + bloom into 'color') or load 'color' (adds "
+                                       "the bloom into it), not " + std::string(loads ? "both" : "neither"));
+                  }};
+  return {either, sameSizeRule({"hdr", "color"})};
 }
 
 void registerBloom(PluginHost& host) {
@@ -238,7 +240,7 @@ void registerBloom(PluginHost& host) {
     };
     d.params = {ranged("intensity", ParamType::number, 1.0, 0.0, 100.0, "bloom strength")};
     d.programs = gl::fullscreenPrograms(frag, {{"hdr", "u_hdr", 0, /*optional=*/true}, {"bloom", "u_bloom", 1}});
-    d.check = checkComposite;
+    d.rules = compositeRules();
     d.create = [] { return std::make_unique<CompositePass>(); };
     host.addPassType(std::move(d));
   }

@@ -47,7 +47,7 @@ void registerFxaa(PluginHost& host) {
       ranged("subpixel", ParamType::number, 0.75, 0.0, 1.0, "blending of sub-pixel features (0 off, 1 softest)"),
   };
   d.programs = gl::fullscreenPrograms(host.shaderPath("fxaa.frag"), {{"input", "u_input", 0}});
-  d.check = [](const PassCheckContext& ctx, PassChecks& checks) { checkSameSize(ctx, checks, "output", "input"); };
+  d.rules = {sameSizeRule({"output", "input"})};
   d.create = [] { return std::make_unique<FxaaPass>(); };
   host.addPassType(std::move(d));
 }

@@ -200,7 +200,12 @@ void registerSsao(PluginHost& host) {
       s.ownSamplers = {"u_noise"};  // the 4x4 rotation texture the pass binds on unit 5
       return std::vector<ShaderProgramSpec>{s};
     };
-    d.check = checkPositionSlot;
+    PassRule position;
+    position.text = "bind where \"layout\" keeps the position:";
+    for (const auto& layout : gbuffer::layouts())
+      position.text += (position.text.back() == ':' ? " " : ", ") + layout.name + " " + layout.positionSlot();
+    position.check = checkPositionSlot;
+    d.rules = {position};
     d.needsScene = true;  // for the camera
     d.create = [] { return std::make_unique<SsaoPass>(); };
     host.addPassType(std::move(d));
@@ -218,7 +223,7 @@ void registerSsao(PluginHost& host) {
     d.params = {ranged("size", ParamType::integer, int64_t{2}, 0.0, 8.0,
                        "half width: averages 2*size x 2*size texels (2 matches the 4x4 noise tile; 0 copies)")};
     d.programs = gl::fullscreenPrograms(frag, {{"src", "u_src", 0}});
-    d.check = [](const PassCheckContext& ctx, PassChecks& checks) { checkSameSize(ctx, checks, "src", "ao"); };
+    d.rules = {sameSizeRule({"src", "ao"})};
     d.create = [] { return std::make_unique<SsaoBlurPass>(); };
     host.addPassType(std::move(d));
   }

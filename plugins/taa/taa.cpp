@@ -43,8 +43,7 @@ class TaaPass final : public gl::FullscreenPass {
 // Every image the resolve reads per pixel has the output's size, and the
 // history is this pass's own output as the last frame left it: bound to
 // anything else, the resolve would never accumulate (or blend a stranger's image).
-void checkTaa(const PassCheckContext& ctx, PassChecks& checks) {
-  for (const char* slot : {"color", "history", "velocity", "depth"}) checkSameSize(ctx, checks, slot, "output");
+void checkHistory(const PassCheckContext& ctx, PassChecks& checks) {
   const CheckedSlot* history = ctx.find("history");
   const CheckedSlot* output = ctx.find("output");
   if (!history || !output) return;
@@ -86,7 +85,8 @@ void registerTaa(PluginHost& host) {
   d.programs = gl::fullscreenPrograms(
       host.shaderPath("taa.frag"),
       {{"color", "u_color", 0}, {"history", "u_history", 1}, {"velocity", "u_velocity", 2}, {"depth", "u_depth", 3}});
-  d.check = checkTaa;
+  d.rules = {sameSizeRule({"color", "history", "velocity", "depth", "output"}),
+             {"history is the history resource (\"history_of\") of the resource output writes", checkHistory}};
   d.needsScene = true;  // the Frame block's cameras
   d.create = [] { return std::make_unique<TaaPass>(); };
   host.addPassType(std::move(d));

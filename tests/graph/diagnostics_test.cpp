@@ -169,6 +169,51 @@ TEST(Diagnostics, DuplicateWriterOutputNamesAnExistingVersion) {
   expectWhere(dg, at(25, 4));
 }
 
+// Issue 16: a pass that draws over 'gAlbedo' and names its result 'gAlbedo'
+// too. One error, at that output, saying what to do; the readers of
+// 'gAlbedo' and the output are not reported again as "no pass writes it".
+TEST(Diagnostics, InPlaceWriteUnderItsOwnNameIsOneErrorSuggestingANewName) {
+  GraphDesc d;
+  d.resources = {tex("gAlbedo"), importedTex("out", false)};
+  d.passes = {pass("decals", {rmw("color", "gAlbedo", "gAlbedo")}),
+              pass("present", {rd("src", "gAlbedo"), wr("color", "out")})};
+  d.passes[0].uses[0].outputWhere = at(7, 40, "/passes/0/outputs/color");
+  d.output = "out";
+  Plan plan = compile(d);
+  EXPECT_FALSE(plan.ok());
+  ASSERT_EQ(plan.diagnostics.size(), 1u) << dumpDiagnostics(plan);
+  const Diagnostic& dg = plan.diagnostics[0];
+  EXPECT_EQ(dg.code, DiagCode::duplicate_writer);
+  EXPECT_EQ(dg.pass, "decals");
+  EXPECT_EQ(dg.resource, "gAlbedo");
+  EXPECT_EQ(dg.message,
+            "output 'color' names 'gAlbedo' as the version it produces, but 'gAlbedo' is the version it loads: "
+            "drawing over a version produces a new one; give the new version a new name (e.g. 'gAlbedo_2') and "
+            "read that one after this pass");
+  expectWhere(dg, at(7, 40, "/passes/0/outputs/color"));
+
+  // The same as the output image: one error too (not "never written").
+  d.passes.pop_back();
+  d.output = "gAlbedo";
+  d.resources[0] = importedTex("gAlbedo", false);
+  d.resources.pop_back();
+  Plan asOutput = compile(d);
+  EXPECT_EQ(withCode(asOutput, DiagCode::duplicate_writer).size(), 1u) << dumpDiagnostics(asOutput);
+  EXPECT_TRUE(withCode(asOutput, DiagCode::output_never_written).empty()) << dumpDiagnostics(asOutput);
+  EXPECT_TRUE(withCode(asOutput, DiagCode::read_never_written).empty()) << dumpDiagnostics(asOutput);
+}
+
+// The suggested name is one the graph does not use yet.
+TEST(Diagnostics, SuggestedNewVersionNameIsUnused) {
+  GraphDesc d;
+  d.resources = {tex("hdr"), tex("hdr_2"), importedTex("out", false)};
+  d.passes = {pass("sky", {rmw("color", "hdr", "hdr")}), pass("present", {rd("src", "hdr"), wr("color", "out")})};
+  d.output = "out";
+  Plan plan = compile(d);
+  const Diagnostic& dg = only(plan, DiagCode::duplicate_writer);
+  EXPECT_TRUE(contains(dg.message, "(e.g. 'hdr_3')")) << dg.message;
+}
+
 TEST(Diagnostics, CycleNamesThePassesInOrder) {
   GraphDesc d;
   d.resources = {tex("x"), tex("y"), importedTex("out", false)};

@@ -133,6 +133,47 @@ TEST(PassChecks, ParamErrorsPointAtTheParam) {
   EXPECT_EQ(d[0].message, "picky pass 'p': level above 2 is not supported");
 }
 
+// PassTypeDesc::rules run like the check hook, each reporting at its slot;
+// a rule without its sentence or its check is refused at registration.
+TEST(PassChecks, RulesRunAndMustHaveASentenceAndACheck) {
+  PassRegistry registry;
+  PassTypeDesc t;
+  t.name = "ruled";
+  t.slots = {SlotDecl{"src", Access::sampled, false}, SlotDecl{"color", Access::color_attachment}};
+  t.rules = {sameSizeRule({"src", "color"})};
+  t.create = [] { return std::unique_ptr<PassInstance>(); };  // never run here
+  EXPECT_EQ(t.rules[0].text, "src and color must have the same size");
+  EXPECT_EQ(sameSizeRule({"a", "b", "c"}).text, "a, b and c must have the same size");
+  PassTypeDesc noText = t, noCheck = t;
+  noText.rules[0].text.clear();
+  noCheck.rules[0].check = nullptr;
+  std::string error;
+  EXPECT_FALSE(registry.add(noText, &error));
+  EXPECT_EQ(error, "pass type 'ruled' has a rule without a sentence");
+  EXPECT_FALSE(registry.add(noCheck, &error));
+  EXPECT_EQ(error, "pass type 'ruled' has a rule without a check");
+  ASSERT_TRUE(registry.add(t, &error)) << error;
+
+  const fs::path file = fs::temp_directory_path() / ("rgraph-ruled-" + std::to_string(::getpid()) + ".json");
+  std::ofstream(file) << "{\"version\": 1, \"resources\": {\"half\": {\"format\": \"rgba8\", \"size\": {\"scale\": 0.5}},\n"
+                         "  \"out\": {\"format\": \"rgba8\"}},\n"
+                         " \"passes\": [{\"name\": \"fill\", \"type\": \"ruled\", \"outputs\": {\"color\": \"half\"}},\n"
+                         "   {\"name\": \"p\", \"type\": \"ruled\", \"inputs\": {\"src\": \"half\"}, \"outputs\": {\"color\": \"out\"}}],\n"
+                         " \"output\": \"out\"}\n";
+  Diagnostics diags;
+  PipelineConfig pipeline = ConfigDocument::parseFile(file.string(), diags).build(registry, diags);
+  ASSERT_FALSE(hasErrors(diags)) << lines(diags);
+  CompileOptions options;
+  options.output = {64, 32};
+  const Diagnostics d = runPassChecks(pipeline, compile(pipeline.graph, options), registry);
+  fs::remove(file);
+  ASSERT_EQ(d.size(), 1u) << lines(d);
+  EXPECT_EQ(d[0].slot, "src");
+  EXPECT_EQ(d[0].where.path, "/passes/1/inputs/src");
+  EXPECT_NE(d[0].message.find("'src' (32x16) and 'color' (64x32) must have the same size"), std::string::npos)
+      << d[0].message;
+}
+
 TEST(ShaderCheckCache, SecondRunIsAHitWithTheSameDiagnostics) {
   TempDir dir;
   Loaded l = load(kChecks + "/lighting_missing_material.json");  // has shader errors and warnings

@@ -136,6 +136,9 @@ struct PassTypeDesc {
   // checked on the compiled plan by validate and before any GL work by render
   // and the executor, so setup() need not (see rgraph/pass_check.h).
   std::function<void(const PassCheckContext&, PassChecks&)> check;
+  // Requirements stated as a sentence and a check (rgraph/pass_check.h):
+  // run like `check`, and listed by `rgraph passes` (e.g. sameSizeRule).
+  std::vector<PassRule> rules;
   // The pass draws or shades the scene: refused before any GL work when the
   // pipeline runs without one.
   bool needsScene = false;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -108,6 +109,19 @@ std::string extentText(Extent e);
 // A common check: slots `a` and `b` (both bound, sizes known) have the same
 // size; otherwise an error at `a` naming both sizes.
 void checkSameSize(const PassCheckContext& ctx, PassChecks& checks, const std::string& a, const std::string& b);
+
+// A requirement a pass type states once: `text` is the sentence `rgraph
+// passes` prints (e.g. "hdr and output must have the same size"), `check` the
+// code that validate, plan, render and the executor run to enforce it.
+// PassTypeDesc::rules holds them; PassTypeDesc::check is for checks with no
+// sentence of their own.
+struct PassRule {
+  std::string text;
+  std::function<void(const PassCheckContext&, PassChecks&)> check;
+};
+// "A, B and C must have the same size": each slot but the last is checked
+// against the last with checkSameSize (slots left unbound are not compared).
+PassRule sameSizeRule(std::vector<std::string> slots);
 
 struct PassCheckOptions {
   // Whether the pipeline will run with a scene; nullopt: unknown (a pass type

@@ -54,7 +54,8 @@
 // PassTypeDesc::check and needsScene, gl::FullscreenPass and gl::Uniform.
 // 3: PassContext::historyValid and frameIndex (history resources), the Frame
 // block's motion and jitter members, GpuScene::updateFrame with FrameMotion.
-// 4: CheckedSlot::kind and bufferBytes (check hooks see a buffer's size).
+// 4: CheckedSlot::kind and bufferBytes (check hooks see a buffer's size);
+// PassTypeDesc::rules (PassRule: a check with the sentence `rgraph passes` prints).
 #define RGRAPH_PLUGIN_ABI_VERSION 4u
 
 #define RGRAPH_PLUGIN_ABI_SYMBOL "rgraph_plugin_abi_version"

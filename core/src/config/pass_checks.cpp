@@ -53,6 +53,18 @@ void checkSameSize(const PassCheckContext& ctx, PassChecks& checks, const std::s
       a, "'" + a + "' (" + extentText(ea) + ") and '" + b + "' (" + extentText(eb) + ") must have the same size");
 }
 
+PassRule sameSizeRule(std::vector<std::string> slots) {
+  std::string text;
+  for (size_t i = 0; i < slots.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == slots.size() ? " and " : ", ") + slots[i];
+  PassRule rule;
+  rule.text = text + " must have the same size";
+  rule.check = [slots = std::move(slots)](const PassCheckContext& ctx, PassChecks& checks) {
+    for (size_t i = 0; i + 1 < slots.size(); ++i) checkSameSize(ctx, checks, slots[i], slots.back());
+  };
+  return rule;
+}
+
 std::vector<CheckedSlot> planSlots(const GraphDesc& g, const Plan& plan, size_t pass) {
   const PassDecl& pd = g.passes[pass];
   const std::vector<BoundUse>* uses = pass < plan.bindings.size() ? &plan.bindings[pass] : nullptr;
@@ -147,14 +159,15 @@ Diagnostics runPassChecks(const PipelineConfig& pipeline, const Plan& plan, cons
     };
     if (type->needsScene && options.scenePresent == false)
       add(DiagCode::needs_scene, "needs a scene (rgraph render --scene ...)", pd.where, {});
-    if (!type->check) continue;
+    if (!type->check && type->rules.empty()) continue;
 
     ParamSet params = defaultParams(type->params);
     if (p < pipeline.params.size())
       for (const auto& [k, v] : pipeline.params[p].values()) params.set(k, v);
     const PassCheckContext ctx(pd.name, params, planSlots(g, plan, p), plan.output, options.scenePresent);
     PassChecks checks;
-    type->check(ctx, checks);
+    if (type->check) type->check(ctx, checks);
+    for (const PassRule& rule : type->rules) rule.check(ctx, checks);
     for (const auto& e : checks.entries()) {
       switch (e.kind) {
         case PassChecks::Entry::Kind::slot:

@@ -107,6 +107,7 @@ void Compiler::dependency(Use& u, uint32_t f, int p) {
   }
   const Res& rs = r_[ev.res];
   if (e < static_cast<int>(nRes_) && rs.hasContent) return;
+  if (w < 0 && ev.renamedWrite) return;  // its would-be writer is reported: "give the new version a new name"
   const std::string& in = u.ru->input;
   std::string msg = slotLabel(f) + (u.write ? " loads " : " reads ") + q(in);
   if (e != u.readVer) msg += " (the same contents as " + q(versionName(e)) + ", disabled passes pass it through)";

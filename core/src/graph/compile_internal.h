@@ -78,6 +78,10 @@ class Compiler {
     bool reachable = false;  // part of a chain rooted at a resource
     bool alive = true;       // an in-place write whose output name was accepted
     bool afterOutput = false;  // a later version of the output's resource than the output
+    // A pass's in-place write named this version as the one it produces and
+    // was refused ("give the new version a new name"): that pass meant to
+    // write it, so reading it unwritten is not reported again.
+    bool renamedWrite = false;
   };
   enum : uint8_t { kEnabled = 1, kSideEffect = 2 };
 
@@ -139,6 +143,7 @@ class Compiler {
   // compile_versions.cpp
   void sweep();
   void inPlaceWrite(uint32_t f);
+  std::string unusedVersionName(const std::string& base) const;
   void firstWrite(uint32_t f, std::vector<uint32_t>& pending);
   void duplicateOfVersion(uint32_t f, int v);
   void chains();

@@ -133,6 +133,7 @@ void Compiler::output() {
     outputWriter_ = w;
     return;
   }
+  if (w < 0 && vers_[e].renamedWrite) return;  // reported at its would-be writer
   std::string msg = "output " + q(d_.output);
   if (e != v) msg += " (the same contents as " + q(versionName(e)) + ", disabled passes pass it through)";
   msg += " is never written by an enabled pass";

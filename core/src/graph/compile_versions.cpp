@@ -90,6 +90,18 @@ void Compiler::sweep() {
   }
 }
 
+// "NAME_2" (or _3, ...): a name no resource or binding of the graph uses.
+std::string Compiler::unusedVersionName(const std::string& base) const {
+  for (int i = 2;; ++i) {
+    const std::string name = base + "_" + std::to_string(i);
+    bool used = false;
+    for (const auto& r : d_.resources) used = used || r.name == name;
+    for (const auto& p : d_.passes)
+      for (const auto& ru : p.uses) used = used || ru.input == name || ru.output == name;
+    if (!used) return name;
+  }
+}
+
 // An in-place write ("def"): version nRes_ + i, named by its output, so that a
 // read or a load may name a version produced by a later-declared pass.
 void Compiler::inPlaceWrite(uint32_t f) {
@@ -108,13 +120,17 @@ void Compiler::inPlaceWrite(uint32_t f) {
   }
   if (const int existing = names_.insert(ru.output, v); existing >= 0) {
     vers_[v].alive = false;
+    vers_[existing].renamedWrite = true;
     std::string msg = slotLabel(f) + " names " + q(ru.output) + " as the version it produces, but " +
-                      q(ru.output) + " is already ";
-    if (existing < static_cast<int>(nRes_))
-      msg += "a declared resource (its first version)";
+                      q(ru.output) + " is ";
+    if (ru.output == ru.input)
+      msg += "the version it loads: drawing over a version produces a new one";
+    else if (existing < static_cast<int>(nRes_))
+      msg += "already a declared resource (its first version)";
     else
-      msg += "a version written by pass " + q(passName(vers_[existing].writer));
-    msg += "; give the new version a new name";
+      msg += "already a version written by pass " + q(passName(vers_[existing].writer));
+    msg += "; give the new version a new name (e.g. " + q(unusedVersionName(ru.input.empty() ? ru.output : ru.input)) +
+           ") and read that one after this pass";
     useDiag(DiagCode::duplicate_writer, std::move(msg), f, ru.output, true);
     return;
   }

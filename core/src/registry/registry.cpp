@@ -76,6 +76,9 @@ bool PassRegistry::add(PassTypeDesc desc, std::string* error) {
     if (!defaultInRange(p))
       return fail(error, "pass type '" + desc.name + "': default of parameter '" + p.name + "' is out of its range");
   }
+  for (const auto& r : desc.rules)
+    if (r.text.empty() || !r.check)
+      return fail(error, "pass type '" + desc.name + "' has a rule without " + (r.text.empty() ? "a sentence" : "a check"));
   if (!desc.create) return fail(error, "pass type '" + desc.name + "' has no factory");
   std::string name = desc.name;
   types_.emplace(std::move(name), std::move(desc));

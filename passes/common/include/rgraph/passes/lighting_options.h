@@ -50,12 +50,12 @@ void adaptGBuffer(const SceneFeatures& features, PassAdaptation& adaptation);
 void adaptPointLightShading(const SceneFeatures& features, PassAdaptation& adaptation);
 float threshold(const ParamSet& params);
 
-// Check hook (PassTypeDesc::check): the slots the pass's layout reads are
-// bound (gbuffer::Layout::readerSlots).
-void checkGBuffer(const PassCheckContext& ctx, PassChecks& checks);
+// Rule (PassTypeDesc::rules): the slots the pass's layout reads are bound
+// (gbuffer::Layout::readerSlots), its sentence listing them per layout.
+PassRule gbufferReaderRule();
 // What every pass that reads the G-buffer declares alike: name, description,
 // the sampled G-buffer slots (gbufferSlots), the check that its layout's
-// slots are bound (checkGBuffer), needsScene, and adaptGBuffer as its adapt
+// slots are bound (gbufferReaderRule), needsScene, and adaptGBuffer as its adapt
 // hook. The pass adds its own slots, params and programs.
 PassTypeDesc gbufferReader(std::string name, std::string description);
 // A compute lighting pass (tiled_deferred, clustered_deferred): gbufferReader,

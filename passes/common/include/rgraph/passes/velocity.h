@@ -22,7 +22,7 @@ ParamDecl param();
 bool enabled(const ParamSet& params);
 // Appends HAS_VELOCITY when the parameter is on.
 void addDefine(const ParamSet& params, std::vector<std::string>& defines);
-// The output is bound exactly when the parameter is on.
-void check(const PassCheckContext& ctx, PassChecks& checks);
+// Rule: the output is bound exactly when the parameter is on.
+PassRule rule();
 
 }  // namespace rgraph::velocity
