@@ -115,10 +115,7 @@ PassTypeDesc makeClusteredDeferredPass() {
     }
     return v;
   };
-  d.check = [](const PassCheckContext& ctx, PassChecks& checks) {
-    lighting::checkGBuffer(ctx, checks);
-    clusters::checkReaderSlot(ctx, checks);
-  };
+  d.check = clusters::checkReaderSlot;  // the G-buffer's slots: gbufferReader's rule
   d.create = [] { return std::make_unique<ClusteredDeferredPass>(); };
   return d;
 }
