@@ -78,6 +78,11 @@ term@ambient albedo dropped@u_ambient.rgb * s.albedo * s.ao@u_ambient.rgb * s.ao
 term@ambient dropped@u_ambient.rgb * s.albedo * s.ao@vec3(0.0)
 term@directional light dropped@if (u_dirLightDir.w <= 0.0) return vec3(0.0);@return vec3(0.0);
 term@directional light direction negated@normalize(-u_dirLightDir.xyz)@normalize(u_dirLightDir.xyz)
+term@spot cone dropped@attenuate(light, d) * spotCone(light, L)@attenuate(light, d)
+term@spot cone not squared@  return t * t;@  return t;
+term@spot cone axis reversed@dot(light.spot.xyz, -L)@dot(light.spot.xyz, L)
+term@spot cone scale dropped@ - light.spot.w) * light.attenuation.w, 0.0@ - light.spot.w), 0.0
+term@spot cone outer cosine dropped@(dot(light.spot.xyz, -L) - light.spot.w)@dot(light.spot.xyz, -L)
 term@directional light colour dropped@u_dirLightColor.rgb, s)@vec3(1.0), s)
 guard@half-vector guard 1e-12 -> 1e-6@dot(h, h) > 1e-12@dot(h, h) > 1e-6
 guard@GGX guard 1e-7 -> 1e-5@PI * d * d, 1e-7)@PI * d * d, 1e-5)

@@ -7,12 +7,15 @@
 // centres); (2) one invocation per depth slice tests the candidates against
 // its cluster's box. The cluster's view-space AABB bounds the frustum
 // cell between its tile's four corner rays and its slice's depth range; every
-// point light whose sphere (radius from the cut-off threshold, negative: no
-// cut-off, reaches everything) touches the AABB is listed. A cluster with more
+// light whose bounding sphere (include/light_bounds.glsl: the cut-off sphere,
+// or the sphere around a spot light's cone; negative radius: no cut-off,
+// reaches everything) touches the AABB, and whose cone (spot lights) meets
+// the AABB's bounding sphere, is listed. A cluster with more
 // than MAX_CLUSTER_LIGHTS lights keeps counting (the lighting pass then shades
 // every light there) and adds one to the header's overflow counter.
 #include "include/frame.glsl"
 #include "include/clusters.glsl"
+#include "include/light_bounds.glsl"
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
@@ -41,7 +44,7 @@ shared vec4 s_light[MAX_TILE_CANDIDATES];  // xyz view-space centre, w: radius w
 // A light's view-space centre and radius with the same slack as
 // tiled_deferred (rounding never drops a light a pixel can see).
 vec4 viewLight(int i) {
-  const vec4 pr = lights[i].positionRadius;
+  const vec4 pr = lightBounds(lights[i]);
   return vec4((u_view * vec4(pr.xyz, 1.0)).xyz, pr.w >= 0.0 ? pr.w * 1.001 + 1e-4 : -1.0);
 }
 
@@ -100,8 +103,9 @@ void main() {
     for (int j = 0; j < tested; ++j) {
       const vec4 l = candidates ? s_light[j] : viewLight(j);
       const vec3 d = l.xyz - clamp(l.xyz, lo, hi);
-      if (l.w < 0.0 || dot(d, d) <= l.w * l.w) {
-        if (count < uint(MAX_CLUSTER_LIGHTS)) data[base + count] = candidates ? s_index[j] : uint(j);
+      const uint index = candidates ? s_index[j] : uint(j);
+      if ((l.w < 0.0 || dot(d, d) <= l.w * l.w) && spotMayReachViewBox(lights[index], lo, hi)) {
+        if (count < uint(MAX_CLUSTER_LIGHTS)) data[base + count] = index;
         ++count;
       }
     }

@@ -1,7 +1,8 @@
 #version 450 core
 // tiled_deferred, step 1: one work group per bin of BIN_TILES x BIN_TILES
 // tiles (include/tile_bins.glsl) reduces the view-depth range of its pixels
-// and lists the point lights whose sphere, its radius times BIN_REACH, meets
+// and lists the lights whose bounding sphere (include/light_bounds.glsl), its
+// radius times BIN_REACH, meets
 // the bin's frustum box over that range; tiled_deferred.comp's tiles then
 // cull only their bin's list. With FAR_FIELD the lights it does not list
 // are summed as the bin's far field (include/far_field.glsl) at the bin's
@@ -14,6 +15,7 @@
 #include "include/gbuffer_read.glsl"
 #include "include/lighting.glsl"
 #include "include/tile_cull.glsl"
+#include "include/light_bounds.glsl"
 #ifndef TILE_SIZE
 #define TILE_SIZE 16
 #endif
@@ -70,7 +72,7 @@ void main() {
   const vec3 point = covered ? frustumMidPoint(perDepth0, perDepth1, minDepth, maxDepth) : vec3(0.0);
   if (covered && fits) {
     for (uint i = local; i < uint(u_pointLightCount); i += 256u) {
-      const vec4 pr = lights[i].positionRadius;
+      const vec4 pr = lightBounds(lights[i]);
       const vec3 c = (u_view * vec4(pr.xyz, 1.0)).xyz;
       if (pr.w < 0.0 ||
           sphereMeetsFrustumBox(vec3(c.xy, -c.z), slackRadius(pr.w) * BIN_REACH, minDepth, maxDepth, perDepth0,

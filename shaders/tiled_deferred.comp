@@ -3,9 +3,10 @@
 // the G-buffer. (1) Every invocation reads its pixel's surface and the group
 // reduces the view-depth bounds of the tile and of its four quarters, and
 // marks which of 32 slices of the tile's depth range hold pixels; (2) the
-// group culls every point light against the tile (the occupied depth slices,
-// then the sphere against the box bounding the tile's frustum over the
-// light's depth range) into a shared list; (3) it refines that list into one
+// group culls every light against the tile (the occupied depth slices,
+// then its bounding sphere, include/light_bounds.glsl, against the box
+// bounding the tile's frustum over the light's depth range, then a spot
+// light's cone against the tile's box) into a shared list; (3) it refines that list into one
 // list per quarter, against each quarter's box; (4) every pixel shades
 // ambient, the directional light and the lights in its quarter's list, and
 // stores the HDR result.
@@ -24,6 +25,7 @@
 #include "include/gbuffer_read.glsl"
 #include "include/lighting.glsl"
 #include "include/tile_cull.glsl"
+#include "include/light_bounds.glsl"
 #ifndef TILE_SIZE
 #define TILE_SIZE 16
 #endif
@@ -159,9 +161,12 @@ void main() {
     const uint record = binRecord(bin);
     const bool binned = binFits(bin, uint(bins.length())) && bins[record] <= uint(MAX_BIN_LIGHTS);
     const uint candidates = binned ? bins[record] : uint(u_pointLightCount);
+    // The view-space box around the tile's frustum between its depths (spot cones).
+    const vec3 boxLo = vec3(min(perDepth0 * minDepth, perDepth0 * maxDepth), -maxDepth);
+    const vec3 boxHi = vec3(max(perDepth1 * minDepth, perDepth1 * maxDepth), -minDepth);
     for (uint j = local; j < candidates && local < kLanes; j += kLanes) {
       const uint i = binned ? bins[record + uint(BIN_HEADER) + j] : j;
-      const vec4 pr = lights[i].positionRadius;
+      const vec4 pr = lightBounds(lights[i]);
       bool visible = true;
       if (pr.w >= 0.0) {
         const float r = slackRadius(pr.w);
@@ -177,6 +182,7 @@ void main() {
           visible = sphereMeetsFrustumBox(vec3((u_view * vec4(pr.xyz, 1.0)).xy, depth), r, minDepth, maxDepth,
                                           perDepth0, perDepth1);
       }
+      if (visible) visible = spotMayReachViewBox(lights[i], boxLo, boxHi);
       if (visible) {
         const uint slot = atomicAdd(s_count, 1u);
         if (slot < uint(MAX_TILE_LIGHTS)) s_lights[slot] = i;
@@ -249,7 +255,7 @@ void main() {
       }
 #endif
       const uint light = s_lights[k >> 2u];
-      const vec4 pr = lights[light].positionRadius;
+      const vec4 pr = lightBounds(lights[light]);
       bool visible = true;
       if (pr.w >= 0.0) {
         // Quarter q: the low or high half in x (bit 0) and in y (bit 1); the

@@ -1,8 +1,9 @@
 // light_volumes: each point light drawn as an instanced sphere scaled to its
-// radius, shading only the pixels the light can reach, added into the
-// lighting target. Front faces are culled (the far side of each sphere is
-// drawn) so a camera inside a volume still sees its light; the depth test
-// keeps only pixels whose surface lies in front of that far side.
+// radius, each spot light as a cone of that radius and its outer angle
+// (light_volume.vert), shading only the pixels the light can reach, added
+// into the lighting target. Front faces are culled (the far side of each
+// volume is drawn) so a camera inside a volume still sees its light; the
+// depth test keeps only pixels whose surface lies in front of that far side.
 #include <GL/glcorearb.h>
 
 #include "rgraph/error.h"
@@ -20,13 +21,14 @@ class LightVolumesPass final : public PassInstance {
   void setup(PassContext& ctx) override {
     program_ = ctx.program(0);
     volumeScale_ = gl::Uniform(program_, "u_volumeScale");
+    firstLight_ = gl::Uniform(program_, "u_firstLight");
+    spotVolumes_ = gl::Uniform(program_, "u_spotVolumes");
   }
 
   void execute(PassContext& ctx) override {
     GpuScene& scene = *ctx.gpuScene();
     gl::bindPassFramebuffer(ctx);
     glUseProgram(program_);
-    volumeScale_.set(scene.icosphereScale());
     scene.bindFrame();
     scene.bindPointLights(lighting::threshold(ctx.params()));
 
@@ -48,7 +50,16 @@ class LightVolumesPass final : public PassInstance {
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
-    scene.drawIcosphere(scene.pointLightCount());
+    // The buffer lists the point lights, then the spot lights.
+    const uint32_t spots = scene.spotLightCount(), points = scene.pointLightCount() - spots;
+    volumeScale_.set(scene.icosphereScale());
+    firstLight_.set(0);
+    spotVolumes_.set(0);
+    scene.drawIcosphere(points);
+    volumeScale_.set(scene.spotVolumeScale());
+    firstLight_.set(static_cast<int>(points));
+    spotVolumes_.set(1);
+    scene.drawSpotVolume(spots);
     glDisable(GL_BLEND);
     glDisable(GL_DEPTH_CLAMP);
     glDisable(GL_CULL_FACE);
@@ -58,13 +69,13 @@ class LightVolumesPass final : public PassInstance {
 
  private:
   uint32_t program_ = 0;
-  gl::Uniform volumeScale_;
+  gl::Uniform volumeScale_, firstLight_, spotVolumes_;
 };
 
 PassTypeDesc makeLightVolumesPass() {
   using namespace rgraph::decl;
   PassTypeDesc d = lighting::gbufferReader(
-      "light_volumes", "Point lights as instanced spheres scaled to their radius, added into the lighting target");
+      "light_volumes", "Point lights as instanced spheres scaled to their radius, spot lights as cones, added into the lighting target");
   d.slots.push_back(slot("depth_test", Access::depth_attachment_read, false, SlotDecl::Load::never,
                          "scene depth to test volumes against (read-only; a copy when the layout samples depth)",
                          {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}));

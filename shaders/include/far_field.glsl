@@ -98,8 +98,9 @@ void farFieldAdd(int set, PointLight light, vec3 p) {
   const float d = sqrt(d2);
   const vec3 k = light.attenuation.xyz;
   const float att = 1.0 / max(k.x + k.y * d + k.z * d2, 1e-6);
-  const vec3 radiance = light.color.rgb * att;
   const vec3 L = toLight / d;
+  // A spot light's cone at p (include/lighting.glsl): none outside it.
+  const vec3 radiance = light.color.rgb * (att * spotCone(light, L));
   // Above or below, then one of eight 45-degree sectors about the y axis.
   const int bin = (L.x >= 0.0 ? 1 : 0) + (L.z >= 0.0 ? 2 : 0) + (abs(L.x) >= abs(L.z) ? 4 : 0) + (L.y >= 0.0 ? 8 : 0);
   const float w = dot(radiance, vec3(1.0 / 3.0));

@@ -30,9 +30,13 @@ layout(std140, binding = 0) uniform Frame {
   ivec4 u_frame;           // x: the executor's frame index (mod 2^31); y: jitter phases (0: off)
 };
 
-// A point light (std430, binding 0 of the lights buffer).
+// A point or spot light (std430, binding 0 of the lights buffer; the point
+// lights first, then the spot lights). Keep in sync with core/src/gl/gpu_scene.cpp
+// (GpuPointLight). A point light is a spot light whose cone is every
+// direction (spot.w = -2): spotCone() (include/lighting.glsl) gives it exactly 1.
 struct PointLight {
   vec4 positionRadius;   // xyz world position, w: cut-off radius (negative: no cut-off)
   vec4 color;            // rgb * intensity
-  vec4 attenuation;      // constant, linear, quadratic, unused
+  vec4 attenuation;      // constant, linear, quadratic; w: 1 / max(cos(inner) - cos(outer), 1e-3) (glTF's cone scale)
+  vec4 spot;             // xyz: unit direction the cone points (world); w: cos(outer cone angle), -2 for a point light
 };

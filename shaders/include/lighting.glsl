@@ -1,5 +1,5 @@
-// Lighting models and attenuation shared by the deferred, light-volume,
-// tiled and forward passes, so that they agree to the last bit of the maths.
+// Lighting models, attenuation and spot cones shared by the deferred,
+// light-volume, tiled, clustered and forward passes, so that they agree to the last bit of the maths.
 // The including pass defines LIGHTING_BLINN_PHONG or LIGHTING_COOK_TORRANCE,
 // and ATTENUATION_CLASSIC or ATTENUATION_SMOOTH.
 
@@ -25,6 +25,17 @@ float attenuate(PointLight light, float d) {
   float a = 1.0 / max(k.x + k.y * d + k.z * d * d, 1e-6);
   return (radius < 0.0 || d <= radius) ? a : 0.0;  // a select, not a branch
 #endif
+}
+
+// A spot light's cone, as glTF KHR_lights_punctual defines it: with cd the
+// cosine of the angle between the cone's axis and the direction from the
+// light to the surface, clamp((cd - cos(outer)) / (cos(inner) - cos(outer)), 0, 1)
+// squared (the denominator at least 1e-3): 1 within the inner cone, 0 outside
+// the outer. L: unit vector from the surface to the light. A point light
+// (spot.w = -2, scale 1, include/frame.glsl) gets exactly 1.
+float spotCone(PointLight light, vec3 L) {
+  float t = clamp((dot(light.spot.xyz, -L) - light.spot.w) * light.attenuation.w, 0.0, 1.0);
+  return t * t;
 }
 
 // LearnOpenGL's Blinn-Phong: diffuse + specular with exponent 16 scaled by the
@@ -84,8 +95,8 @@ vec3 shadePointLight(PointLight light, Surface s, vec3 V) {
   // light's volume (only pays off when whole warps agree).
   if (light.positionRadius.w >= 0.0 && d > light.positionRadius.w) return vec3(0.0);
 #endif
-  float att = attenuate(light, d);
   vec3 L = d > 1e-6 ? toLight / d : s.normal;
+  float att = attenuate(light, d) * spotCone(light, L);
   return shade(s.normal, V, L, light.color.rgb * att, s);
 }
 

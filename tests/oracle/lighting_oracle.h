@@ -1,7 +1,7 @@
 // Independent CPU oracle of the lighting and tone-mapping maths, in double
 // precision, written from the published formulas (LearnOpenGL's "Advanced
 // Lighting" Blinn-Phong and "PBR / Lighting" Cook-Torrance chapters, glTF's
-// occlusion definition, Narkowicz's ACES fit, IEC 61966-2-1 sRGB) and NOT from
+// occlusion definition, KHR_lights_punctual's spot cone, Narkowicz's ACES fit, IEC 61966-2-1 sRGB) and NOT from
 // shaders/include/lighting.glsl, which is what the oracle tests check. Keep it
 // that way: a change here must come from the formulas, never from the GLSL.
 #pragma once
@@ -33,7 +33,26 @@ struct Point {
   dvec3 radiance{1.0};  // colour * intensity
   double kc = 1.0, kl = 0.7, kq = 1.8;
   double radius = -1.0;  // smooth: where it reaches zero; classic: cut-off distance (< 0: none)
+  // A spot light (glTF KHR_lights_punctual): unit axis, half-angles in degrees.
+  bool spot = false;
+  dvec3 axis{0.0, -1.0, 0.0};
+  double innerDeg = 0.0, outerDeg = 45.0;
 };
+
+// KHR_lights_punctual's recommended angular attenuation of a spot light:
+// lightAngleScale = 1 / max(0.001, cos(inner) - cos(outer)),
+// lightAngleOffset = -cos(outer) * lightAngleScale, and with cd the cosine
+// between the spot direction and the direction from the light to the point,
+// clamp(cd * scale + offset, 0, 1) squared. 1 for a point light.
+inline double spotAttenuation(const Point& l, dvec3 lightToPoint) {
+  if (!l.spot) return 1.0;
+  const double cosOuter = std::cos(l.outerDeg * kPi / 180.0), cosInner = std::cos(l.innerDeg * kPi / 180.0);
+  const double scale = 1.0 / std::max(0.001, cosInner - cosOuter);
+  const double offset = -cosOuter * scale;
+  const double cd = glm::dot(l.axis, glm::normalize(lightToPoint));
+  const double a = std::clamp(cd * scale + offset, 0.0, 1.0);
+  return a * a;
+}
 
 // Classic: 1 / (kc + kl d + kq d^2), zero beyond the cut-off radius if there
 // is one. Smooth: max(1 - (d/r)^2, 0).
@@ -97,7 +116,7 @@ inline dvec3 pointLight(Model m, Falloff f, const Point& l, const Surface& s, dv
   const dvec3 toLight = l.position - s.position;
   const double d = glm::length(toLight);
   const dvec3 V = glm::normalize(eye - s.position);
-  return brdf(m, s.normal, V, toLight / d, l.radiance * attenuation(l, d, f), s);
+  return brdf(m, s.normal, V, toLight / d, l.radiance * attenuation(l, d, f) * spotAttenuation(l, -toLight), s);
 }
 
 // `direction`: where the light travels (the surface sees it from -direction).

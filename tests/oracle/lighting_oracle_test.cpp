@@ -45,6 +45,9 @@ struct Light {
   glm::dvec3 position{0.0};
   glm::dvec3 color{1.0};  // intensity 1: the colour is the radiance
   double kc = 1.0, kl = 0.35, kq = 0.44;
+  bool spot = false;  // a spot light: axis (unit), inner and outer half-angles in degrees
+  glm::dvec3 axis{0.0, -1.0, 0.0};
+  double innerDeg = 0.0, outerDeg = 45.0;
 };
 
 struct LitScene {
@@ -91,6 +94,10 @@ Scene makeScene(const LitScene& u) {
     PointLight p = pointLight(glm::vec3(l.position), glm::vec3(l.color), 1.0f, static_cast<float>(l.kl),
                               static_cast<float>(l.kq));
     p.constant = static_cast<float>(l.kc);
+    p.spot = l.spot;
+    p.direction = glm::vec3(l.axis);
+    p.innerConeDeg = static_cast<float>(l.innerDeg);
+    p.outerConeDeg = static_cast<float>(l.outerDeg);
     s.pointLights.push_back(p);
   }
   if (u.sun) {
@@ -155,6 +162,10 @@ glm::dvec3 expected(const LitScene& u, const Scene& scene, glm::dvec3 p) {
     pl.kl = static_cast<float>(l.kl);
     pl.kq = static_cast<float>(l.kq);
     pl.radius = usesRadius(u) ? o::radiusAtThreshold(pl, kRadiusThreshold) : -1.0;
+    pl.spot = l.spot;
+    pl.axis = asFloat(l.axis);
+    pl.innerDeg = static_cast<float>(l.innerDeg);
+    pl.outerDeg = static_cast<float>(l.outerDeg);
     c += o::pointLight(u.model, u.falloff, pl, s, eye);
   }
   return c;
@@ -396,4 +407,60 @@ TEST_F(Oracle, AmbientTimesOcclusion) {
     u.occlusionByte = 64;
     check(u, m == o::Model::blinnPhong ? "ambient-ao-bp" : "ambient-ao-ct");
   }
+}
+
+namespace {
+// A spot light over the plane, its axis tilted; probes in its inner cone,
+// on its ramp and outside its outer cone (at least 8 of each).
+LitScene spotScene(o::Model m, o::Falloff f) {
+  LitScene u;
+  u.model = m;
+  u.falloff = f;
+  u.roughness = 0.4;
+  Light spot{{0.4, 2.2, 0.3}, {3.0, 2.6, 2.0}};
+  // The smooth falloff's radius must stay inside the scene's bounds (check()).
+  spot.kl = f == o::Falloff::smooth ? 0.7 : 0.22;
+  spot.kq = f == o::Falloff::smooth ? 1.8 : 0.2;
+  spot.spot = true;
+  spot.axis = glm::normalize(glm::dvec3(-0.25, -1.0, 0.15));
+  spot.innerDeg = 22.0;
+  spot.outerDeg = 40.0;
+  u.points = {spot};
+  u.focus = {{0.4 - 0.55, 0.0, 0.3 + 0.33}};  // on the axis
+  return u;
+}
+
+void expectProbesAcrossTheCone(const LitScene& u) {
+  const Light& l = u.points[0];
+  int inner = 0, ramp = 0, outside = 0;
+  for (const Probe& p : probes(makeScene(u).camera, u.focus)) {
+    const double angle = std::acos(glm::dot(glm::normalize(p.hit - l.position), l.axis)) * 180.0 / o::kPi;
+    (angle < l.innerDeg ? inner : angle < l.outerDeg ? ramp : outside)++;
+  }
+  std::printf("[ measure  ] spot probes: %d inside the inner cone, %d on the ramp, %d outside\n", inner, ramp, outside);
+  ASSERT_GE(inner, 8);
+  ASSERT_GE(ramp, 8);
+  ASSERT_GE(outside, 8);
+}
+}  // namespace
+
+TEST_F(Oracle, SpotLightConeBlinnPhongClassic) {
+  const LitScene u = spotScene(o::Model::blinnPhong, o::Falloff::classic);
+  expectProbesAcrossTheCone(u);
+  check(u, "spot-bp-classic");
+}
+
+TEST_F(Oracle, SpotLightConeCookTorranceSmooth) {
+  const LitScene u = spotScene(o::Model::cookTorrance, o::Falloff::smooth);
+  expectProbesAcrossTheCone(u);
+  check(u, "spot-ct-smooth");
+}
+
+TEST_F(Oracle, SpotLightBesidePointLights) {
+  // Point lights next to a spot light keep their own (uncut) light: the
+  // GPU buffer lists the spot light after them.
+  LitScene u = spotScene(o::Model::blinnPhong, o::Falloff::classic);
+  u.points.insert(u.points.begin(), Light{{-1.5, 0.8, 0.5}, {1.0, 2.0, 1.0}});
+  u.points.push_back(Light{{1.5, 0.6, -1.0}, {2.0, 1.0, 1.0}});
+  check(u, "spot-and-points");
 }

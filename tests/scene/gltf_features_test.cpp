@@ -186,8 +186,17 @@ TEST_F(GltfFeatures, LightsPunctualAndCamera) {
     {"extensions": {"KHR_lights_punctual": {"light": 3}}}
   ])");
   Scene s = load(t);
-  ASSERT_EQ(s.pointLights.size(), 3u);  // the spot light becomes a point light
+  ASSERT_EQ(s.pointLights.size(), 3u);  // two point lights and the spot light
   ASSERT_EQ(s.directionalLights.size(), 1u);
+  EXPECT_FALSE(s.pointLights[0].spot);
+  EXPECT_FALSE(s.pointLights[1].spot);
+  // The spot light keeps its cone (radians -> degrees; inner defaults to 0)
+  // and points down its node's -Z.
+  const PointLight& spot = s.pointLights[2];
+  EXPECT_TRUE(spot.spot);
+  EXPECT_NEAR(spot.outerConeDeg, 0.5f * 180.0f / 3.14159265f, 1e-4f);
+  EXPECT_EQ(spot.innerConeDeg, 0.0f);
+  EXPECT_NEAR(glm::distance(spot.direction, glm::vec3(0, 0, -1)), 0.0f, 1e-6f);
   const PointLight& p = s.pointLights[0];
   EXPECT_EQ(p.position, glm::vec3(1, 2, 3));
   EXPECT_EQ(p.color, glm::vec3(1, 0.5f, 0.25f));
@@ -302,4 +311,60 @@ TEST_F(GltfFeatures, UnsupportedRequiredExtension) {
   } catch (const RuntimeError& e) {
     EXPECT_NE(std::string(e.what()).find("KHR_draco_mesh_compression"), std::string::npos) << e.what();
   }
+}
+
+TEST_F(GltfFeatures, SpotLightConeAndDirection) {
+  // A spot light on a node turned -90 degrees about X (its -Z points down),
+  // both angles given; a second one with the extension's default cone.
+  TriangleGltf t;
+  t.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+  t.doc["extensions"]["KHR_lights_punctual"]["lights"] = json::parse(R"([
+    {"type": "spot", "color": [1, 0.8, 0.6], "intensity": 4, "range": 7,
+     "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.6}},
+    {"type": "spot", "spot": {}}
+  ])");
+  t.doc["nodes"] = json::parse(R"([
+    {"mesh": 0, "children": [1, 2]},
+    {"translation": [0, 5, 0], "rotation": [-0.7071067811865476, 0, 0, 0.7071067811865476],
+     "extensions": {"KHR_lights_punctual": {"light": 0}}},
+    {"extensions": {"KHR_lights_punctual": {"light": 1}}}
+  ])");
+  Scene s = load(t);
+  ASSERT_EQ(s.pointLights.size(), 2u);
+  const PointLight& a = s.pointLights[0];
+  EXPECT_TRUE(a.spot);
+  EXPECT_EQ(a.position, glm::vec3(0, 5, 0));
+  EXPECT_NEAR(glm::distance(a.direction, glm::vec3(0, -1, 0)), 0.0f, 1e-6f);
+  EXPECT_NEAR(a.innerConeDeg, 0.2f * 180.0f / 3.14159265f, 1e-4f);
+  EXPECT_NEAR(a.outerConeDeg, 0.6f * 180.0f / 3.14159265f, 1e-4f);
+  EXPECT_EQ(a.radius, 7.0f);  // range -> the cone's length
+  EXPECT_EQ(a.intensity, 4.0f);
+  const PointLight& b = s.pointLights[1];
+  EXPECT_TRUE(b.spot);
+  EXPECT_EQ(b.innerConeDeg, 0.0f);
+  EXPECT_NEAR(b.outerConeDeg, 45.0f, 1e-4f);
+  EXPECT_NEAR(b.radius, lightRadius(b), 1e-6f);  // no range: the attenuation's cut-off, as for a point light
+}
+
+TEST_F(GltfFeatures, SpotLightConeOutOfRangeIsRefusedWithPointer) {
+  auto refused = [&](const char* spot, const std::string& needle) {
+    TriangleGltf t;
+    t.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+    t.doc["extensions"]["KHR_lights_punctual"]["lights"] = json::array({json::parse(spot)});
+    t.doc["nodes"] = json::parse(R"([{"mesh": 0, "children": [1]}, {"extensions": {"KHR_lights_punctual": {"light": 0}}}])");
+    try {
+      load(t);
+      ADD_FAILURE() << "expected a RuntimeError for " << spot;
+    } catch (const RuntimeError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(needle), std::string::npos) << msg;
+      EXPECT_NE(msg.find("t.gltf:"), std::string::npos) << msg;
+    }
+  };
+  refused(R"({"type": "spot", "spot": {"outerConeAngle": 2.0}})",
+          "/extensions/KHR_lights_punctual/lights/0/spot/outerConeAngle: must be in (0, pi/2] radians, got 2");
+  refused(R"({"type": "spot", "spot": {"outerConeAngle": 0}})", "/lights/0/spot/outerConeAngle");
+  refused(R"({"type": "spot", "spot": {"innerConeAngle": 0.5, "outerConeAngle": 0.4}})",
+          "/lights/0/spot/innerConeAngle: must be >= 0 and less than outerConeAngle (0.4), got 0.5");
+  refused(R"({"type": "spot", "spot": {"innerConeAngle": -0.1}})", "/lights/0/spot/innerConeAngle");
 }

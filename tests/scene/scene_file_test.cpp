@@ -145,7 +145,7 @@ TEST_F(SceneFile, Errors) {
   expectError(R"({"models": [{"shape": "cube", "transform": {"scale": [1, 2]}}]})", {"/models/0/transform/scale"});
   expectError(R"({"models": [{"shape": "cube", "transform": {"translation": [1, "x", 2]}}]})", {"/models/0/transform/translation/1", "number"});
   expectError(R"({"models": [{"shape": "cube", "material": {"metallic": 2}}]})", {"/models/0/material/metallic"});
-  expectError(R"({"lights": [{"type": "spot", "position": [0, 0, 0]}]})", {"/lights/0/type", "spot"});
+  expectError(R"({"lights": [{"type": "area", "position": [0, 0, 0]}]})", {"/lights/0/type", "area", "spot"});
   expectError(R"({"lights": [{"type": "point"}]})", {"/lights/0", "position"});
   expectError(R"({"lights": [{"type": "point", "position": [0, 0]}]})", {"/lights/0/position"});
   expectError(R"({"lights": [{"type": "point", "position": [0, 0, 0], "linear": -1}]})", {"/lights/0/linear"});
@@ -208,4 +208,81 @@ TEST(ExampleScenes, LearnOpenGLJsonMatchesTheProceduralScene) {
     EXPECT_NEAR(glm::distance(file.primitives[i].bounds.center(), proc.primitives[i].bounds.center()), 0.0f, 1e-5f) << i;
   EXPECT_EQ(file.camera.position, proc.camera.position);
   EXPECT_EQ(file.ambient, proc.ambient);
+}
+
+TEST_F(SceneFile, SpotLights) {
+  const std::string p = write("spots.json", R"({
+    "models": [{"shape": "plane", "size": 10}],
+    "lights": [
+      {"type": "spot", "position": [0, 3, 0], "direction": [0, -2, 0], "inner_cone_deg": 10, "outer_cone_deg": 30,
+       "color": [1, 0.5, 0.5], "intensity": 2, "linear": 0.35, "quadratic": 0.44},
+      {"type": "spot", "position": [1, 3, 0], "direction": [1, -1, 0], "radius": 6},
+      {"type": "point", "position": [0, 1, 0]}
+    ]
+  })");
+  const Scene s = loadSceneFile(p);
+  ASSERT_EQ(s.pointLights.size(), 3u);
+  const PointLight& a = s.pointLights[0];
+  EXPECT_TRUE(a.spot);
+  EXPECT_EQ(a.position, glm::vec3(0, 3, 0));
+  EXPECT_NEAR(glm::distance(a.direction, glm::vec3(0, -1, 0)), 0.0f, 1e-6f);  // normalised
+  EXPECT_EQ(a.innerConeDeg, 10.0f);
+  EXPECT_EQ(a.outerConeDeg, 30.0f);
+  EXPECT_EQ(a.intensity, 2.0f);
+  EXPECT_EQ(a.linear, 0.35f);
+  // The cone's reach is the same cut-off radius a point light would have.
+  EXPECT_NEAR(a.radius, lightRadius(a), 1e-6f);
+  // Defaults: glTF's cone (inner 0, outer 45 degrees).
+  const PointLight& b = s.pointLights[1];
+  EXPECT_TRUE(b.spot);
+  EXPECT_EQ(b.innerConeDeg, 0.0f);
+  EXPECT_EQ(b.outerConeDeg, 45.0f);
+  EXPECT_EQ(b.radius, 6.0f);
+  EXPECT_NEAR(glm::distance(b.direction, glm::normalize(glm::vec3(1, -1, 0))), 0.0f, 1e-6f);
+  EXPECT_FALSE(s.pointLights[2].spot);
+}
+
+TEST_F(SceneFile, SpotLightErrorsNameLineColumnAndPointer) {
+  const std::string spot = R"({"type": "spot", "position": [0, 1, 0], )";
+  expectError(R"({"lights": [{"type": "spot", "position": [0, 1, 0]}]})", {"/lights/0", "a spot light needs \"direction\""});
+  expectError(R"({"lights": [{"type": "spot", "direction": [0, -1, 0]}]})", {"/lights/0", "needs \"position\""});
+  expectError("{\"lights\": [" + spot + R"("direction": [0, 0, 0]}]})", {"/lights/0/direction", "finite, non-zero"});
+  expectError("{\"lights\": [" + spot + R"("direction": [0, -1]}]})", {"/lights/0/direction", "3 numbers"});
+  expectError("{\"lights\": [" + spot + R"("direction": [0, -1, 0], "outer_cone_deg": 0}]})",
+              {"/lights/0/outer_cone_deg", "(0, 90]"});
+  expectError("{\"lights\": [" + spot + R"("direction": [0, -1, 0], "outer_cone_deg": 91}]})",
+              {"/lights/0/outer_cone_deg", "(0, 90]"});
+  expectError("{\"lights\": [" + spot + R"("direction": [0, -1, 0], "inner_cone_deg": -1}]})",
+              {"/lights/0/inner_cone_deg", "less than outer_cone_deg (45"});
+  expectError("{\"lights\": [" + spot + R"("direction": [0, -1, 0], "inner_cone_deg": 30, "outer_cone_deg": 30}]})",
+              {"/lights/0/inner_cone_deg", "less than outer_cone_deg (30"});
+  expectError("{\"lights\": [" + spot + R"("direction": [0, -1, 0], "outer_cone_deg": "wide"}]})",
+              {"/lights/0/outer_cone_deg", "number"});
+
+  // file:line:column points at the value.
+  const std::string p = write("cone.json", "{\"lights\": [\n  {\"type\": \"spot\", \"position\": [0, 1, 0],\n"
+                                           "   \"direction\": [0, -1, 0], \"outer_cone_deg\": 120}]}");
+  try {
+    loadSceneFile(p);
+    FAIL() << "expected RuntimeError";
+  } catch (const RuntimeError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(p + ":3:47: /lights/0/outer_cone_deg"), std::string::npos) << msg;
+  }
+}
+
+TEST_F(SceneFile, SpotDirectionTurnsWithTheModelTransform) {
+  // A glTF model's spot light, turned by the scene file's transform.
+  TriangleGltf t;
+  t.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+  t.doc["extensions"]["KHR_lights_punctual"]["lights"] =
+      nlohmann::json::parse(R"([{"type": "spot", "spot": {"innerConeAngle": 0.1, "outerConeAngle": 0.3}}])");
+  t.doc["nodes"] = nlohmann::json::parse(R"([{"mesh": 0, "children": [1]}, {"extensions": {"KHR_lights_punctual": {"light": 0}}}])");
+  t.writeGltf(path("spot.gltf"));
+  const std::string p = write("turned.json", R"({"models": [{"file": "spot.gltf", "transform": {"rotation_euler_deg": [0, 90, 0]}}]})");
+  const Scene s = loadSceneFile(p);
+  ASSERT_EQ(s.pointLights.size(), 1u);
+  ASSERT_TRUE(s.pointLights[0].spot);
+  // -Z turned 90 degrees about +Y points along -X.
+  EXPECT_NEAR(glm::distance(s.pointLights[0].direction, glm::vec3(-1, 0, 0)), 0.0f, 1e-6f);
 }

@@ -105,6 +105,14 @@ MeshData makePlane(float halfSizeX = 1.0f, float halfSizeZ = 1.0f, float uvScale
 // subdivisions 0 gives the icosahedron (12 vertices, 20 triangles); each level
 // multiplies the triangle count by 4. Valid range 0..7.
 MeshData makeIcosphere(int subdivisions);
+// A closed convex mesh for spot-light volumes, before light_volume.vert bends
+// it to each light's cone: a unit cone (apex at the origin, `segments` vertices
+// on the unit circle at z = 1) on a unit cylinder (z = 1..2) closed by a cap
+// at z = 2; outward CCW winding. The shader maps z = 1 to the distance
+// r cos(outer) along the axis at radius r sin(outer), and z = 2 to r, so that
+// the mesh holds the part of the light's sphere r within its cone. Normals
+// are placeholders. Valid range 3..1024.
+MeshData makeSpotVolume(int segments);
 
 // ---------------------------------------------------------------- materials and textures
 
@@ -212,7 +220,7 @@ struct DirectionalLight {
 };
 
 // Radiance at distance d: color * intensity / (constant + linear d + quadratic d^2),
-// zero beyond radius.
+// zero beyond radius; a spot light also times its cone's falloff (below).
 struct PointLight {
   glm::vec3 position{0.0f};
   glm::vec3 color{1.0f};
@@ -221,6 +229,16 @@ struct PointLight {
   float linear = 0.7f;
   float quadratic = 1.8f;
   float radius = 0.0f;  // light-volume radius; lightRadius(*this) unless the source gave one
+
+  // A spot light (spot = true) lights only the cone of half-angle outerConeDeg
+  // about `direction`: fully within innerConeDeg, with glTF KHR_lights_punctual's
+  // angular falloff between (the square of a ramp linear in the cosine). Its
+  // reach along the cone is `radius`, the same cut-off rule as a point light's.
+  // Valid values (validatePointLight): 0 <= innerConeDeg < outerConeDeg <= 90.
+  bool spot = false;
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit: where the cone points (world)
+  float innerConeDeg = 0.0f;               // glTF's default 0
+  float outerConeDeg = 45.0f;              // glTF's default pi/4
 };
 
 // Distance at which the light falls to `threshold`: solves
@@ -318,8 +336,8 @@ void applySceneDefaults(Scene& scene);
 
 // glTF 2.0 (.gltf with external or embedded buffers, .glb). Default scene (or
 // all root nodes), TRIANGLES primitives (others skipped with a warning),
-// materials, textures, samplers, KHR_lights_punctual (spot lights become point
-// lights), the first perspective camera, KHR_materials_specular (onto Material::specular),
+// materials, textures, samplers, KHR_lights_punctual (point, spot and
+// directional lights), the first perspective camera, KHR_materials_specular (onto Material::specular),
 // KHR_materials_emissive_strength. No defaults added: see loadSceneAny.
 // Values outside the ranges of the glTF schema (metallic 9, a negative light
 // intensity, asset version 3.0; the table is in scenes/README.md) are refused
@@ -337,7 +355,7 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
 // Scene file (JSON), documented in scenes/README.md:
 // {"models": [{"file": "x.gltf", "transform": {"translation": [..], "rotation_euler_deg": [..],
 //   "scale": s | [..]}} | {"shape": "cube"|"sphere"|"plane", "material": {..}, "transform": ..}],
-//  "lights": [{"type": "point", ...}, {"type": "directional", ...}], "ambient": s | [..],
+//  "lights": [{"type": "point", ...}, {"type": "spot", ...}, {"type": "directional", ...}], "ambient": s | [..],
 //  "camera": {"position": [..], "target": [..], "up": [..], "fov": 45, "near": 0.1, "far": 100}}
 // Relative paths resolve against the scene file's folder. Without "camera" one frames the scene; without
 // "lights" (and none in the models) applySceneDefaults adds one; radii of lights without falloff are capped

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -30,13 +31,30 @@ struct FrameBlock {
 };
 static_assert(sizeof(FrameBlock) == 7 * 64 + 8 * 16, "FrameBlock must match the std140 layout");
 
-// std430 mirror of PointLight in frame.glsl.
+// std430 mirror of PointLight in frame.glsl (the meaning of each member is
+// documented there).
 struct GpuPointLight {
   glm::vec4 positionRadius;
   glm::vec4 color;
-  glm::vec4 attenuation;
+  glm::vec4 attenuation;  // w: the cone scale
+  glm::vec4 spot;         // xyz: cone direction, w: cos(outer cone angle)
 };
-static_assert(sizeof(GpuPointLight) == 48, "GpuPointLight must match the std430 layout");
+static_assert(sizeof(GpuPointLight) == 64, "GpuPointLight must match the std430 layout");
+
+// glTF KHR_lights_punctual's form of the cone: the shader's factor is
+// clamp((cos(angle to the axis) - cos(outer)) * scale, 0, 1)^2 with
+// scale = 1 / max(cos(inner) - cos(outer), 0.001). A point light's
+// cos(outer) = -2 and scale 1 make it 1 in every direction.
+GpuPointLight gpuLight(const PointLight& l, float radius) {
+  GpuPointLight g{glm::vec4(l.position, radius), glm::vec4(l.color * l.intensity, 1.0f),
+                  glm::vec4(l.constant, l.linear, l.quadratic, 1.0f), glm::vec4(0.0f, 0.0f, 0.0f, -2.0f)};
+  if (l.spot) {
+    const float cosOuter = std::cos(glm::radians(l.outerConeDeg)), cosInner = std::cos(glm::radians(l.innerConeDeg));
+    g.attenuation.w = 1.0f / std::max(cosInner - cosOuter, 1e-3f);
+    g.spot = glm::vec4(glm::normalize(l.direction), cosOuter);
+  }
+  return g;
+}
 
 gl::Texture solidTexture(uint8_t r, uint8_t g, uint8_t b, uint8_t a) {
   gl::Texture t = gl::createTexture(GL_TEXTURE_2D);
@@ -79,6 +97,11 @@ GpuScene::GpuScene(const Scene& scene) : scene_(scene) {
   icosphereScale_ = 1.0f / inradius;
   icosphere_ = upload(sphere, false);
   cube_ = upload(makeCube(1.0f), false);
+  // Spot volumes: 16 sides, scaled by 1/cos(pi/16) (4%) so that the flat
+  // sides enclose the round cone.
+  constexpr int kSpotSides = 16;
+  spotVolume_ = upload(makeSpotVolume(kSpotSides), false);
+  spotVolumeScale_ = 1.0f / std::cos(glm::pi<float>() / kSpotSides);
 
   images_.reserve(scene.images.size());
   for (const auto& img : scene.images) {
@@ -280,11 +303,11 @@ uint32_t GpuScene::pointLightBuffer(float threshold) {
   const std::vector<float> radii = pointLightRadii(threshold);
   std::vector<GpuPointLight> lights;
   lights.reserve(std::max<size_t>(radii.size(), 1));
-  for (size_t i = 0; i < radii.size(); ++i) {
-    const PointLight& l = scene_.pointLights[i];
-    lights.push_back({glm::vec4(l.position, radii[i]), glm::vec4(l.color * l.intensity, 1.0f),
-                      glm::vec4(l.constant, l.linear, l.quadratic, 0.0f)});
-  }
+  // Point lights first, then spot lights (scene order within each): light
+  // volumes draw each kind's mesh over its own range of the buffer.
+  for (int spots = 0; spots < 2; ++spots)
+    for (size_t i = 0; i < radii.size(); ++i)
+      if (scene_.pointLights[i].spot == (spots == 1)) lights.push_back(gpuLight(scene_.pointLights[i], radii[i]));
   // An empty SSBO binding is an error in GL: keep at least one (unused) light.
   if (lights.empty()) lights.push_back(GpuPointLight{});
   if (!slot.buffer || slot.capacity < lights.size()) {
@@ -307,6 +330,11 @@ void GpuScene::bindPointLights(float threshold) {
 }
 
 uint32_t GpuScene::pointLightCount() const { return static_cast<uint32_t>(scene_.pointLights.size()); }
+
+uint32_t GpuScene::spotLightCount() const {
+  return static_cast<uint32_t>(
+      std::count_if(scene_.pointLights.begin(), scene_.pointLights.end(), [](const PointLight& l) { return l.spot; }));
+}
 
 const GpuScene::Locations& GpuScene::locations(uint32_t program) const {
   auto it = locations_.find(program);
@@ -413,6 +441,14 @@ void GpuScene::drawIcosphere(uint32_t instances) const {
   if (instances == 0) return;
   glBindVertexArray(icosphere_.vao.id());
   glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(icosphere_.indexCount), GL_UNSIGNED_INT, nullptr,
+                          static_cast<GLsizei>(instances));
+  glBindVertexArray(0);
+}
+
+void GpuScene::drawSpotVolume(uint32_t instances) const {
+  if (instances == 0) return;
+  glBindVertexArray(spotVolume_.vao.id());
+  glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(spotVolume_.indexCount), GL_UNSIGNED_INT, nullptr,
                           static_cast<GLsizei>(instances));
   glBindVertexArray(0);
 }

@@ -92,6 +92,7 @@ class GltfLoader {
   Material convertMaterial(size_t index);
   int defaultMaterial();
   void addLight(int index, const glm::mat4& world, const std::string& what);
+  void spotCone(const tinygltf::Light& l, const std::string& ptr, const glm::mat4& world, PointLight& p);
   // Range checks (refusals name the JSON pointer): a number in [lo, hi]; an
   // array of N numbers each in [lo, hi].
   float checkedNumber(double v, float lo, float hi, const std::string& pointer);

@@ -293,6 +293,26 @@ int GltfLoader::defaultMaterial() {
 
 // ------------------------------------------------------------ lights
 
+// A spot light's cone: it points down the node's -Z; the angles are the
+// extension schema's, in radians: 0 <= inner < outer <= pi/2.
+void GltfLoader::spotCone(const tinygltf::Light& l, const std::string& ptr, const glm::mat4& world, PointLight& p) {
+  constexpr double kHalfPi = 1.57079632679489661923;
+  const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
+  if (!(outer > 0.0 && outer <= kHalfPi))
+    failAt(ptr + "/spot/outerConeAngle", "must be in (0, pi/2] radians, got " + numberText(outer));
+  if (!(inner >= 0.0 && inner < outer))
+    failAt(ptr + "/spot/innerConeAngle",
+           "must be >= 0 and less than outerConeAngle (" + numberText(outer) + "), got " + numberText(inner));
+  const glm::vec3 dir = glm::mat3(world) * glm::vec3(0, 0, -1);
+  p.spot = true;
+  p.direction = glm::length(dir) > 0.0f ? glm::normalize(dir) : glm::vec3(0, 0, -1);
+  p.innerConeDeg = float(glm::degrees(inner));
+  p.outerConeDeg = float(glm::degrees(outer));
+  // Rounding to float degrees must not break inner < outer <= 90.
+  p.outerConeDeg = std::min(p.outerConeDeg, 90.0f);
+  if (p.innerConeDeg >= p.outerConeDeg) p.innerConeDeg = std::nextafter(p.outerConeDeg, 0.0f);
+}
+
 void GltfLoader::addLight(int index, const glm::mat4& world, const std::string& what) {
   if (index < 0 || size_t(index) >= model_.lights.size())
     fail(what + ": light " + std::to_string(index) + " does not exist (" + std::to_string(model_.lights.size()) + " lights)");
@@ -314,9 +334,7 @@ void GltfLoader::addLight(int index, const glm::mat4& world, const std::string& 
     scene_.directionalLights.push_back(d);
     return;
   }
-  if (l.type == "spot") {
-    warn(what + ": spot light treated as a point light");
-  } else if (l.type != "point") {
+  if (l.type != "point" && l.type != "spot") {
     warnAt(ptr + "/type", "unknown light type '" + l.type + "'; ignored");
     return;
   }
@@ -330,6 +348,7 @@ void GltfLoader::addLight(int index, const glm::mat4& world, const std::string& 
   p.linear = 0.0f;
   p.quadratic = 1.0f;
   p.radius = l.range > 0.0 ? float(l.range) : lightRadius(p);
+  if (l.type == "spot") spotCone(l, ptr, world, p);
   scene_.pointLights.push_back(p);
 }
 

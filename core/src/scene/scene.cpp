@@ -285,6 +285,16 @@ void validatePointLight(const PointLight& l, size_t index, const std::string& wh
   if (!finiteVec(l.color) || !std::isfinite(l.intensity) || !std::isfinite(l.constant) || !std::isfinite(l.linear) ||
       !std::isfinite(l.quadratic) || std::isnan(l.radius))
     fail("colour, intensity or attenuation is not finite");
+  if (!l.spot) return;
+  const float len = finiteVec(l.direction) ? glm::length(l.direction) : 0.0f;
+  if (!(std::abs(len - 1.0f) < 1e-3f)) fail("spot direction " + vecText(l.direction) + " is not a unit vector");
+  // The ranges of glTF's KHR_lights_punctual (in degrees): a cone wider than a
+  // half-space has no light volume of this shape, and inner >= outer no ramp.
+  if (!(l.outerConeDeg > 0.0f && l.outerConeDeg <= 90.0f))
+    fail("spot outer cone angle " + std::to_string(l.outerConeDeg) + " is not in (0, 90] degrees");
+  if (!(l.innerConeDeg >= 0.0f && l.innerConeDeg < l.outerConeDeg))
+    fail("spot inner cone angle " + std::to_string(l.innerConeDeg) + " is not in [0, outer cone angle " +
+         std::to_string(l.outerConeDeg) + ") degrees");
 }
 
 void validateDirectionalLight(const DirectionalLight& l, size_t index, const std::string& where) {
@@ -377,6 +387,8 @@ void appendScene(Scene& dst, Scene src, const glm::mat4& transform) {
   const glm::mat3 dirXf(transform);
   for (PointLight l : src.pointLights) {
     l.position = glm::vec3(transform * glm::vec4(l.position, 1.0f));
+    const glm::vec3 d = dirXf * l.direction;
+    if (l.spot && glm::length(d) > 0.0f) l.direction = glm::normalize(d);
     dst.pointLights.push_back(l);
   }
   for (DirectionalLight l : src.directionalLights) {

@@ -316,16 +316,40 @@ class SceneFileParser {
     return s;
   }
 
+  // A spot light's cone: "direction" (where it points; any finite non-zero
+  // length), "outer_cone_deg" (default 45) and "inner_cone_deg" (default 0),
+  // half-angles from the axis in glTF's ranges: 0 <= inner < outer <= 90.
+  void spotCone(const json& j, const std::string& ptr, PointLight& l) const {
+    if (!j.contains("direction")) fail(ptr, "a spot light needs \"direction\"");
+    glm::vec3 d = vec3(j["direction"], ptr + "/direction");
+    // Scaled by its largest component first: the length of [1e38, 1e38, 0] overflows a float.
+    const float largest = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+    if (!(largest > 0.0f) || !std::isfinite(largest)) fail(ptr + "/direction", "must be a finite, non-zero vector");
+    l.spot = true;
+    l.direction = glm::normalize(d / largest);
+    l.outerConeDeg = numberOr(j, "outer_cone_deg", ptr, 45.0f);
+    if (!(l.outerConeDeg > 0.0f && l.outerConeDeg <= 90.0f))
+      fail(ptr + "/outer_cone_deg", "must be in (0, 90] degrees (a half-angle from the axis)");
+    l.innerConeDeg = numberOr(j, "inner_cone_deg", ptr, 0.0f);
+    if (!(l.innerConeDeg >= 0.0f && l.innerConeDeg < l.outerConeDeg))
+      fail(ptr + "/inner_cone_deg", "must be >= 0 and less than outer_cone_deg (" + json(l.outerConeDeg).dump() + ")");
+  }
+
   void addLight(Scene& scene, const json& j, const std::string& ptr) const {
     object(j, ptr);
-    if (!j.contains("type")) fail(ptr, "missing \"type\" (\"point\" or \"directional\")");
+    if (!j.contains("type")) fail(ptr, "missing \"type\" (\"point\", \"spot\" or \"directional\")");
     const std::string type = string(j["type"], ptr + "/type");
     const float intensity = numberOr(j, "intensity", ptr, 1.0f);
     if (intensity < 0.0f) fail(ptr + "/intensity", "must be >= 0");
     const glm::vec3 color = j.contains("color") ? vec3OrScalar(j["color"], ptr + "/color", 0.0f) : glm::vec3(1.0f);
-    if (type == "point") {
-      unknownKeys(j, ptr, {"type", "position", "color", "intensity", "constant", "linear", "quadratic", "radius"});
-      if (!j.contains("position")) fail(ptr, "a point light needs \"position\"");
+    if (type == "point" || type == "spot") {
+      const bool spot = type == "spot";
+      if (spot)
+        unknownKeys(j, ptr, {"type", "position", "direction", "inner_cone_deg", "outer_cone_deg", "color", "intensity",
+                             "constant", "linear", "quadratic", "radius"});
+      else
+        unknownKeys(j, ptr, {"type", "position", "color", "intensity", "constant", "linear", "quadratic", "radius"});
+      if (!j.contains("position")) fail(ptr, std::string("a ") + type + " light needs \"position\"");
       PointLight l;
       l.position = vec3(j["position"], ptr + "/position");
       l.color = color;
@@ -343,6 +367,7 @@ class SceneFileParser {
       } else {
         l.radius = lightRadius(l);
       }
+      if (spot) spotCone(j, ptr, l);
       scene.pointLights.push_back(l);
     } else if (type == "directional") {
       unknownKeys(j, ptr, {"type", "direction", "color", "intensity"});
@@ -355,7 +380,7 @@ class SceneFileParser {
       l.intensity = intensity;
       scene.directionalLights.push_back(l);
     } else {
-      fail(ptr + "/type", "expected \"point\" or \"directional\", got \"" + type + "\"");
+      fail(ptr + "/type", "expected \"point\", \"spot\" or \"directional\", got \"" + type + "\"");
     }
   }
 

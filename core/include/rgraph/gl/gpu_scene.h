@@ -5,7 +5,7 @@
 // Shader conventions (see shaders/include/frame.glsl and scene.vert):
 //   vertex attributes  0 position, 1 normal, 2 uv0, 3 tangent (MeshVertex)
 //   uniform block 0    Frame (camera, viewport, ambient, directional light, counts)
-//   storage buffer 0   PointLight[] (bindPointLights)
+//   storage buffer 0   PointLight[]: point, then spot lights (bindPointLights)
 //   per draw           u_model, u_normalMatrix, u_prevModel (the previous frame's
 //                      u_model, for motion vectors; equal to u_model without
 //                      motion), material uniforms u_baseColorFactor,
@@ -75,14 +75,17 @@ class GpuScene {
   // The executor, before each pass: which block bindFrame() binds (and binds it).
   void selectJitter(bool jittered);
 
-  // Point lights with radii solved for `threshold` (LearnOpenGL: 5/256 of the
+  // Point and spot lights with radii solved for `threshold` (LearnOpenGL: 5/256 of the
   // brightest channel) and capped at the distance beyond which the scene has
   // no geometry. threshold <= 0: no cut-off (radius -1). Cached per threshold.
+  // The buffer holds the point lights first, then the spot lights (its last
+  // spotLightCount() entries), each in scene order.
   // Binds the buffer at shader storage binding 0.
   void bindPointLights(float threshold);
   uint32_t pointLightBuffer(float threshold);
-  uint32_t pointLightCount() const;
-  // The radius each light gets for a threshold (CPU copy of what the buffer holds).
+  uint32_t pointLightCount() const;  // every light in the buffer, spot lights included
+  uint32_t spotLightCount() const;
+  // The radius each light gets for a threshold, in scene order.
   std::vector<float> pointLightRadii(float threshold) const;
 
   enum class Filter { opaque, blend, all };  // opaque includes alpha-mask materials
@@ -105,6 +108,11 @@ class GpuScene {
   // volume by radius * icosphereScale() makes the mesh enclose the whole sphere.
   float icosphereScale() const { return icosphereScale_; }
   void drawCube(uint32_t instances) const;
+  // makeSpotVolume(16), drawn `instances` times (light_volume.vert bends it
+  // to each spot light's cone); scaling its radius by spotVolumeScale() makes
+  // its flat sides enclose the round cone.
+  void drawSpotVolume(uint32_t instances) const;
+  float spotVolumeScale() const { return spotVolumeScale_; }
 
  private:
   struct GpuMesh {
@@ -119,8 +127,8 @@ class GpuScene {
 
   const Scene& scene_;
   std::vector<GpuMesh> meshes_;
-  GpuMesh icosphere_, cube_;
-  float icosphereScale_ = 1.0f;
+  GpuMesh icosphere_, cube_, spotVolume_;
+  float icosphereScale_ = 1.0f, spotVolumeScale_ = 1.0f;
   bool hasTangents_ = false;
   std::vector<gl::Texture> images_;
   std::vector<gl::Sampler> samplers_;  // one per SceneTexture
