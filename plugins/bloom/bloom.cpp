@@ -222,7 +222,8 @@ void registerBloom(PluginHost& host) {
               "mip_chain: weight the first downsample's boxes by 1 / (1 + luma) against fireflies"),
     };
     d.programs = blurPrograms(host);
-    d.check = checkBlur;
+    d.rules = {PassRule{"method \"mip_chain\" keeps its levels side by side in temp: give temp the size of src",
+                        checkBlur}};
     d.create = [] { return std::make_unique<BlurPass>(); };
     host.addPassType(std::move(d));
   }

@@ -136,6 +136,16 @@ void checkPositionSlot(const PassCheckContext& ctx, PassChecks& checks) {
     checks.slotError(needed, "input '" + needed + "' is required by layout '" + layout.name + "' but not bound");
 }
 
+// The rule `rgraph passes` prints for checkPositionSlot, naming each layout's slot.
+PassRule positionRule() {
+  PassRule position;
+  position.text = "bind where \"layout\" keeps the position:";
+  for (const auto& layout : gbuffer::layouts())
+    position.text += (position.text.back() == ':' ? " " : ", ") + layout.name + " " + layout.positionSlot();
+  position.check = checkPositionSlot;
+  return position;
+}
+
 void registerUpsample(PluginHost& host) {
   using namespace rgraph::decl;
   const std::string frag = host.shaderPath("ssao_upsample.frag");
@@ -160,11 +170,13 @@ void registerUpsample(PluginHost& host) {
         gl::fullscreenProgram(frag, {{"src", "u_src", 0}, {"position", "g_position", 1}, {"depth", "g_depth", 4}},
                               ssaoDefines(p))};
   };
-  d.check = [](const PassCheckContext& ctx, PassChecks& checks) {
-    checkPositionSlot(ctx, checks);
+  PassRule sameSize;
+  sameSize.text = "ao has the size of the G-buffer's position target";
+  sameSize.check = [](const PassCheckContext& ctx, PassChecks& checks) {
     const std::string g = gbuffer::of(ctx.params()).positionSlot();
     if (ctx.bound(g)) checkSameSize(ctx, checks, g, "ao");
   };
+  d.rules = {positionRule(), sameSize};
   d.needsScene = true;  // for the camera
   d.create = [] { return std::make_unique<SsaoUpsamplePass>(); };
   host.addPassType(std::move(d));
@@ -200,12 +212,7 @@ void registerSsao(PluginHost& host) {
       s.ownSamplers = {"u_noise"};  // the 4x4 rotation texture the pass binds on unit 5
       return std::vector<ShaderProgramSpec>{s};
     };
-    PassRule position;
-    position.text = "bind where \"layout\" keeps the position:";
-    for (const auto& layout : gbuffer::layouts())
-      position.text += (position.text.back() == ':' ? " " : ", ") + layout.name + " " + layout.positionSlot();
-    position.check = checkPositionSlot;
-    d.rules = {position};
+    d.rules = {positionRule()};
     d.needsScene = true;  // for the camera
     d.create = [] { return std::make_unique<SsaoPass>(); };
     host.addPassType(std::move(d));
