@@ -200,7 +200,8 @@ TEST(CliPassesText, AnIntRangeIsPrintedInIntegers) {
   int rc = -1;
   const std::string text = run("passes clustered_deferred", &rc);
   ASSERT_EQ(rc, 0);
-  const std::string* slices = entry(blocks(text).at("clustered_deferred"), "params:", "slices");
+  const auto typeBlocks = blocks(text);  // entry() points into it: keep it alive
+  const std::string* slices = entry(typeBlocks.at("clustered_deferred"), "params:", "slices");
   ASSERT_NE(slices, nullptr) << text;
   EXPECT_EQ(columns(*slices)[3], "1 to 256") << *slices;
 }
