@@ -9,6 +9,7 @@ PACKAGES=(
   libglfw3-dev libglm-dev glslang-dev glslang-tools libtinygltf-dev libimgui-dev
   libspdlog-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libstb-dev libcli11-dev
+  libcairo2-dev fonts-dejavu-core
   xvfb xauth
   clang-14 libclang-rt-14-dev
 )

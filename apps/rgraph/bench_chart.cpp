@@ -1,13 +1,15 @@
 #include "bench_chart.h"
 
+#include <cairo-svg.h>
+#include <cairo.h>
+
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <limits>
-#include <sstream>
+#include <memory>
+#include <optional>
 
 #include "rgraph/error.h"
 #include "rgraph/image.h"
@@ -15,119 +17,31 @@
 namespace rgraph::cli::chart {
 namespace {
 
-// ---------------------------------------------------------------- colours
-
 struct Rgb {
-  uint8_t r, g, b;
+  double r, g, b;
 };
+constexpr Rgb rgb(int r, int g, int b) { return {r / 255.0, g / 255.0, b / 255.0}; }
 // Colour-blind-friendly (Okabe-Ito), then a few more.
-constexpr Rgb kPalette[] = {{0, 114, 178},  {213, 94, 0},   {0, 158, 115},  {204, 121, 167}, {230, 159, 0},
-                            {86, 180, 233}, {120, 120, 120}, {160, 60, 60}, {60, 60, 160},   {100, 140, 40}};
-constexpr Rgb kBlack{0, 0, 0}, kGrid{225, 225, 225}, kAxis{60, 60, 60}, kText{20, 20, 20}, kNote{90, 90, 90},
-    kWhite{255, 255, 255}, kLegendBorder{190, 190, 190};
+constexpr Rgb kPalette[] = {rgb(0, 114, 178),   rgb(213, 94, 0),  rgb(0, 158, 115), rgb(204, 121, 167),
+                            rgb(230, 159, 0),   rgb(86, 180, 233), rgb(120, 120, 120), rgb(160, 60, 60),
+                            rgb(60, 60, 160),   rgb(100, 140, 40)};
+constexpr Rgb kGrid = rgb(225, 225, 225), kAxis = rgb(60, 60, 60), kText = rgb(20, 20, 20), kNote = rgb(90, 90, 90),
+              kWhite = rgb(255, 255, 255), kLegendBorder = rgb(190, 190, 190);
+constexpr const char* kFont = "sans-serif";
+constexpr double kTickSize = 13, kTitleSize = 16, kNoteSize = 11, kLabelSize = 10.5;
 
 Rgb paletteColor(int i) {
   const int n = static_cast<int>(std::size(kPalette));
   return kPalette[((i % n) + n) % n];
 }
 
-std::string hex(Rgb c) {
-  char buf[8];
-  std::snprintf(buf, sizeof buf, "#%02x%02x%02x", c.r, c.g, c.b);
-  return buf;
-}
-
-// ---------------------------------------------------------------- 5x7 font
-// Columns, bit 0 at the top; ASCII 32..126.
-constexpr uint8_t kFont[95][5] = {
-    {0x00, 0x00, 0x00, 0x00, 0x00}, {0x00, 0x00, 0x5F, 0x00, 0x00}, {0x00, 0x07, 0x00, 0x07, 0x00},
-    {0x14, 0x7F, 0x14, 0x7F, 0x14}, {0x24, 0x2A, 0x7F, 0x2A, 0x12}, {0x23, 0x13, 0x08, 0x64, 0x62},
-    {0x36, 0x49, 0x56, 0x20, 0x50}, {0x00, 0x05, 0x03, 0x00, 0x00}, {0x00, 0x1C, 0x22, 0x41, 0x00},
-    {0x00, 0x41, 0x22, 0x1C, 0x00}, {0x2A, 0x1C, 0x7F, 0x1C, 0x2A}, {0x08, 0x08, 0x3E, 0x08, 0x08},
-    {0x00, 0x50, 0x30, 0x00, 0x00}, {0x08, 0x08, 0x08, 0x08, 0x08}, {0x00, 0x60, 0x60, 0x00, 0x00},
-    {0x20, 0x10, 0x08, 0x04, 0x02}, {0x3E, 0x51, 0x49, 0x45, 0x3E}, {0x00, 0x42, 0x7F, 0x40, 0x00},
-    {0x42, 0x61, 0x51, 0x49, 0x46}, {0x21, 0x41, 0x45, 0x4B, 0x31}, {0x18, 0x14, 0x12, 0x7F, 0x10},
-    {0x27, 0x45, 0x45, 0x45, 0x39}, {0x3C, 0x4A, 0x49, 0x49, 0x30}, {0x01, 0x71, 0x09, 0x05, 0x03},
-    {0x36, 0x49, 0x49, 0x49, 0x36}, {0x06, 0x49, 0x49, 0x29, 0x1E}, {0x00, 0x36, 0x36, 0x00, 0x00},
-    {0x00, 0x56, 0x36, 0x00, 0x00}, {0x08, 0x14, 0x22, 0x41, 0x00}, {0x14, 0x14, 0x14, 0x14, 0x14},
-    {0x00, 0x41, 0x22, 0x14, 0x08}, {0x02, 0x01, 0x51, 0x09, 0x06}, {0x32, 0x49, 0x79, 0x41, 0x3E},
-    {0x7E, 0x11, 0x11, 0x11, 0x7E}, {0x7F, 0x49, 0x49, 0x49, 0x36}, {0x3E, 0x41, 0x41, 0x41, 0x22},
-    {0x7F, 0x41, 0x41, 0x22, 0x1C}, {0x7F, 0x49, 0x49, 0x49, 0x41}, {0x7F, 0x09, 0x09, 0x09, 0x01},
-    {0x3E, 0x41, 0x49, 0x49, 0x7A}, {0x7F, 0x08, 0x08, 0x08, 0x7F}, {0x00, 0x41, 0x7F, 0x41, 0x00},
-    {0x20, 0x40, 0x41, 0x3F, 0x01}, {0x7F, 0x08, 0x14, 0x22, 0x41}, {0x7F, 0x40, 0x40, 0x40, 0x40},
-    {0x7F, 0x02, 0x0C, 0x02, 0x7F}, {0x7F, 0x04, 0x08, 0x10, 0x7F}, {0x3E, 0x41, 0x41, 0x41, 0x3E},
-    {0x7F, 0x09, 0x09, 0x09, 0x06}, {0x3E, 0x41, 0x51, 0x21, 0x5E}, {0x7F, 0x09, 0x19, 0x29, 0x46},
-    {0x46, 0x49, 0x49, 0x49, 0x31}, {0x01, 0x01, 0x7F, 0x01, 0x01}, {0x3F, 0x40, 0x40, 0x40, 0x3F},
-    {0x1F, 0x20, 0x40, 0x20, 0x1F}, {0x3F, 0x40, 0x38, 0x40, 0x3F}, {0x63, 0x14, 0x08, 0x14, 0x63},
-    {0x07, 0x08, 0x70, 0x08, 0x07}, {0x61, 0x51, 0x49, 0x45, 0x43}, {0x00, 0x7F, 0x41, 0x41, 0x00},
-    {0x02, 0x04, 0x08, 0x10, 0x20}, {0x00, 0x41, 0x41, 0x7F, 0x00}, {0x04, 0x02, 0x01, 0x02, 0x04},
-    {0x40, 0x40, 0x40, 0x40, 0x40}, {0x00, 0x01, 0x02, 0x04, 0x00}, {0x20, 0x54, 0x54, 0x54, 0x78},
-    {0x7F, 0x48, 0x44, 0x44, 0x38}, {0x38, 0x44, 0x44, 0x44, 0x20}, {0x38, 0x44, 0x44, 0x48, 0x7F},
-    {0x38, 0x54, 0x54, 0x54, 0x18}, {0x08, 0x7E, 0x09, 0x01, 0x02}, {0x0C, 0x52, 0x52, 0x52, 0x3E},
-    {0x7F, 0x08, 0x04, 0x04, 0x78}, {0x00, 0x44, 0x7D, 0x40, 0x00}, {0x20, 0x40, 0x44, 0x3D, 0x00},
-    {0x7F, 0x10, 0x28, 0x44, 0x00}, {0x00, 0x41, 0x7F, 0x40, 0x00}, {0x7C, 0x04, 0x18, 0x04, 0x78},
-    {0x7C, 0x08, 0x04, 0x04, 0x78}, {0x38, 0x44, 0x44, 0x44, 0x38}, {0x7C, 0x14, 0x14, 0x14, 0x08},
-    {0x08, 0x14, 0x14, 0x18, 0x7C}, {0x7C, 0x08, 0x04, 0x04, 0x08}, {0x48, 0x54, 0x54, 0x54, 0x20},
-    {0x04, 0x3F, 0x44, 0x40, 0x20}, {0x3C, 0x40, 0x40, 0x20, 0x7C}, {0x1C, 0x20, 0x40, 0x20, 0x1C},
-    {0x3C, 0x40, 0x30, 0x40, 0x3C}, {0x44, 0x28, 0x10, 0x28, 0x44}, {0x0C, 0x50, 0x50, 0x50, 0x3C},
-    {0x44, 0x64, 0x54, 0x4C, 0x44}, {0x00, 0x08, 0x36, 0x41, 0x00}, {0x00, 0x00, 0x7F, 0x00, 0x00},
-    {0x00, 0x41, 0x36, 0x08, 0x00}, {0x08, 0x04, 0x08, 0x10, 0x08},
-};
-constexpr int kGlyphAdvance = 6;  // 5 columns + 1 of spacing, times the text scale
-
-// ---------------------------------------------------------------- shapes
-
-enum class Anchor { start, middle, end };
-
-struct Shape {
-  enum class Kind { line, circle, rect, text } kind = Kind::line;
-  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // line ends; rect corners; circle/text position
-  double r = 0, width = 1;
-  Rgb color{0, 0, 0};
-  Rgb fill{255, 255, 255};
-  bool dashed = false, hollow = false, filled = true;
-  std::string text;
-  int scale = 2;  // text: pixels per font pixel (glyph cell 6*scale x 7*scale)
-  Anchor anchor = Anchor::start;
-  bool vertical = false;  // text rotated 90 degrees counter-clockwise
-};
-
-double textWidth(const std::string& s, int scale) {
-  return s.empty() ? 0.0 : (static_cast<double>(s.size()) * kGlyphAdvance - 1.0) * scale;
-}
-
-Shape line(double x0, double y0, double x1, double y1, Rgb c, double w, bool dashed = false) {
-  Shape s;
-  s.kind = Shape::Kind::line;
-  s.x0 = x0, s.y0 = y0, s.x1 = x1, s.y1 = y1, s.color = c, s.width = w, s.dashed = dashed;
-  return s;
-}
-Shape circle(double x, double y, double r, Rgb c, bool hollow, double w = 1.5) {
-  Shape s;
-  s.kind = Shape::Kind::circle;
-  s.x0 = x, s.y0 = y, s.r = r, s.color = c, s.hollow = hollow, s.width = w;
-  return s;
-}
-Shape rect(double x0, double y0, double x1, double y1, Rgb stroke, Rgb fill) {
-  Shape s;
-  s.kind = Shape::Kind::rect;
-  s.x0 = x0, s.y0 = y0, s.x1 = x1, s.y1 = y1, s.color = stroke, s.fill = fill;
-  return s;
-}
-Shape text(double x, double y, std::string str, int scale, Rgb c, Anchor a = Anchor::start, bool vertical = false) {
-  Shape s;
-  s.kind = Shape::Kind::text;
-  s.x0 = x, s.y0 = y, s.text = std::move(str), s.scale = scale, s.color = c, s.anchor = a, s.vertical = vertical;
-  return s;
-}
-
 // ---------------------------------------------------------------- axes
 
 struct Axis {
   bool log = false;
-  double lo = 0, hi = 1;           // data range shown (log: the values, not their logs)
-  std::vector<double> ticks;       // values
-  double step = 0;                 // linear: tick spacing; log: 0
+  double lo = 0, hi = 1;      // data range shown (log: the values, not their logs)
+  std::vector<double> ticks;  // values
+  double step = 0;            // linear: tick spacing; log: 0
   double map(double v, double p0, double p1) const {  // value -> pixel between p0 (lo) and p1 (hi)
     const double a = log ? std::log10(lo) : lo, b = log ? std::log10(hi) : hi;
     const double t = ((log ? std::log10(std::max(v, 1e-300)) : v) - a) / (b - a);
@@ -145,8 +59,7 @@ double niceStep(double span, int targetTicks) {
 Axis makeAxis(std::vector<double> values, bool log, int targetTicks) {
   Axis ax;
   ax.log = log;
-  if (log) values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return !(v > 0.0); }), values.end());
-  values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }), values.end());
+  std::erase_if(values, [&](double v) { return !std::isfinite(v) || (log && !(v > 0.0)); });
   if (values.empty()) values = log ? std::vector<double>{1.0, 10.0} : std::vector<double>{0.0, 1.0};
   double lo = *std::min_element(values.begin(), values.end());
   double hi = *std::max_element(values.begin(), values.end());
@@ -155,14 +68,10 @@ Axis makeAxis(std::vector<double> values, bool log, int targetTicks) {
     if (b <= a) b = a + 1;
     ax.lo = std::pow(10.0, a);
     ax.hi = std::pow(10.0, b);
-    const bool fine = b - a <= 2;
     for (double e = a; e <= b + 1e-9; e += 1.0) {
       const double d = std::pow(10.0, e);
       ax.ticks.push_back(d);
-      if (fine && e < b) {
-        ax.ticks.push_back(2 * d);
-        ax.ticks.push_back(5 * d);
-      }
+      if (b - a <= 2 && e < b) ax.ticks.insert(ax.ticks.end(), {2 * d, 5 * d});  // a short range: 1-2-5
     }
     return ax;
   }
@@ -171,11 +80,11 @@ Axis makeAxis(std::vector<double> values, bool log, int targetTicks) {
     lo -= pad;
     hi += pad;
   }
-  const double step = niceStep(hi - lo, targetTicks);
-  ax.step = step;
-  ax.lo = std::floor(lo / step) * step;
-  ax.hi = std::ceil(hi / step) * step;
-  for (double v = ax.lo; v <= ax.hi + step * 1e-6; v += step) ax.ticks.push_back(std::abs(v) < step * 1e-9 ? 0.0 : v);
+  ax.step = niceStep(hi - lo, targetTicks);
+  ax.lo = std::floor(lo / ax.step) * ax.step;
+  ax.hi = std::ceil(hi / ax.step) * ax.step;
+  for (double v = ax.lo; v <= ax.hi + ax.step * 1e-6; v += ax.step)
+    ax.ticks.push_back(std::abs(v) < ax.step * 1e-9 ? 0.0 : v);
   return ax;
 }
 
@@ -195,21 +104,117 @@ std::string tickLabel(double v, double step) {
   return buf;
 }
 
-// ---------------------------------------------------------------- layout
+// ---------------------------------------------------------------- drawing
 
-std::vector<Shape> layout(const Chart& c) {
-  std::vector<Shape> out;
+enum class Align { start, middle, end };
+
+class Pen {
+ public:
+  explicit Pen(cairo_t* cr) : cr_(cr) {}
+
+  double textWidth(const std::string& s, double size, bool bold = false) const {
+    font(size, bold);
+    cairo_text_extents_t e;
+    cairo_text_extents(cr_, s.c_str(), &e);
+    return e.x_advance;
+  }
+  // Vertically centred on y; vertical: rotated a quarter turn counter-clockwise about (x, y).
+  void text(double x, double y, const std::string& s, double size, Rgb c, Align a = Align::start,
+            bool vertical = false, bool bold = false) const {
+    cairo_save(cr_);
+    const double w = textWidth(s, size, bold);
+    cairo_font_extents_t fe;
+    cairo_font_extents(cr_, &fe);
+    cairo_translate(cr_, x, y);
+    if (vertical) cairo_rotate(cr_, -M_PI / 2);
+    cairo_move_to(cr_, a == Align::start ? 0 : a == Align::middle ? -w / 2 : -w, (fe.ascent - fe.descent) / 2);
+    color(c);
+    cairo_show_text(cr_, s.c_str());
+    cairo_restore(cr_);
+  }
+  void line(double x0, double y0, double x1, double y1, Rgb c, double width, bool dashed = false) const {
+    const double dash[] = {7, 5};
+    cairo_set_dash(cr_, dash, dashed ? 2 : 0, 0);
+    cairo_move_to(cr_, x0, y0);
+    cairo_line_to(cr_, x1, y1);
+    stroke(c, width);
+  }
+  void marker(double x, double y, Rgb c, bool hollow) const {
+    cairo_set_dash(cr_, nullptr, 0, 0);
+    cairo_new_sub_path(cr_);
+    cairo_arc(cr_, x, y, hollow ? 6.5 : 3.5, 0, 2 * M_PI);
+    hollow ? stroke(c, 1.8) : fill(c);
+  }
+  void rect(double x0, double y0, double x1, double y1, Rgb fillColor, const Rgb* border = nullptr) const {
+    cairo_rectangle(cr_, x0, y0, x1 - x0, y1 - y0);
+    if (!border) return fill(fillColor);
+    color(fillColor);
+    cairo_fill_preserve(cr_);
+    cairo_set_dash(cr_, nullptr, 0, 0);
+    stroke(*border, 1);
+  }
+
+ private:
+  void font(double size, bool bold) const {
+    cairo_select_font_face(cr_, kFont, CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr_, size);
+  }
+  void color(Rgb c) const { cairo_set_source_rgb(cr_, c.r, c.g, c.b); }
+  void fill(Rgb c) const {
+    color(c);
+    cairo_fill(cr_);
+  }
+  void stroke(Rgb c, double width) const {
+    color(c);
+    cairo_set_line_width(cr_, width);
+    cairo_set_line_cap(cr_, CAIRO_LINE_CAP_ROUND);
+    cairo_stroke(cr_);
+  }
+  cairo_t* cr_;
+};
+
+// Point labels go where they overlap no other label (tried beside the
+// marker, above and below, right then left), else they are left out.
+class LabelPlacer {
+ public:
+  LabelPlacer(double left, double top, double right, double bottom) : l_(left), t_(top), r_(right), b_(bottom) {}
+  // The top-left corner of a free w x h box near (px, py), taken; none: no room.
+  std::optional<std::pair<double, double>> place(double px, double py, double w, double h) {
+    const double candidates[][2] = {{7, -10}, {7, 10}, {-7 - w, -10}, {-7 - w, 10}, {7, -21}, {7, 21}};
+    for (const auto& d : candidates) {
+      const Box b{px + d[0], py + d[1] - h / 2, px + d[0] + w, py + d[1] + h / 2};
+      if (b.x0 < l_ + 2 || b.x1 > r_ - 2 || b.y0 < t_ - 10 || b.y1 > b_) continue;
+      if (std::any_of(placed_.begin(), placed_.end(), [&](const Box& o) {
+            return !(b.x1 < o.x0 || o.x1 < b.x0 || b.y1 < o.y0 || o.y1 < b.y0);
+          }))
+        continue;
+      placed_.push_back(b);
+      return std::pair{b.x0, b.y0};
+    }
+    return std::nullopt;
+  }
+
+ private:
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  double l_, t_, r_, b_;
+  std::vector<Box> placed_;
+};
+
+void draw(cairo_t* cr, const Chart& c) {
+  const Pen pen(cr);
   const double W = c.width, H = c.height;
-  // Legend width from the longest name.
   double legendW = 0;
-  for (const auto& s : c.series) legendW = std::max(legendW, textWidth(s.name, 2));
+  for (const auto& s : c.series) legendW = std::max(legendW, pen.textWidth(s.name, kTickSize));
   legendW = legendW > 0 ? legendW + 56 : 0;
-  const double top = 46 + 12.0 * c.notes.size();
-  const double left = 92, bottom = H - 62, right = W - 24 - legendW;
+  const double top = 50 + 14.0 * c.notes.size();
+  const double left = 80, bottom = H - 58, right = W - 24 - legendW;
 
-  out.push_back(rect(0, 0, W, H, kWhite, kWhite));
-  out.push_back(text(W / 2, 20, c.title, 2, kText, Anchor::middle));
-  for (size_t i = 0; i < c.notes.size(); ++i) out.push_back(text(W / 2, 40 + 12.0 * i, c.notes[i], 1, kNote, Anchor::middle));
+  pen.rect(0, 0, W, H, kWhite);
+  pen.text(W / 2, 20, c.title, kTitleSize, kText, Align::middle, false, true);
+  for (size_t i = 0; i < c.notes.size(); ++i)
+    pen.text(W / 2, 40 + 14.0 * i, c.notes[i], kNoteSize, kNote, Align::middle);
 
   std::vector<double> xs, ys;
   for (const auto& s : c.series)
@@ -220,271 +225,116 @@ std::vector<Shape> layout(const Chart& c) {
   const Axis ax = makeAxis(xs, c.logX, 7), ay = makeAxis(ys, c.logY, 6);
   auto X = [&](double v) { return ax.map(v, left, right); };
   auto Y = [&](double v) { return ay.map(v, bottom, top); };
-
   for (double t : ax.ticks) {
-    const double x = X(t);
-    out.push_back(line(x, top, x, bottom, kGrid, 1));
-    out.push_back(line(x, bottom, x, bottom + 5, kAxis, 1));
-    out.push_back(text(x, bottom + 16, tickLabel(t, ax.step), 2, kText, Anchor::middle));
+    pen.line(X(t), top, X(t), bottom, kGrid, 1);
+    pen.line(X(t), bottom, X(t), bottom + 5, kAxis, 1);
+    pen.text(X(t), bottom + 16, tickLabel(t, ax.step), kTickSize, kText, Align::middle);
   }
   for (double t : ay.ticks) {
-    const double y = Y(t);
-    out.push_back(line(left, y, right, y, kGrid, 1));
-    out.push_back(line(left - 5, y, left, y, kAxis, 1));
-    out.push_back(text(left - 9, y, tickLabel(t, ay.step), 2, kText, Anchor::end));
+    pen.line(left, Y(t), right, Y(t), kGrid, 1);
+    pen.line(left - 5, Y(t), left, Y(t), kAxis, 1);
+    pen.text(left - 9, Y(t), tickLabel(t, ay.step), kTickSize, kText, Align::end);
   }
-  out.push_back(line(left, bottom, right, bottom, kAxis, 1.5));
-  out.push_back(line(left, top, left, bottom, kAxis, 1.5));
-  out.push_back(text((left + right) / 2, H - 20, c.xLabel + (c.logX ? " (log)" : ""), 2, kText, Anchor::middle));
-  out.push_back(text(20, (top + bottom) / 2, c.yLabel + (c.logY ? " (log)" : ""), 2, kText, Anchor::middle, true));
+  pen.line(left, bottom, right, bottom, kAxis, 1.5);
+  pen.line(left, top, left, bottom, kAxis, 1.5);
+  pen.text((left + right) / 2, H - 20, c.xLabel + (c.logX ? " (log)" : ""), kTickSize, kText, Align::middle);
+  pen.text(18, (top + bottom) / 2, c.yLabel + (c.logY ? " (log)" : ""), kTickSize, kText, Align::middle, true);
 
   auto inside = [&](const Point& p) {
     return std::isfinite(p.x) && std::isfinite(p.y) && (!c.logX || p.x > 0) && (!c.logY || p.y > 0);
   };
-  // Point labels go where they overlap no other label (tried beside the
-  // marker, above and below, right then left), else they are left out.
-  struct Box {
-    double x0, y0, x1, y1;
-  };
-  std::vector<Box> placed;
-  std::vector<Shape> labels;  // drawn over every series
-  auto placeLabel = [&](double px, double py, const std::string& label) {
-    const double w = textWidth(label, 1), h = 9;
-    const double candidates[][2] = {{7, -9}, {7, 9}, {-7 - w, -9}, {-7 - w, 9}, {7, -19}, {7, 19}};
-    for (const auto& d : candidates) {
-      const Box b{px + d[0], py + d[1] - h / 2, px + d[0] + w, py + d[1] + h / 2};
-      if (b.x0 < left + 2 || b.x1 > right - 2 || b.y0 < top - 10 || b.y1 > bottom) continue;
-      bool clash = false;
-      for (const Box& o : placed) clash = clash || !(b.x1 < o.x0 || o.x1 < b.x0 || b.y1 < o.y0 || o.y1 < b.y0);
-      if (clash) continue;
-      placed.push_back(b);
-      labels.push_back(rect(b.x0 - 1, b.y0 - 1, b.x1 + 2, b.y1 + 1, kWhite, kWhite));  // keeps lines off the text
-      labels.push_back(text(b.x0, py + d[1], label, 1, kText));
-      return;
-    }
-  };
+  auto colorOf = [&](size_t si) { return paletteColor(c.series[si].color >= 0 ? c.series[si].color : int(si)); };
+  LabelPlacer placer(left, top, right, bottom);
+  std::vector<std::pair<std::pair<double, double>, const std::string*>> labels;  // drawn over every series
   for (size_t si = 0; si < c.series.size(); ++si) {
     const Series& s = c.series[si];
-    const Rgb col = paletteColor(s.color >= 0 ? s.color : static_cast<int>(si));
     const Point* prev = nullptr;
     for (const auto& p : s.points) {
-      if (!inside(p)) {
-        prev = nullptr;
-        continue;
-      }
-      if (s.line && prev) out.push_back(line(X(prev->x), Y(prev->y), X(p.x), Y(p.y), col, s.width, s.dashed));
-      prev = &p;
+      if (s.line && prev && inside(p)) pen.line(X(prev->x), Y(prev->y), X(p.x), Y(p.y), colorOf(si), s.width, s.dashed);
+      prev = inside(p) ? &p : nullptr;
     }
     for (const auto& p : s.points) {
       if (!inside(p)) continue;
-      if (s.markers) out.push_back(circle(X(p.x), Y(p.y), s.hollow ? 6.5 : 3.5, col, s.hollow, 1.8));
-      if (!p.label.empty()) placeLabel(X(p.x), Y(p.y), p.label);
+      if (s.markers) pen.marker(X(p.x), Y(p.y), colorOf(si), s.hollow);
+      if (p.label.empty()) continue;
+      if (auto at = placer.place(X(p.x), Y(p.y), pen.textWidth(p.label, kLabelSize), kLabelSize + 1))
+        labels.push_back({*at, &p.label});
     }
   }
-
-  out.insert(out.end(), labels.begin(), labels.end());
+  for (const auto& [at, label] : labels) {
+    const double w = pen.textWidth(*label, kLabelSize);
+    pen.rect(at.first - 1, at.second - 1, at.first + w + 2, at.second + kLabelSize + 2, kWhite);  // lines off the text
+    pen.text(at.first, at.second + (kLabelSize + 1) / 2, *label, kLabelSize, kText);
+  }
 
   if (legendW > 0) {
     const double lx = right + 16, ly = top;
-    out.push_back(rect(lx, ly, lx + legendW, ly + 12 + 22.0 * c.series.size(), kLegendBorder, kWhite));
+    pen.rect(lx, ly, lx + legendW, ly + 12 + 22.0 * c.series.size(), kWhite, &kLegendBorder);
     for (size_t si = 0; si < c.series.size(); ++si) {
       const Series& s = c.series[si];
-      const Rgb col = paletteColor(s.color >= 0 ? s.color : static_cast<int>(si));
       const double y = ly + 17 + 22.0 * si;
-      if (s.line) out.push_back(line(lx + 8, y, lx + 38, y, col, s.width, s.dashed));
-      if (s.markers) out.push_back(circle(lx + 23, y, s.hollow ? 6.5 : 3.5, col, s.hollow, 1.8));
-      out.push_back(text(lx + 46, y, s.name, 2, kText));
+      if (s.line) pen.line(lx + 8, y, lx + 38, y, colorOf(si), s.width, s.dashed);
+      if (s.markers) pen.marker(lx + 23, y, colorOf(si), s.hollow);
+      pen.text(lx + 46, y, s.name, kTickSize, kText);
     }
   }
-  return out;
 }
 
-// ---------------------------------------------------------------- SVG
-
-std::string xmlEscape(const std::string& s) {
-  std::string o;
-  for (char ch : s) {
-    switch (ch) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += ch;
-    }
-  }
-  return o;
+// Draws the chart onto `surface` and finishes it; throws on a cairo error.
+void render(cairo_surface_t* surface, const Chart& chart) {
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface), cairo_destroy);
+  draw(cr.get(), chart);
+  cairo_surface_flush(surface);
+  if (cairo_status(cr.get()) != CAIRO_STATUS_SUCCESS)
+    throw RuntimeError(std::string("drawing chart '") + chart.title + "': " + cairo_status_to_string(cairo_status(cr.get())));
 }
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f", v);
-  return buf;
-}
-
-// ---------------------------------------------------------------- raster
-
-class Canvas {
- public:
-  Canvas(int w, int h) : w_(w), h_(h), px_(static_cast<size_t>(w) * h * 3, 1.0f) {}
-
-  void blend(int x, int y, Rgb c, double a) {
-    if (x < 0 || y < 0 || x >= w_ || y >= h_ || a <= 0.0) return;
-    a = std::min(a, 1.0);
-    float* p = &px_[(static_cast<size_t>(y) * w_ + x) * 3];
-    p[0] = static_cast<float>(p[0] * (1 - a) + c.r / 255.0 * a);
-    p[1] = static_cast<float>(p[1] * (1 - a) + c.g / 255.0 * a);
-    p[2] = static_cast<float>(p[2] * (1 - a) + c.b / 255.0 * a);
-  }
-
-  void segment(double x0, double y0, double x1, double y1, Rgb c, double width, bool dashed) {
-    const double hw = width / 2;
-    const int minX = static_cast<int>(std::floor(std::min(x0, x1) - hw - 1)),
-              maxX = static_cast<int>(std::ceil(std::max(x0, x1) + hw + 1));
-    const int minY = static_cast<int>(std::floor(std::min(y0, y1) - hw - 1)),
-              maxY = static_cast<int>(std::ceil(std::max(y0, y1) + hw + 1));
-    const double dx = x1 - x0, dy = y1 - y0, len2 = dx * dx + dy * dy, len = std::sqrt(len2);
-    for (int y = std::max(minY, 0); y <= std::min(maxY, h_ - 1); ++y)
-      for (int x = std::max(minX, 0); x <= std::min(maxX, w_ - 1); ++x) {
-        const double px = x + 0.5, py = y + 0.5;
-        double t = len2 > 0 ? ((px - x0) * dx + (py - y0) * dy) / len2 : 0.0;
-        t = std::clamp(t, 0.0, 1.0);
-        if (dashed && std::fmod(t * len, 12.0) > 7.0) continue;
-        const double ex = x0 + t * dx - px, ey = y0 + t * dy - py;
-        const double d = std::sqrt(ex * ex + ey * ey);
-        blend(x, y, c, std::clamp(hw + 0.5 - d, 0.0, 1.0));
-      }
-  }
-
-  void disk(double cx, double cy, double r, Rgb c, bool ring, double width) {
-    const int minX = static_cast<int>(std::floor(cx - r - width - 1)), maxX = static_cast<int>(std::ceil(cx + r + width + 1));
-    const int minY = static_cast<int>(std::floor(cy - r - width - 1)), maxY = static_cast<int>(std::ceil(cy + r + width + 1));
-    for (int y = std::max(minY, 0); y <= std::min(maxY, h_ - 1); ++y)
-      for (int x = std::max(minX, 0); x <= std::min(maxX, w_ - 1); ++x) {
-        const double d = std::hypot(x + 0.5 - cx, y + 0.5 - cy);
-        const double a = ring ? std::clamp(width / 2 + 0.5 - std::abs(d - r), 0.0, 1.0) : std::clamp(r + 0.5 - d, 0.0, 1.0);
-        blend(x, y, c, a);
-      }
-  }
-
-  void fillRect(double x0, double y0, double x1, double y1, Rgb fill, Rgb stroke) {
-    const int a = static_cast<int>(std::round(x0)), b = static_cast<int>(std::round(x1));
-    const int c = static_cast<int>(std::round(y0)), d = static_cast<int>(std::round(y1));
-    for (int y = std::max(c, 0); y < std::min(d, h_); ++y)
-      for (int x = std::max(a, 0); x < std::min(b, w_); ++x) {
-        const bool edge = x == a || x == b - 1 || y == c || y == d - 1;
-        blend(x, y, edge ? stroke : fill, 1.0);
-      }
-  }
-
-  void glyphs(const Shape& s) {
-    const int sc = s.scale;
-    const double w = textWidth(s.text, sc);
-    double start = s.anchor == Anchor::start ? 0 : s.anchor == Anchor::middle ? -w / 2 : -w;
-    const double h = 7.0 * sc;
-    for (size_t i = 0; i < s.text.size(); ++i) {
-      unsigned char ch = static_cast<unsigned char>(s.text[i]);
-      if (ch < 32 || ch > 126) ch = '?';
-      const uint8_t* g = kFont[ch - 32];
-      for (int col = 0; col < 5; ++col)
-        for (int row = 0; row < 7; ++row) {
-          if (!((g[col] >> row) & 1)) continue;
-          // Position along the text (u) and across it (v, top at 0).
-          const double u = start + (static_cast<double>(i) * kGlyphAdvance + col) * sc;
-          const double v = row * sc - h / 2;
-          for (int a = 0; a < sc; ++a)
-            for (int b = 0; b < sc; ++b) {
-              int x, y;
-              if (s.vertical) {  // rotated 90 degrees counter-clockwise: u goes up, v goes right
-                x = static_cast<int>(std::floor(s.x0 + v + b));
-                y = static_cast<int>(std::floor(s.y0 - u - a));
-              } else {
-                x = static_cast<int>(std::floor(s.x0 + u + a));
-                y = static_cast<int>(std::floor(s.y0 + v + b));
-              }
-              blend(x, y, s.color, 1.0);
-            }
-        }
-    }
-  }
-
-  std::vector<uint8_t> rgba() const {
-    std::vector<uint8_t> out(static_cast<size_t>(w_) * h_ * 4);
-    for (size_t i = 0; i < static_cast<size_t>(w_) * h_; ++i) {
-      for (int c = 0; c < 3; ++c)
-        out[i * 4 + c] = static_cast<uint8_t>(std::lround(std::clamp(px_[i * 3 + c], 0.0f, 1.0f) * 255.0f));
-      out[i * 4 + 3] = 255;
-    }
-    return out;
-  }
-
- private:
-  int w_, h_;
-  std::vector<float> px_;
-};
+using Surface = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
 
 }  // namespace
 
 std::string toSvg(const Chart& chart) {
-  std::ostringstream o;
-  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << chart.width << "\" height=\"" << chart.height
-    << "\" viewBox=\"0 0 " << chart.width << " " << chart.height << "\">\n";
-  o << "<title>" << xmlEscape(chart.title) << "</title>\n";
-  for (const Shape& s : layout(chart)) {
-    switch (s.kind) {
-      case Shape::Kind::line:
-        o << "<line x1=\"" << num(s.x0) << "\" y1=\"" << num(s.y0) << "\" x2=\"" << num(s.x1) << "\" y2=\"" << num(s.y1)
-          << "\" stroke=\"" << hex(s.color) << "\" stroke-width=\"" << num(s.width) << "\" stroke-linecap=\"round\""
-          << (s.dashed ? " stroke-dasharray=\"7 5\"" : "") << "/>\n";
-        break;
-      case Shape::Kind::circle:
-        o << "<circle cx=\"" << num(s.x0) << "\" cy=\"" << num(s.y0) << "\" r=\"" << num(s.r) << "\" ";
-        if (s.hollow)
-          o << "fill=\"none\" stroke=\"" << hex(s.color) << "\" stroke-width=\"" << num(s.width) << "\"/>\n";
-        else
-          o << "fill=\"" << hex(s.color) << "\"/>\n";
-        break;
-      case Shape::Kind::rect:
-        o << "<rect x=\"" << num(s.x0) << "\" y=\"" << num(s.y0) << "\" width=\"" << num(s.x1 - s.x0) << "\" height=\""
-          << num(s.y1 - s.y0) << "\" fill=\"" << hex(s.fill) << "\" stroke=\"" << hex(s.color) << "\"/>\n";
-        break;
-      case Shape::Kind::text: {
-        const char* anchor = s.anchor == Anchor::start ? "start" : s.anchor == Anchor::middle ? "middle" : "end";
-        o << "<text x=\"" << num(s.x0) << "\" y=\"" << num(s.y0) << "\" font-family=\"DejaVu Sans Mono, monospace\" "
-          << "font-size=\"" << 10 * s.scale << "\" fill=\"" << hex(s.color) << "\" text-anchor=\"" << anchor
-          << "\" dominant-baseline=\"central\"";
-        if (s.vertical) o << " transform=\"rotate(-90 " << num(s.x0) << " " << num(s.y0) << ")\"";
-        o << ">" << xmlEscape(s.text) << "</text>\n";
-        break;
-      }
-    }
-  }
-  o << "</svg>\n";
-  return o.str();
+  std::string out;
+  auto append = [](void* closure, const unsigned char* data, unsigned int length) {
+    static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+    return CAIRO_STATUS_SUCCESS;
+  };
+  Surface s(cairo_svg_surface_create_for_stream(append, &out, chart.width, chart.height), cairo_surface_destroy);
+  render(s.get(), chart);
+  cairo_surface_finish(s.get());
+  return out;
 }
 
 std::vector<uint8_t> toRgba(const Chart& chart) {
-  Canvas canvas(chart.width, chart.height);
-  for (const Shape& s : layout(chart)) {
-    switch (s.kind) {
-      case Shape::Kind::line: canvas.segment(s.x0, s.y0, s.x1, s.y1, s.color, s.width, s.dashed); break;
-      case Shape::Kind::circle: canvas.disk(s.x0, s.y0, s.r, s.color, s.hollow, s.width); break;
-      case Shape::Kind::rect: canvas.fillRect(s.x0, s.y0, s.x1, s.y1, s.fill, s.color); break;
-      case Shape::Kind::text: canvas.glyphs(s); break;
+  Surface s(cairo_image_surface_create(CAIRO_FORMAT_RGB24, chart.width, chart.height), cairo_surface_destroy);
+  render(s.get(), chart);
+  // RGB24: one native-endian 32-bit word per pixel, 0x00RRGGBB.
+  const unsigned char* data = cairo_image_surface_get_data(s.get());
+  const int stride = cairo_image_surface_get_stride(s.get());
+  std::vector<uint8_t> rgba(static_cast<size_t>(chart.width) * chart.height * 4);
+  for (int y = 0; y < chart.height; ++y)
+    for (int x = 0; x < chart.width; ++x) {
+      const uint32_t p = *reinterpret_cast<const uint32_t*>(data + static_cast<size_t>(y) * stride + 4 * x);
+      uint8_t* o = &rgba[(static_cast<size_t>(y) * chart.width + x) * 4];
+      o[0] = static_cast<uint8_t>(p >> 16), o[1] = static_cast<uint8_t>(p >> 8), o[2] = static_cast<uint8_t>(p), o[3] = 255;
     }
-  }
-  return canvas.rgba();
+  return rgba;
 }
 
 void writeChart(const Chart& chart, const std::string& dir, const std::string& name) {
-  const std::filesystem::path base = std::filesystem::path(dir) / name;
-  {
-    std::ofstream f(base.string() + ".svg");
-    if (!f) throw RuntimeError("cannot write '" + base.string() + ".svg'");
-    f << toSvg(chart);
-    if (!f) throw RuntimeError("cannot write '" + base.string() + ".svg'");
-  }
-  writePng(base.string() + ".png", static_cast<uint32_t>(chart.width), static_cast<uint32_t>(chart.height),
-           toRgba(chart));
+  const std::string base = (std::filesystem::path(dir) / name).string();
+  std::ofstream f(base + ".svg", std::ios::binary);
+  if (!(f << toSvg(chart)) || !f.flush()) throw RuntimeError("cannot write '" + base + ".svg'");
+  writePng(base + ".png", static_cast<uint32_t>(chart.width), static_cast<uint32_t>(chart.height), toRgba(chart));
+}
+
+Series& Chart::seriesNamed(const std::string& name) {
+  for (Series& s : series)
+    if (s.name == name) return s;
+  Series& s = series.emplace_back();
+  s.name = name;
+  s.line = false;
+  return s;
 }
 
 std::vector<size_t> paretoFront(const std::vector<Point>& points, bool maximizeX, bool maximizeY) {
@@ -496,9 +346,8 @@ std::vector<size_t> paretoFront(const std::vector<Point>& points, bool maximizeX
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
     bool dominated = false;
     for (size_t j = 0; j < points.size() && !dominated; ++j) {
-      if (j == i) continue;
       const Point& q = points[j];
-      if (!std::isfinite(q.x) || !std::isfinite(q.y)) continue;
+      if (j == i || !std::isfinite(q.x) || !std::isfinite(q.y)) continue;
       dominated = atLeast(q.x, p.x, maximizeX) && atLeast(q.y, p.y, maximizeY) &&
                   (better(q.x, p.x, maximizeX) || better(q.y, p.y, maximizeY));
     }

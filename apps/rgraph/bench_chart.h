@@ -1,8 +1,17 @@
-// Charts for `rgraph bench`, with no Python and no plotting package: a chart
-// is laid out once into a list of shapes (lines, markers, text), which is
-// then written as SVG or rasterised into an RGBA8 buffer (anti-aliased lines
-// and markers, a built-in 5x7 bitmap font) for a PNG. Both files show the
-// same chart.
+// Charts for `rgraph bench`, drawn with cairo: one drawing path onto an SVG
+// surface and onto an image surface (antialiased lines, markers and text in
+// the fontconfig "sans-serif" face), so both files show the same chart.
+//
+// A chart for a new bench axis: fill a Chart (title, notes, axis labels), add
+// points to series by name (seriesNamed: one colour per series, in the order
+// they first appear), and writeChart() it under the run's folder:
+//
+//   Chart c;
+//   c.title = "Bloom: frame time against error";
+//   c.xLabel = "PSNR dB";
+//   c.yLabel = "frame ms (median)";
+//   for (const auto& r : rows) c.seriesNamed(r.method).points.push_back({r.psnr, r.ms, r.variant});
+//   writeChart(c, dir, "bloom_ms_vs_error");  // bloom_ms_vs_error.svg and .png
 #pragma once
 
 #include <cstdint>
@@ -34,10 +43,13 @@ struct Chart {
   std::vector<Series> series;
   std::vector<std::string> notes;  // small lines under the title
   int width = 900, height = 560;
+
+  // The series of that name; a new one (markers, no line: a scatter) when none has it yet.
+  Series& seriesNamed(const std::string& name);
 };
 
 std::string toSvg(const Chart& chart);
-// RGBA8, rows top-down, width * height * 4 bytes.
+// RGBA8 (opaque), rows top-down, width * height * 4 bytes.
 std::vector<uint8_t> toRgba(const Chart& chart);
 // Writes NAME.svg and NAME.png under dir; throws RuntimeError on failure.
 void writeChart(const Chart& chart, const std::string& dir, const std::string& name);

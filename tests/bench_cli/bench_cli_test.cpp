@@ -33,6 +33,12 @@ std::string slurp(const fs::path& p) {
   return s.str();
 }
 
+uint32_t bigEndian(const std::string& bytes, size_t at) {
+  uint32_t v = 0;
+  for (size_t i = 0; i < 4; ++i) v = v << 8 | static_cast<unsigned char>(bytes[at + i]);
+  return v;
+}
+
 fs::path freshDir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("rgraph-bench-cli-" + std::to_string(getpid())) / name;
   fs::remove_all(dir);
@@ -77,14 +83,17 @@ TEST(BenchCli, SmokeSweepWritesResultsAndCharts) {
   }
   EXPECT_TRUE(j.at("machine").contains("renderer"));
 
-  // Charts: SVG and PNG of each.
+  // Charts: SVG and PNG of each, at the chart's size.
   for (const char* name : {"frame_ms_vs_lights", "frame_ms_vs_error", "bytes_vs_error"}) {
     const std::string svg = slurp(dir / (std::string(name) + ".svg"));
-    EXPECT_EQ(svg.rfind("<svg", 0), 0u) << name;
+    EXPECT_NE(svg.find("<svg"), std::string::npos) << name;
+    EXPECT_NE(svg.find("width=\"900pt\" height=\"560pt\""), std::string::npos) << name;
     EXPECT_NE(svg.find("</svg>"), std::string::npos) << name;
     const std::string png = slurp(dir / (std::string(name) + ".png"));
-    ASSERT_GT(png.size(), 8u) << name;
+    ASSERT_GT(png.size(), 24u) << name;
     EXPECT_EQ(png.substr(1, 3), "PNG") << name;
+    EXPECT_EQ(bigEndian(png, 16), 900u) << name;
+    EXPECT_EQ(bigEndian(png, 20), 560u) << name;
   }
 
   // --replot redraws the charts from results.json alone.
@@ -220,31 +229,79 @@ TEST(BenchChart, ParetoFrontKeepsOnlyUndominatedPoints) {
   EXPECT_EQ(front, (std::vector<size_t>{0, 1, 3}));  // sorted by x; (35,30), (50,120), (20,10) are dominated
 }
 
-TEST(BenchChart, SvgAndRasterDrawTheSameChart) {
+// A small chart: title, axis labels, one series in the palette's first
+// colour (0, 114, 178), a point label, a legend.
+Chart smallChart() {
   Chart c;
-  c.title = "t";
+  c.title = "Title";
   c.xLabel = "lights";
   c.yLabel = "ms";
   c.logX = c.logY = true;
-  c.width = 320;
-  c.height = 200;
-  Series s;
-  s.name = "a & b";
+  c.width = 480;
+  c.height = 300;
+  Series& s = c.seriesNamed("a & b");
+  s.line = true;
   s.points = {{1, 2, ""}, {10, 20, "p<1>"}, {100, 200, ""}};
-  c.series.push_back(s);
-  const std::string svg = toSvg(c);
-  EXPECT_NE(svg.find("a &amp; b"), std::string::npos);  // escaped
-  EXPECT_NE(svg.find("p&lt;1&gt;"), std::string::npos);
-  EXPECT_NE(svg.find("<circle"), std::string::npos);
-  const std::vector<uint8_t> rgba = toRgba(c);
-  ASSERT_EQ(rgba.size(), 320u * 200u * 4u);
-  size_t dark = 0, coloured = 0;
-  for (size_t i = 0; i < rgba.size(); i += 4) {
-    dark += rgba[i] < 80 && rgba[i + 1] < 80 && rgba[i + 2] < 80;
-    coloured += std::abs(int(rgba[i]) - int(rgba[i + 2])) > 60;  // the series' blue
+  return c;
+}
+
+struct Pixels {
+  std::vector<uint8_t> rgba;
+  int width = 0;
+  const uint8_t* at(int x, int y) const { return &rgba[(static_cast<size_t>(y) * width + x) * 4]; }
+  // Pixels in [x0, x1) x [y0, y1) that pass `test`.
+  template <typename F>
+  size_t count(int x0, int y0, int x1, int y1, F test) const {
+    size_t n = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) n += test(at(x, y)) ? 1 : 0;
+    return n;
   }
-  EXPECT_GT(dark, 500u);      // axes and text
-  EXPECT_GT(coloured, 100u);  // the line and its markers
+};
+bool dark(const uint8_t* p) { return p[0] < 100 && p[1] < 100 && p[2] < 100; }
+bool grey(const uint8_t* p) { return p[0] == p[1] && p[1] == p[2] && p[0] > 40 && p[0] < 215; }
+bool blue(const uint8_t* p) { return p[2] > p[0] + 60; }
+
+// The PNG's pixels: the axis label, the title and the legend are drawn as
+// antialiased text (grey edge pixels, not only black), the series in its
+// colour inside the plot area; without the x label its band stays blank.
+TEST(BenchChart, ImageHasAntialiasedTextAndTheSeries) {
+  const Chart c = smallChart();
+  const Pixels img{toRgba(c), c.width};
+  ASSERT_EQ(img.rgba.size(), 480u * 300u * 4u);
+  EXPECT_EQ(img.count(0, 0, 2, 2, [](const uint8_t* p) { return p[0] == 255 && p[1] == 255 && p[2] == 255; }), 4u);
+  const int labelBand[4] = {120, c.height - 30, 300, c.height - 10};  // under the plot, centred
+  EXPECT_GT(img.count(labelBand[0], labelBand[1], labelBand[2], labelBand[3], dark), 15u);
+  EXPECT_GT(img.count(0, 0, c.width, c.height, grey), 200u);  // antialiased edges of glyphs
+  EXPECT_GT(img.count(180, 10, 300, 30, dark), 15u);          // the title
+  EXPECT_GT(img.count(80, 40, 380, 240, blue), 150u);         // the line and markers in the plot area
+  EXPECT_GT(img.count(380, 40, 480, 100, dark), 15u);         // the legend's name
+  Chart bare = c;
+  bare.xLabel.clear();
+  bare.logX = false;  // no " (log)" either
+  const Pixels none{toRgba(bare), bare.width};
+  EXPECT_EQ(none.count(labelBand[0], labelBand[1], labelBand[2], labelBand[3], dark), 0u);
+}
+
+// The SVG is the same drawing: one glyph per visible character of its text
+// (cairo writes glyphs, not <text>), the series' stroke colour, the size.
+TEST(BenchChart, SvgHasTheTextAndTheSeries) {
+  const Chart c = smallChart();
+  const std::string svg = toSvg(c);
+  EXPECT_NE(svg.find("width=\"480pt\" height=\"300pt\""), std::string::npos) << svg.substr(0, 300);
+  EXPECT_NE(svg.find("rgb(0%,44.705882%,69.803922%)"), std::string::npos);  // (0, 114, 178)
+  auto uses = [](const std::string& s) {
+    size_t n = 0;
+    for (size_t at = s.find("xlink:href=\"#glyph"); at != std::string::npos; at = s.find("xlink:href=\"#glyph", at + 1))
+      ++n;
+    return n;
+  };
+  // Title, labels with " (log)", the series name and the point label, without spaces.
+  const std::string text = "Title" "lights(log)" "ms(log)" "a&b" "p<1>";
+  EXPECT_GE(uses(svg), text.size());
+  Chart bare = c;
+  bare.title.clear();
+  EXPECT_EQ(uses(svg) - uses(toSvg(bare)), 5u);  // the title's glyphs, no more
 }
 
 }  // namespace
