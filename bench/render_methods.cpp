@@ -41,6 +41,7 @@
 #include "rgraph/image.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "render_context.h"
 
 namespace {
 using namespace rgraph;
@@ -108,7 +109,6 @@ struct Runner {
 };
 
 struct World {
-  std::unique_ptr<GlContext> context;
   std::unique_ptr<ShaderLibrary> shaders;
   std::unique_ptr<Scene> scene;
   Extent size{640, 360};
@@ -130,7 +130,8 @@ World& world() {
     unsigned wd = 0, ht = 0;
     if (std::sscanf(sizeEnv, "%ux%u", &wd, &ht) == 2 && wd > 0 && ht > 0) w->size = {wd, ht};
   }
-  w->context = GlContext::create(ContextOptions{.debug = false});
+  bench::renderContext();
+  bench::atContextRelease([] { worldSlot().reset(); });
   w->shaders = std::make_unique<ShaderLibrary>();
   w->scene = std::make_unique<Scene>(loadSceneAny(sceneSpec));
   const SceneFeatures features = sceneFeatures(*w->scene);
@@ -253,7 +254,7 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
-  worldSlot().reset();  // GL objects go before the context, before static destructors
+  bench::releaseRenderContext();  // GL objects, then the context, before static destructors
   benchmark::Shutdown();
   return 0;
 }

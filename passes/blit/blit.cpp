@@ -53,6 +53,7 @@ class BlitPass final : public PassInstance {
                            static_cast<GLint>(dstExtent_.height), mask_, filter_);
     if (rawCopy_) glEnable(GL_FRAMEBUFFER_SRGB);
   }
+  uint32_t changedState() const override { return 0; }  // sRGB put back
 
  private:
   static std::string hex(GLenum v) {

@@ -28,23 +28,30 @@ constexpr std::array<DepthFunc, 8> kDepthFuncs = {{{"always", GL_ALWAYS},
                                                   {"off", 0}}};
 
 class FullscreenShaderPass final : public gl::FullscreenPass {
+  // Parameters read once; update() only sets uniforms and state (the
+  // program may be shared with other fullscreen passes).
   void prepare(PassContext& ctx) override {
     std::string df = ctx.params().getString("depth_func", "always");
     depthFunc_ = GL_ALWAYS;
     for (const auto& f : kDepthFuncs)
       if (df == f.name) depthFunc_ = f.func;
+    if (!ctx.bound("depth")) depthFunc_ = 0;
     std::string blend = ctx.params().getString("blend", "none");
     blend_ = blend == "alpha" ? 1 : blend == "additive" ? 2 : 0;
-  }
-
-  void update(PassContext& ctx) override {
-    Extent e = ctx.framebufferExtent();
-    resolution_.set(static_cast<float>(e.width), static_cast<float>(e.height));
     std::vector<double> c = ctx.params().getVector("color", {1, 1, 1, 1});
     c.resize(4, 1.0);
-    color_.set(static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]), static_cast<float>(c[3]));
-    value_.set(static_cast<float>(ctx.params().getNumber("value")));
-    if (ctx.bound("depth") && depthFunc_ != 0) {
+    for (size_t i = 0; i < 4; ++i) colorValue_[i] = static_cast<float>(c[i]);
+    valueNumber_ = static_cast<float>(ctx.params().getNumber("value"));
+    const Extent e = ctx.framebufferExtent();
+    resolutionValue_[0] = static_cast<float>(e.width);
+    resolutionValue_[1] = static_cast<float>(e.height);
+  }
+
+  void update(PassContext&) override {
+    resolution_.set(resolutionValue_[0], resolutionValue_[1]);
+    color_.set(colorValue_[0], colorValue_[1], colorValue_[2], colorValue_[3]);
+    value_.set(valueNumber_);
+    if (depthFunc_ != 0) {
       glEnable(GL_DEPTH_TEST);
       glDepthFunc(depthFunc_);
     }
@@ -58,9 +65,14 @@ class FullscreenShaderPass final : public gl::FullscreenPass {
     }
   }
 
+  uint32_t changedState() const override {
+    return (blend_ != 0 ? kGlStateBlend : 0u) | (depthFunc_ != 0 ? kGlStateDepth : 0u);
+  }
+
   ProgramUniform resolution_{this, "u_resolution"}, color_{this, "u_color"}, value_{this, "u_value"};
-  GLenum depthFunc_ = GL_ALWAYS;
+  GLenum depthFunc_ = GL_ALWAYS;  // 0: no depth test
   int blend_ = 0;
+  float colorValue_[4] = {1, 1, 1, 1}, valueNumber_ = 0, resolutionValue_[2] = {0, 0};
 };
 
 PassTypeDesc makeFullscreenPass() {

@@ -23,6 +23,7 @@ class TonemapPass final : public gl::FullscreenPass {
     encodeSrgb_.set(!gl::isSrgb(ctx.format("output")));  // a linear rgba8 target gets the curve here
     gamma_.set(static_cast<float>(p.getNumber("gamma", 0.0)));
   }
+  uint32_t changedState() const override { return 0; }  // uniforms only
   ProgramUniform exposure_{this, "u_exposure"}, operator_{this, "u_operator"};
   ProgramUniform encodeSrgb_{this, "u_encodeSrgb"}, gamma_{this, "u_gamma"};
 };

@@ -101,6 +101,19 @@ ShaderProgramSpec programSpec(std::string vert, std::string frag, std::vector<st
                               std::vector<SamplerSlot> samplers = {});
 
 // One pass in a running pipeline. Created per pass per realized plan.
+// The fixed-function state the executor puts back before a pass, by group
+// (PassInstance::changedState), and the value each group starts a pass with.
+enum GlStateGroup : uint32_t {
+  kGlStateBlend = 1u << 0,      // GL_BLEND off
+  kGlStateDepth = 1u << 1,      // GL_DEPTH_TEST off, depth function GL_LESS, depth writes on
+  kGlStateStencil = 1u << 2,    // GL_STENCIL_TEST off, stencil write mask 0xFF
+  kGlStateCull = 1u << 3,       // GL_CULL_FACE off
+  kGlStateScissor = 1u << 4,    // GL_SCISSOR_TEST off
+  kGlStateColorMask = 1u << 5,  // every channel written (draw buffer 0)
+  kGlStateSrgb = 1u << 6,       // GL_FRAMEBUFFER_SRGB on
+  kGlStateAll = (1u << 7) - 1,
+};
+
 class PassInstance {
  public:
   virtual ~PassInstance() = default;
@@ -111,6 +124,12 @@ class PassInstance {
   // programs' specs name to their units (and nothing else): use
   // ctx.program(i), ctx.framebuffer() and ctx.texture(slot).
   virtual void execute(PassContext& ctx) = 0;
+  // The GlStateGroup bits execute() may leave different from the values
+  // above (after setup(), for every frame). The executor puts back only
+  // these before the next pass, so a pass that sets none of them, or puts
+  // back what it set, saves the next pass those calls by returning 0.
+  // Executor::setStateChecks(true) verifies the answer after every pass.
+  virtual uint32_t changedState() const { return kGlStateAll; }
 };
 
 struct PassTypeDesc {
@@ -194,6 +213,11 @@ class PassContext {
   // updated for the output extent before the first pass of every frame.
   // nullptr without a scene.
   virtual GpuScene* gpuScene() { return nullptr; }
+  // An empty vertex array the executor keeps for its passes (a fullscreen
+  // triangle from gl_VertexID needs one bound): passes that share it spare
+  // the driver revalidating vertex input between their draws. 0: none (make
+  // your own).
+  virtual uint32_t emptyVertexArray() const { return 0; }
 };
 
 }  // namespace rgraph

@@ -154,7 +154,9 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(PassIndex pass, Extent output
   run->gpuScenePtr = gpuScene;
   run->historyHeld = &historyHeld;
   run->frameCounter = &frame;
+  run->emptyVao = emptyVao.id();
   run->output = output;
+  run->jitter = pd.jitter;
   run->paramSet = defaultParams(type->params);
   if (pass.value() < pipeline.params.size())
     for (const auto& [k, v] : pipeline.params[pass.value()].values()) run->paramSet.set(k, v);
@@ -184,6 +186,11 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(PassIndex pass, Extent output
   }
   std::stable_sort(run->slots.begin(), run->slots.end(),
                    [&](const SlotBinding& a, const SlotBinding& b) { return slotOrder(a.slot) < slotOrder(b.slot); });
+  for (size_t i = 0; i < run->slots.size(); ++i) {
+    const ResourceDecl& decl = pipeline.graph.resources[run->slots[i].resource.value()];
+    if (run->slots[i].firstWrite && decl.kind == ResourceKind::texture && decl.texture.clear)
+      run->clearSlots.push_back(i);
+  }
 
   // Framebuffer: colour attachments in slot-declaration order, then depth.
   std::vector<GLenum> drawBuffers;
@@ -209,12 +216,22 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(PassIndex pass, Extent output
     if (static_cast<GLint>(drawBuffers.size()) > maxDraw)
       throw RuntimeError("pass '" + pd.name + "': " + std::to_string(drawBuffers.size()) +
                          " colour attachments, the GL allows " + std::to_string(maxDraw));
-    run->fbo = gl::createFramebuffer();
+    // Passes that draw into the same textures share one framebuffer (a
+    // chain ping-ponging between aliased targets binds two, not one per pass).
+    std::vector<uint32_t> key;
+    for (const auto& s : run->slots)
+      if (s.colorIndex >= 0 || s.depthAttachment)
+        key.insert(key.end(), {s.depthAttachment ? gl::attachmentPoint(s.format) : GL_COLOR_ATTACHMENT0 + s.colorIndex,
+                               s.texture});
+    std::shared_ptr<gl::Framebuffer>& shared = framebuffers[key];
+    const bool fresh = !shared;
+    if (fresh) shared = std::make_shared<gl::Framebuffer>(gl::createFramebuffer());
+    run->fbo = shared;
     bool extentSet = false;
     for (const auto& s : run->slots) {
       if (s.colorIndex < 0 && !s.depthAttachment) continue;
       GLenum point = s.depthAttachment ? gl::attachmentPoint(s.format) : GL_COLOR_ATTACHMENT0 + s.colorIndex;
-      glNamedFramebufferTexture(run->fbo.id(), point, s.texture, 0);
+      if (fresh) glNamedFramebufferTexture(run->fbo->id(), point, s.texture, 0);
       if (!extentSet) {
         run->fbExtent = s.extent;
         extentSet = true;
@@ -223,14 +240,14 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(PassIndex pass, Extent output
         run->fbExtent.height = std::min(run->fbExtent.height, s.extent.height);
       }
     }
-    if (drawBuffers.empty()) {
-      glNamedFramebufferDrawBuffer(run->fbo.id(), GL_NONE);
-      glNamedFramebufferReadBuffer(run->fbo.id(), GL_NONE);
-    } else {
-      glNamedFramebufferDrawBuffers(run->fbo.id(), static_cast<GLsizei>(drawBuffers.size()), drawBuffers.data());
-      glNamedFramebufferReadBuffer(run->fbo.id(), GL_COLOR_ATTACHMENT0);
+    if (fresh && drawBuffers.empty()) {
+      glNamedFramebufferDrawBuffer(run->fbo->id(), GL_NONE);
+      glNamedFramebufferReadBuffer(run->fbo->id(), GL_NONE);
+    } else if (fresh) {
+      glNamedFramebufferDrawBuffers(run->fbo->id(), static_cast<GLsizei>(drawBuffers.size()), drawBuffers.data());
+      glNamedFramebufferReadBuffer(run->fbo->id(), GL_COLOR_ATTACHMENT0);
     }
-    GLenum status = glCheckNamedFramebufferStatus(run->fbo.id(), GL_DRAW_FRAMEBUFFER);
+    GLenum status = glCheckNamedFramebufferStatus(run->fbo->id(), GL_DRAW_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
       std::string atts;
       for (const auto& s : run->slots)
@@ -304,8 +321,13 @@ void Executor::Impl::build(Extent output) {
 // are now (again after an import changes a texture).
 void Executor::Impl::createRuns() {
   runs.clear();
+  framebuffers.clear();
+  if (!emptyVao) emptyVao = gl::createVertexArray();
   builtPrograms.clear();
+  slotUnits.clear();
   for (PassIndex pass : plan.order) runs.push_back(createRun(pass, size));
+  timings.clear();
+  for (const auto& run : runs) timings.push_back({run->name, 0.0});
   assignMemoryBarriers();
   planHistory();
   for (auto& run : runs) {
@@ -314,6 +336,7 @@ void Executor::Impl::createRuns() {
       // takes them by index instead of building them itself.
       RequestRecorder record(shaders, builtPrograms, run->name);
       run->programs.build(run->name, *run->type, run->paramSet, shaders);
+      run->programs.resolveSlots(*run);
       run->instance->setup(*run);
     } catch (const RuntimeError& e) {
       // Where the pass is in the config, when it came from one.
@@ -327,6 +350,8 @@ void Executor::Impl::createRuns() {
       if (dynamic_cast<const LocatedError*>(&e)) throw LocatedError(message);
       throw RuntimeError(message);
     }
+    for (uint32_t unit : run->programs.units())
+      if (std::find(slotUnits.begin(), slotUnits.end(), unit) == slotUnits.end()) slotUnits.push_back(unit);
   }
 }
 
@@ -334,21 +359,33 @@ gl::TextureShape Executor::Impl::declaredShape(ResourceIndex r) const {
   return gl::declaredShape(pipeline.graph.resources[r.value()], plan.resources[r.value()].extent);
 }
 
+// What passes may rely on (docs/writing-a-pass.md, rgraph/pass.h's
+// GlStateGroup), put back only where the state may differ: at the start of a
+// frame everything, after a pass what its changedState() names. Bindings are
+// not reset: a pass binds the framebuffer (and viewport), program and vertex
+// array it draws with; binding 0 in between would only make the driver
+// validate them again.
 void Executor::Impl::resetState(const PassRun& run) {
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glDisable(GL_BLEND);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_STENCIL_TEST);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_SCISSOR_TEST);
-  glEnable(GL_FRAMEBUFFER_SRGB);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glDepthMask(GL_TRUE);
-  glStencilMask(0xFFu);
-  glDepthFunc(GL_LESS);
-  glUseProgram(0);
-  glBindVertexArray(0);
-  if (run.fbo) glViewport(0, 0, static_cast<GLsizei>(run.fbExtent.width), static_cast<GLsizei>(run.fbExtent.height));
+  const uint32_t d = dirtyState;
+  if (d & kGlStateBlend) glDisable(GL_BLEND);
+  if (d & kGlStateDepth) {
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+  }
+  if (d & kGlStateStencil) {
+    glDisable(GL_STENCIL_TEST);
+    glStencilMask(0xFFu);
+  }
+  if (d & kGlStateCull) glDisable(GL_CULL_FACE);
+  if (d & kGlStateScissor) glDisable(GL_SCISSOR_TEST);
+  if (d & kGlStateColorMask) glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  if (d & kGlStateSrgb) glEnable(GL_FRAMEBUFFER_SRGB);
+  dirtyState = 0;
+  if (run.readOnlyDepth) {
+    glDepthMask(GL_FALSE);
+    dirtyState |= kGlStateDepth;
+  }
 }
 
 // Derived once per plan, not searched per frame: which passes read what an
@@ -361,20 +398,17 @@ void Executor::Impl::assignMemoryBarriers() {
 }
 
 void Executor::Impl::applyClears(PassRun& run) {
-  const auto& decls = pipeline.graph.resources;
-  for (const auto& s : run.slots) {
-    if (!s.firstWrite) continue;
-    const ResourceDecl& decl = decls[s.resource.value()];
-    if (decl.kind != ResourceKind::texture || !decl.texture.clear) continue;
-    const std::vector<float>& c = *decl.texture.clear;
+  for (size_t slot : run.clearSlots) {
+    const SlotBinding& s = run.slots[slot];
+    const std::vector<float>& c = *pipeline.graph.resources[s.resource.value()].texture.clear;
     if (gl::isDepth(s.format)) {
       float d = c.empty() ? 1.0f : c[0];
       GLint stencil = c.size() > 1 ? static_cast<GLint>(c[1]) : 0;
       if (s.depthAttachment) {
         if (gl::hasStencil(s.format))
-          glClearNamedFramebufferfi(run.fbo.id(), GL_DEPTH_STENCIL, 0, d, stencil);
+          glClearNamedFramebufferfi(run.fbo->id(), GL_DEPTH_STENCIL, 0, d, stencil);
         else
-          glClearNamedFramebufferfv(run.fbo.id(), GL_DEPTH, 0, &d);
+          glClearNamedFramebufferfv(run.fbo->id(), GL_DEPTH, 0, &d);
       } else {
         for (uint32_t level = 0; level < s.mips; ++level) {
           if (gl::hasStencil(s.format)) {
@@ -393,7 +427,7 @@ void Executor::Impl::applyClears(PassRun& run) {
       float v[4] = {0.0f, 0.0f, 0.0f, 1.0f};
       for (size_t i = 0; i < 4 && i < c.size(); ++i) v[i] = c[i];
       if (s.colorIndex >= 0) {
-        glClearNamedFramebufferfv(run.fbo.id(), GL_COLOR, s.colorIndex, v);
+        glClearNamedFramebufferfv(run.fbo->id(), GL_COLOR, s.colorIndex, v);
       } else {
         if (gl::isSrgb(s.format))
           for (int i = 0; i < 3; ++i) v[i] = linearToSrgb(v[i]);
@@ -421,6 +455,7 @@ Executor::Executor(const PipelineConfig& pipeline, const PassRegistry& registry,
 
 void Executor::setCamera(const Camera& camera) { impl_->camera = camera; }
 void Executor::setCpuPassTiming(bool on) { impl_->cpuPassTiming = on; }
+void Executor::setStateChecks(bool on) { impl_->stateChecks = on; }
 void Executor::setAfterPass(std::function<void(size_t)> callback) { impl_->afterPass = std::move(callback); }
 
 
@@ -444,29 +479,33 @@ void Executor::resize(Extent output) {
 void Executor::renderFrame() {
   Impl& im = *impl_;
   if (!im.built) throw RuntimeError("Executor::renderFrame: call resize() first");
-  im.timings.assign(im.runs.size(), PassTiming{});
   using Clock = std::chrono::steady_clock;
   im.updateFrameBlock();
   im.beginHistory();
   // Software renderers: CPU time around a glFinish per pass, only when asked
   // (setCpuPassTiming): each finish stalls the pipeline the driver keeps.
   const bool cpuTiming = im.software && im.cpuPassTiming;
+  im.dirtyState = kGlStateAll;  // whatever the caller left
   if (cpuTiming) glFinish();
   for (size_t i = 0; i < im.runs.size(); ++i) {
     PassRun& run = *im.runs[i];
-    im.timings[i].name = run.name;
-    Clock::time_point t0 = Clock::now();
+    im.timings[i].ms = 0.0;
+    const Clock::time_point t0 = cpuTiming ? Clock::now() : Clock::time_point{};
     if (run.query) glBeginQuery(GL_TIME_ELAPSED, run.query.id());
     if (run.memoryBarrier) glMemoryBarrier(run.memoryBarrier);
-    if (im.gpuScene) im.gpuScene->selectJitter(im.pipeline.graph.passes[run.decl.value()].jitter);
+    if (im.gpuScene) im.gpuScene->selectJitter(run.jitter);
     im.resetState(run);
+    // The pass's framebuffer before its inputs: a pass usually reads what the
+    // one before drew into, and binding that texture while its framebuffer is
+    // still bound costs the driver a flush more.
+    if (run.fbo) glBindFramebuffer(GL_DRAW_FRAMEBUFFER, run.fbo->id());
     im.applyClears(run);
-    run.programs.bindSlots(run);
-    if (run.readOnlyDepth) glDepthMask(GL_FALSE);
+    run.programs.bindSlots();
     try {
       RequestRecorder record(im.shaders, im.builtPrograms, run.name);
       run.instance->execute(run);
-      run.programs.unbindSlots();
+      im.dirtyState |= run.instance->changedState();
+      if (im.stateChecks) im.checkState(run);
     } catch (const RuntimeError& e) {
       if (run.query) glEndQuery(GL_TIME_ELAPSED);
       std::string message = std::string(e.what()) + "\n  (in pass '" + run.name + "' of type '" + run.typeName + "')";
@@ -478,7 +517,10 @@ void Executor::renderFrame() {
       glFinish();
       im.timings[i].ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     }
-    if (im.afterPass) im.afterPass(i);  // outside the pass's time
+    if (im.afterPass) {
+      im.afterPass(i);  // outside the pass's time
+      im.dirtyState = kGlStateAll;
+    }
   }
   if (im.frameEndBarrier) glMemoryBarrier(im.frameEndBarrier);
   im.endHistory();
@@ -491,6 +533,7 @@ void Executor::renderFrame() {
   glDisable(GL_DEPTH_TEST);
   glUseProgram(0);
   glBindVertexArray(0);
+  for (uint32_t unit : im.slotUnits) glBindTextureUnit(unit, 0);
   if (!im.software) {
     for (size_t i = 0; i < im.runs.size(); ++i) {
       GLuint64 ns = 0;

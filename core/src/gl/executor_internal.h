@@ -76,7 +76,8 @@ class PassRun final : public PassContext {
   PassIndex decl;
   ParamSet paramSet;
   std::vector<SlotBinding> slots;
-  gl::Framebuffer fbo;
+  std::vector<size_t> clearSlots;  // slots first written here whose resource has a clear value
+  std::shared_ptr<gl::Framebuffer> fbo;  // shared by passes with the same attachments
   Extent fbExtent;
   gl::Query query;
   std::unique_ptr<PassInstance> instance;
@@ -91,6 +92,8 @@ class PassRun final : public PassContext {
   // The executor's frame state, read through historyValid() and frameIndex().
   const bool* historyHeld = nullptr;
   const uint64_t* frameCounter = nullptr;
+  uint32_t emptyVao = 0;  // Executor::Impl::emptyVao
+  bool jitter = true;     // PassDecl::jitter
 
   const SlotBinding* find(std::string_view slot) const {
     for (const auto& s : slots)
@@ -131,11 +134,12 @@ class PassRun final : public PassContext {
     return s && s->history && historyHeld && *historyHeld;
   }
   uint64_t frameIndex() const override { return frameCounter ? *frameCounter : 0; }
-  uint32_t framebuffer() const override { return fbo.id(); }
+  uint32_t framebuffer() const override { return fbo ? fbo->id() : 0; }
   Extent framebufferExtent() const override { return fbExtent; }
   ShaderLibrary& shaders() override { return *shaderLib; }
   const Scene* scene() const override { return scenePtr; }
   GpuScene* gpuScene() override { return gpuScenePtr; }
+  uint32_t emptyVertexArray() const override { return emptyVao; }
   uint32_t program(size_t index) const override { return programs.program(index, name); }
   size_t programCount() const override { return programs.count(); }
 };
@@ -152,6 +156,8 @@ struct Executor::Impl {
   std::optional<Camera> camera;           // none: the scene's
   std::function<void(size_t)> afterPass;  // Executor::setAfterPass
   bool cpuPassTiming = true;              // Executor::setCpuPassTiming
+  bool stateChecks = false;               // Executor::setStateChecks
+  uint32_t dirtyState = kGlStateAll;      // GlStateGroup bits resetState() puts back
   std::map<std::string, uint32_t, std::less<>> imports;  // resource name -> caller's texture
   bool software = false;
 
@@ -165,7 +171,11 @@ struct Executor::Impl {
   std::vector<exec_detail::ResourceObject> resources;
   std::map<std::string, ResourceIndex, std::less<>> byName;  // resource and version names
   std::vector<std::unique_ptr<exec_detail::PassRun>> runs;      // execution order
-  std::vector<PassTiming> timings;
+  // The passes' framebuffers, by attachments (point, texture, ...).
+  std::map<std::vector<uint32_t>, std::shared_ptr<gl::Framebuffer>> framebuffers;
+  gl::VertexArray emptyVao;  // PassContext::emptyVertexArray, made with the runs
+  std::vector<PassTiming> timings;  // named in createRuns(), timed per frame
+  std::vector<uint32_t> slotUnits;  // texture units passes' slots are bound to: cleared after a frame
   std::vector<BuiltProgram> builtPrograms;  // what passes asked the ShaderLibrary for, in order
   uint32_t frameEndBarrier = 0;  // glMemoryBarrier bits after the last pass
 
@@ -181,11 +191,14 @@ struct Executor::Impl {
 
   void teardown() {
     runs.clear();  // pass instances first: they may hold GL objects of their own
+    framebuffers.clear();
+    emptyVao = {};
     resources.clear();
     physicalTextures.clear();
     physicalBuffers.clear();
     byName.clear();
     timings.clear();
+    slotUnits.clear();
     builtPrograms.clear();
     frameEndBarrier = 0;
     historyCopies.clear();
@@ -212,6 +225,9 @@ struct Executor::Impl {
   std::unique_ptr<exec_detail::PassRun> createRun(PassIndex pass, Extent output);
   void applyClears(exec_detail::PassRun& run);
   void resetState(const exec_detail::PassRun& run);
+  // Throws when the state differs from the reset values in a group the
+  // pass's changedState() leaves out (executor_state_check.cpp).
+  void checkState(const exec_detail::PassRun& run) const;
   void assignMemoryBarriers();
   // History (executor_history.cpp): which textures are copied after a frame
   // (after createResources), which physicals must never be shared with

@@ -141,7 +141,8 @@ size_t Executor::ownedObjects() const {
   for (const auto& t : impl_->physicalTextures) n += own(t);
   for (const auto& b : impl_->physicalBuffers) n += b ? 1 : 0;
   for (const auto& r : impl_->resources) n += own(r.ownTexture) + (r.ownBuffer ? 1 : 0);
-  for (const auto& run : impl_->runs) n += (run->fbo ? 1 : 0) + (run->query ? 1 : 0);
+  n += impl_->framebuffers.size() + (impl_->emptyVao ? 1 : 0);
+  for (const auto& run : impl_->runs) n += run->query ? 1 : 0;
   return n;
 }
 

@@ -4,12 +4,11 @@
 
 namespace rgraph::gl {
 
-FullscreenTriangle::FullscreenTriangle() : vao_(createVertexArray()) {}
+FullscreenTriangle::FullscreenTriangle() : vao_(createVertexArray()), id_(vao_.id()) {}
 
 void FullscreenTriangle::draw() const {
-  glBindVertexArray(vao_.id());
+  glBindVertexArray(id_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindVertexArray(0);
 }
 
 void bindPassFramebuffer(PassContext& ctx) {
@@ -33,7 +32,10 @@ std::function<std::vector<ShaderProgramSpec>(const ParamSet&)> fullscreenProgram
 void FullscreenPass::setup(PassContext& ctx) {
   program_ = ctx.program(programIndex_);
   for (ProgramUniform* u : uniforms_) static_cast<Uniform&>(*u) = Uniform(program_, u->name_);
-  if (!triangle_) triangle_ = std::make_unique<FullscreenTriangle>();
+  if (ctx.emptyVertexArray())
+    triangle_ = std::make_unique<FullscreenTriangle>(ctx.emptyVertexArray());
+  else if (!triangle_)
+    triangle_ = std::make_unique<FullscreenTriangle>();
   prepare(ctx);
 }
 

@@ -43,21 +43,23 @@ void PassPrograms::build(const std::string& passName, const PassTypeDesc& type, 
                            " (SamplerSlot::unit)");
       const auto unit = static_cast<uint32_t>(m.unit);
       bool known = false;
-      for (const auto& [u, boundSlot] : units_) {
-        if (u != unit) continue;
-        if (boundSlot != m.slot)
-          throw RuntimeError(what + ": inputs '" + boundSlot + "' and '" + m.slot + "' both name texture unit " +
+      for (const Unit& u : units_) {
+        if (u.unit != unit) continue;
+        if (u.slot != m.slot)
+          throw RuntimeError(what + ": inputs '" + u.slot + "' and '" + m.slot + "' both name texture unit " +
                              std::to_string(unit));
         known = true;
       }
-      if (!known) units_.emplace_back(unit, m.slot);
+      if (!known) units_.push_back({unit, m.slot});
     }
     const uint32_t id =
         s.comp.empty() ? shaders.program(s.vert, s.frag, s.defines) : shaders.computeProgram(s.comp, s.defines);
     // Once here, so that a shader without layout(binding) reads the unit too.
     for (const SamplerSlot& m : s.samplers) {
       const GLint loc = glGetUniformLocation(id, m.uniform.c_str());
-      if (loc >= 0) glProgramUniform1i(id, loc, m.unit);
+      if (loc < 0) continue;
+      glProgramUniform1i(id, loc, m.unit);
+      for (Unit& u : units_) u.read = u.read || u.unit == static_cast<uint32_t>(m.unit);
     }
     ids_.push_back(id);
   }
@@ -70,12 +72,20 @@ uint32_t PassPrograms::program(size_t index, const std::string& passName) const 
   return ids_[index];
 }
 
-void PassPrograms::bindSlots(const PassContext& ctx) const {
-  for (const auto& [unit, slot] : units_) glBindTextureUnit(unit, ctx.texture(slot));
+void PassPrograms::resolveSlots(const PassContext& ctx) {
+  for (Unit& u : units_) u.texture = ctx.texture(u.slot);
 }
 
-void PassPrograms::unbindSlots() const {
-  for (const auto& [unit, slot] : units_) glBindTextureUnit(unit, 0);
+void PassPrograms::bindSlots() const {
+  for (const Unit& u : units_)
+    if (u.read) glBindTextureUnit(u.unit, u.texture);
+}
+
+std::vector<uint32_t> PassPrograms::units() const {
+  std::vector<uint32_t> out;
+  for (const Unit& u : units_)
+    if (u.read) out.push_back(u.unit);
+  return out;
 }
 
 RequestRecorder::RequestRecorder(ShaderLibrary& shaders, std::vector<Executor::BuiltProgram>& built,

@@ -26,14 +26,25 @@ class PassPrograms {
   uint32_t program(size_t index, const std::string& passName) const;
   size_t count() const { return ids_.size(); }
 
-  // Binds every sampled slot the specs name to its unit (texture 0 when the
-  // slot is unbound); unbindSlots puts texture 0 back on those units.
-  void bindSlots(const PassContext& ctx) const;
-  void unbindSlots() const;
+  // Takes the textures of the sampled slots the specs name, once per build
+  // (texture 0 for an unbound slot), so that a frame looks up no slot names.
+  void resolveSlots(const PassContext& ctx);
+  // Binds them to their units: those a program reads (a sampler the
+  // compiler dropped is not bound). Nothing unbinds them after the pass: the
+  // next pass binds its own units, the executor clears every slot unit at
+  // the end of the frame (units()).
+  void bindSlots() const;
+  std::vector<uint32_t> units() const;
 
  private:
   std::vector<uint32_t> ids_;
-  std::vector<std::pair<uint32_t, std::string>> units_;  // unit -> sampled slot, each unit once
+  struct Unit {
+    uint32_t unit = 0;
+    std::string slot;
+    bool read = false;     // an active sampler uniform in one of the programs
+    uint32_t texture = 0;  // resolveSlots
+  };
+  std::vector<Unit> units_;  // each unit once
 };
 
 // Records the programs a pass asks the ShaderLibrary for while it is set up

@@ -123,6 +123,11 @@ class Executor {
   // it (default true). Off, passes are not timed (their ms stay 0) and the
   // frame runs without the stalls. GPU timer queries are unaffected.
   void setCpuPassTiming(bool on);
+  // After every pass, reads back the state groups its changedState() says
+  // it leaves alone (rgraph/pass.h) and throws RuntimeError naming the pass
+  // and the state when one differs. For tests of pass types; off by default
+  // (the reads cost a GL query each).
+  void setStateChecks(bool on);
 
   uint32_t outputTexture() const;
   Extent outputExtent() const;

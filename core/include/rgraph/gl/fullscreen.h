@@ -19,9 +19,12 @@ namespace rgraph::gl {
 class FullscreenTriangle {
  public:
   FullscreenTriangle();  // needs a current context
-  void draw() const;     // binds its VAO and draws 3 vertices
+  // Draws with someone else's empty vertex array (PassContext::emptyVertexArray).
+  explicit FullscreenTriangle(uint32_t sharedVertexArray) : id_(sharedVertexArray) {}
+  void draw() const;  // binds the vertex array and draws 3 vertices (and leaves it bound)
  private:
-  VertexArray vao_;
+  VertexArray vao_;  // own, when none is shared
+  uint32_t id_ = 0;
 };
 
 // Binds ctx.framebuffer() as draw framebuffer and sets the viewport to its extent.
@@ -53,7 +56,7 @@ class FullscreenPass : public PassInstance {
   FullscreenPass(const FullscreenPass&) = delete;
   FullscreenPass& operator=(const FullscreenPass&) = delete;
   // Takes the program, looks up every ProgramUniform and creates the
-  // triangle, then calls prepare(ctx).
+  // triangle (on the executor's shared empty vertex array), then calls prepare(ctx).
   void setup(PassContext& ctx) override;
   // Binds the pass's framebuffer (viewport to its extent) and the program,
   // calls update(ctx), draws the triangle.

@@ -1,0 +1,138 @@
+// PassInstance::changedState: the executor puts back before a pass only the
+// state groups earlier passes said they may leave changed, and
+// Executor::setStateChecks reads the state back to check those answers.
+#include <GL/glcorearb.h>
+
+#include <filesystem>
+
+#include "gl_test_util.h"
+#include "rgraph/adapt.h"
+#include "rgraph/error.h"
+#include "rgraph/pipeline_load.h"
+#include "rgraph/scene.h"
+
+using namespace rgraph;
+using namespace rgraph::test;
+
+namespace {
+
+bool blendSeen = false;
+
+// Turns blending on and answers `declared`.
+template <uint32_t declared>
+struct BlendLeaver final : PassInstance {
+  void execute(PassContext& ctx) override {
+    glEnable(GL_BLEND);
+    glClearNamedFramebufferfv(ctx.framebuffer(), GL_COLOR, 0, std::array<float, 4>{0, 0, 0, 1}.data());
+  }
+  uint32_t changedState() const override { return declared; }
+};
+// Records whether blending was on when it ran.
+struct BlendLooker final : PassInstance {
+  void execute(PassContext& ctx) override {
+    blendSeen = glIsEnabled(GL_BLEND);
+    glClearNamedFramebufferfv(ctx.framebuffer(), GL_COLOR, 0, std::array<float, 4>{1, 1, 1, 1}.data());
+  }
+  uint32_t changedState() const override { return 0; }
+};
+
+PassTypeDesc probeType(const std::string& name, std::function<std::unique_ptr<PassInstance>()> create) {
+  PassTypeDesc d;
+  d.name = name;
+  d.description = "test";
+  d.slots.resize(2);
+  d.slots[0].name = "src";
+  d.slots[0].required = false;
+  d.slots[1].name = "dst";
+  d.slots[1].access = Access::color_attachment;
+  d.create = std::move(create);
+  return d;
+}
+
+struct StateTest : GlTest {
+  PassRegistry reg = PassRegistry::builtins();
+  void SetUp() override {
+    GlTest::SetUp();
+    ASSERT_TRUE(reg.add(probeType("honest", [] { return std::make_unique<BlendLeaver<kGlStateBlend>>(); })));
+    ASSERT_TRUE(reg.add(probeType("lying", [] { return std::make_unique<BlendLeaver<0>>(); })));
+    ASSERT_TRUE(reg.add(probeType("looker", [] { return std::make_unique<BlendLooker>(); })));
+  }
+  // `leaver` then the looker, which reads what the leaver wrote.
+  PipelineConfig graph(const std::string& leaver) {
+    GraphBuilder g;
+    g.texture("a", Format::rgba8).output("out");
+    g.pass("leave", leaver, {writeUse("dst", Access::color_attachment, "a")});
+    g.pass("look", "looker", {readUse("src", Access::sampled, "a"), writeUse("dst", Access::color_attachment, "out")});
+    return g.config();
+  }
+};
+
+TEST_F(StateTest, StateAPassSaysItChangedIsPutBack) {
+  Executor exec(graph("honest"), reg, *shaders);
+  exec.setStateChecks(true);
+  exec.resize({8, 8});
+  blendSeen = true;
+  exec.renderFrame();
+  EXPECT_FALSE(blendSeen);
+}
+
+// What the executor trusts: a pass that leaves blending on but says it
+// changes nothing leaks it into the next pass (the reset was skipped), and
+// the state checks name it.
+TEST_F(StateTest, AWrongAnswerLeaksAndTheChecksNameThePass) {
+  Executor exec(graph("lying"), reg, *shaders);
+  exec.resize({8, 8});
+  blendSeen = false;
+  exec.renderFrame();
+  EXPECT_TRUE(blendSeen);
+  exec.setStateChecks(true);
+  try {
+    exec.renderFrame();
+    FAIL() << "expected RuntimeError";
+  } catch (const RuntimeError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("pass 'leave' of type 'lying' left state changed: GL_BLEND is on"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("changedState()"), std::string::npos) << msg;
+  }
+  glDisable(GL_BLEND);
+}
+
+// The built-in passes' answers hold: every shipped pipeline made of
+// built-in pass types (adapted to the LearnOpenGL scene, as rgraph render
+// does), and fullscreen passes that blend and depth-test.
+TEST_F(StateTest, BuiltInPassesAnswerTruthfully) {
+  const Scene scene = makeLearnOpenGLScene();
+  std::vector<std::pair<std::string, PipelineConfig>> pipelines;
+  for (const char* dir : {"/pipelines", "/pipelines/examples"})
+    for (const auto& f : std::filesystem::directory_iterator(std::string(RGRAPH_SOURCE_DIR) + dir)) {
+      if (f.path().extension() != ".json") continue;
+      PipelineConfig cfg = loadPipelineFileOrThrow(f.path().string());
+      if (!cfg.plugins.empty()) continue;  // plugin types keep the default answer (all)
+      adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
+      pipelines.emplace_back(f.path().filename().string(), std::move(cfg));
+    }
+  ASSERT_GE(pipelines.size(), 10u);
+  pipelines.emplace_back("fullscreen blend and depth", loadPipelineTextOrThrow(R"({"version": 1,
+    "resources": {"c": {"format": "rgba16f", "size": "output"}, "d": {"format": "depth32f", "size": "output"},
+                  "out": {"format": "rgba8", "size": "output"}},
+    "passes": [
+      {"name": "base", "type": "fullscreen", "params": {"shader": "gradient.frag"}, "outputs": {"color": "c"}},
+      {"name": "depth", "type": "fullscreen", "params": {"shader": "solid_color.frag", "depth_func": "always"},
+       "outputs": {"color": "c1", "depth": "d"}, "inputs": {"color": "c"}},
+      {"name": "alpha", "type": "fullscreen", "params": {"shader": "solid_color.frag", "blend": "alpha",
+       "color": [1, 0, 0, 0.5]}, "inputs": {"color": "c1"}, "outputs": {"color": "c2"}},
+      {"name": "add", "type": "fullscreen", "params": {"shader": "solid_color.frag", "blend": "additive"},
+       "inputs": {"color": "c2"}, "outputs": {"color": "c3"}},
+      {"name": "tonemap", "type": "tonemap", "inputs": {"hdr": "c3"}, "outputs": {"output": "out"}}],
+    "output": "out"})", "<state test>"));
+  for (auto& [name, cfg] : pipelines) {
+    SCOPED_TRACE(name);
+    Executor exec(cfg, PassRegistry::builtins(), *shaders, &scene);
+    exec.setStateChecks(true);
+    exec.resize({32, 24});
+    EXPECT_NO_THROW(exec.renderFrame());
+    EXPECT_NO_THROW(exec.renderFrame());
+  }
+}
+
+}  // namespace
