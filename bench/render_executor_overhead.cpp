@@ -219,7 +219,9 @@ void setUpDefault(World& w, Case& c) {
   glProgramUniform1i(ambient, uniform(ambient, "u_pointLightCount"), 0);
   glProgramUniform1i(ambient, uniform(ambient, "u_ambientAndSun"), 1);
   glProgramUniform1i(ambient, uniform(ambient, "u_hasAo"), 0);
-  glProgramUniform1f(volumes, uniform(volumes, "u_volumeScale"), gpu.icosphereScale());
+  const GLint firstLightLoc = uniform(volumes, "u_firstLight"), spotVolumesLoc = uniform(volumes, "u_spotVolumes");
+  const GLint volumeScaleLoc = uniform(volumes, "u_volumeScale");
+  const float icosphereScale = gpu.icosphereScale();
   glProgramUniform1f(markers, uniform(markers, "u_markerSize"), 0.125f);
   glProgramUniform1f(tonemap, uniform(tonemap, "u_exposure"), 1.0f);
   glProgramUniform1i(tonemap, uniform(tonemap, "u_operator"), 2);  // "none"
@@ -230,7 +232,8 @@ void setUpDefault(World& w, Case& c) {
   c.vao = gl::createVertexArray();
 
   c.hand = [&c, &gpu, size, lights, threshold, gPosition, gNormal, gAlbedo, hdr, gbufferFbo, hdrFbo, volumesFbo,
-            depthCopyFbo, markersFbo, outputFbo, depthReadFbo, geometry, ambient, volumes, markers, tonemap] {
+            depthCopyFbo, markersFbo, outputFbo, depthReadFbo, geometry, ambient, volumes, markers, tonemap, firstLightLoc,
+            spotVolumesLoc, volumeScaleLoc, icosphereScale] {
     FrameMotion motion;
     motion.frame = c.handFrame++;
     gpu.updateFrame(size, gpu.scene().camera, motion);  // binds the Frame block
@@ -256,6 +259,12 @@ void setUpDefault(World& w, Case& c) {
     // light_volumes: far faces, depth-tested against the G-buffer's, added
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, volumesFbo);
     glUseProgram(volumes);
+    // The scene has no spot lights, so a frame written alone would set these
+    // once; the executor's frames, alternated with this one on the same
+    // program, leave them at the spot cones' values.
+    glUniform1i(firstLightLoc, 0);
+    glUniform1i(spotVolumesLoc, 0);
+    glUniform1f(volumeScaleLoc, icosphereScale);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_FRONT);
     glEnable(GL_DEPTH_TEST);
