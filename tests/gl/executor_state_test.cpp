@@ -36,6 +36,28 @@ struct BlendLooker final : PassInstance {
   uint32_t changedState() const override { return 0; }
 };
 
+// Binds program 0 with a raw GL call and answers `declared`.
+template <uint32_t declared>
+struct ProgramUnbinder final : PassInstance {
+  void execute(PassContext& ctx) override {
+    glUseProgram(0);
+    glClearNamedFramebufferfv(ctx.framebuffer(), GL_COLOR, 0, std::array<float, 4>{0, 0, 0, 1}.data());
+  }
+  uint32_t changedState() const override { return declared; }
+};
+// Records the executor's binding record and the program GL has bound.
+uint32_t recordedProgram = 0, actualProgram = 0;
+struct BindingLooker final : PassInstance {
+  void execute(PassContext& ctx) override {
+    recordedProgram = ctx.bindings() ? ctx.bindings()->program : 0;
+    GLint p = 0;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &p);
+    actualProgram = static_cast<uint32_t>(p);
+    glClearNamedFramebufferfv(ctx.framebuffer(), GL_COLOR, 0, std::array<float, 4>{1, 1, 1, 1}.data());
+  }
+  uint32_t changedState() const override { return 0; }
+};
+
 PassTypeDesc probeType(const std::string& name, std::function<std::unique_ptr<PassInstance>()> create) {
   PassTypeDesc d;
   d.name = name;
@@ -56,6 +78,24 @@ struct StateTest : GlTest {
     ASSERT_TRUE(reg.add(probeType("honest", [] { return std::make_unique<BlendLeaver<kGlStateBlend>>(); })));
     ASSERT_TRUE(reg.add(probeType("lying", [] { return std::make_unique<BlendLeaver<0>>(); })));
     ASSERT_TRUE(reg.add(probeType("looker", [] { return std::make_unique<BlendLooker>(); })));
+    ASSERT_TRUE(reg.add(probeType("binding_looker", [] { return std::make_unique<BindingLooker>(); })));
+    ASSERT_TRUE(reg.add(
+        probeType("honest_unbinder", [] { return std::make_unique<ProgramUnbinder<kGlStateBindings>>(); })));
+    ASSERT_TRUE(reg.add(probeType("lying_unbinder", [] { return std::make_unique<ProgramUnbinder<0>>(); })));
+  }
+  // A gradient, then `middle` (reads it, writes elsewhere), then the same
+  // gradient again into the output: the first and last passes draw with
+  // one program, so the last binds it only if the record says it must.
+  PipelineConfig bindingGraph(const std::string& middle) {
+    GraphBuilder g;
+    g.texture("a", Format::rgba8).texture("b", Format::rgba8).output("out");
+    g.pass("gradient", "fullscreen", {writeUse("color", Access::color_attachment, "a")},
+           params({{"shader", std::string("gradient.frag")}}));
+    g.pass("middle", middle, {readUse("src", Access::sampled, "a"), writeUse("dst", Access::color_attachment, "b")},
+           {}, /*sideEffect=*/true);
+    g.pass("again", "fullscreen", {writeUse("color", Access::color_attachment, "out")},
+           params({{"shader", std::string("gradient.frag")}}));
+    return g.config();
   }
   // `leaver` then the looker, which reads what the leaver wrote.
   PipelineConfig graph(const std::string& leaver) {
@@ -132,6 +172,57 @@ TEST_F(StateTest, BuiltInPassesAnswerTruthfully) {
     exec.resize({32, 24});
     EXPECT_NO_THROW(exec.renderFrame());
     EXPECT_NO_THROW(exec.renderFrame());
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// Fullscreen passes bind their framebuffer, program and vertex array through
+// PassContext::bindings(): the record survives a pass that binds nothing, so
+// the next pass with the same program skips its bind.
+TEST_F(StateTest, BindingsTheRecordOutlivesAPassThatBindsNothing) {
+  GraphBuilder g;
+  g.texture("a", Format::rgba8).output("out");
+  g.pass("gradient", "fullscreen", {writeUse("color", Access::color_attachment, "a")},
+         params({{"shader", std::string("gradient.frag")}}));
+  g.pass("look", "binding_looker",
+         {readUse("src", Access::sampled, "a"), writeUse("dst", Access::color_attachment, "out")});
+  Executor exec(g.config(), reg, *shaders);
+  exec.setStateChecks(true);
+  exec.resize({8, 8});
+  recordedProgram = actualProgram = 0;
+  exec.renderFrame();
+  EXPECT_NE(actualProgram, 0u);
+  EXPECT_EQ(recordedProgram, actualProgram);
+}
+
+// A pass that binds with raw GL calls and says so (kGlStateBindings) makes the
+// executor forget its record; one that does not say so leaves the next pass
+// drawing with no program, and the state checks name it.
+TEST_F(StateTest, BindingsARawBindMustBeDeclared) {
+  {
+    const PipelineConfig cfg = bindingGraph("honest_unbinder");
+    Executor exec(cfg, reg, *shaders);
+    exec.setStateChecks(true);
+    exec.resize({8, 8});
+    std::vector<std::string> order;
+    for (PassIndex p : exec.plan().order) order.push_back(cfg.graph.passes[p.value()].name);
+    ASSERT_EQ(order, (std::vector<std::string>{"gradient", "middle", "again"}));
+    ASSERT_NO_THROW(exec.renderFrame());
+    EXPECT_EQ(gradientMismatches(exec.readOutputRGBA8(), {8, 8}), 0u);
+  }
+  Executor exec(bindingGraph("lying_unbinder"), reg, *shaders);
+  exec.resize({8, 8});
+  exec.setStateChecks(true);
+  try {
+    exec.renderFrame();
+    FAIL() << "expected RuntimeError";
+  } catch (const RuntimeError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("pass 'middle' of type 'lying_unbinder' bound another program (0"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("kGlStateBindings"), std::string::npos) << msg;
   }
 }
 

@@ -111,7 +111,24 @@ enum GlStateGroup : uint32_t {
   kGlStateScissor = 1u << 4,    // GL_SCISSOR_TEST off
   kGlStateColorMask = 1u << 5,  // every channel written (draw buffer 0)
   kGlStateSrgb = 1u << 6,       // GL_FRAMEBUFFER_SRGB on
-  kGlStateAll = (1u << 7) - 1,
+  // Not a value put back: the draw framebuffer, viewport, program or vertex
+  // array were bound other than through PassContext::bindings() (the gl::
+  // helpers in rgraph/gl/fullscreen.h), so the executor forgets its record.
+  kGlStateBindings = 1u << 7,
+  kGlStateAll = (1u << 8) - 1,
+};
+
+// What the executor knows is bound between passes: binds through it
+// (gl::bindPassFramebuffer, gl::useProgram, gl::bindVertexArray) skip a
+// bind already in place, so a chain of passes drawing with one program and
+// one vertex array binds them once per frame, as hand-written GL would.
+struct GlBindings {
+  static constexpr uint32_t kUnknown = 0xFFFFFFFFu;
+  uint32_t drawFramebuffer = kUnknown;
+  uint32_t viewportWidth = kUnknown, viewportHeight = kUnknown;  // at (0, 0)
+  uint32_t program = kUnknown;
+  uint32_t vertexArray = kUnknown;
+  void forget() { *this = GlBindings{}; }
 };
 
 class PassInstance {
@@ -127,7 +144,9 @@ class PassInstance {
   // The GlStateGroup bits execute() may leave different from the values
   // above (after setup(), for every frame). The executor puts back only
   // these before the next pass, so a pass that sets none of them, or puts
-  // back what it set, saves the next pass those calls by returning 0.
+  // back what it set, saves the next pass those calls by returning 0
+  // (kGlStateBindings stays set if it binds framebuffers, programs or
+  // vertex arrays with raw GL calls).
   // Executor::setStateChecks(true) verifies the answer after every pass.
   virtual uint32_t changedState() const { return kGlStateAll; }
 };
@@ -218,6 +237,9 @@ class PassContext {
   // the driver revalidating vertex input between their draws. 0: none (make
   // your own).
   virtual uint32_t emptyVertexArray() const { return 0; }
+  // The executor's record of what is bound (GlBindings), for the gl::
+  // binding helpers; nullptr: no record, they always bind.
+  virtual GlBindings* bindings() { return nullptr; }
 };
 
 }  // namespace rgraph

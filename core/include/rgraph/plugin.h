@@ -56,7 +56,7 @@
 // block's motion and jitter members, GpuScene::updateFrame with FrameMotion.
 // 4: CheckedSlot::kind and bufferBytes (check hooks see a buffer's size);
 // PassTypeDesc::rules (PassRule: a check with the sentence `rgraph passes` prints);
-// PassInstance::changedState, PassContext::emptyVertexArray.
+// PassInstance::changedState, PassContext::emptyVertexArray and bindings().
 #define RGRAPH_PLUGIN_ABI_VERSION 4u
 
 #define RGRAPH_PLUGIN_ABI_SYMBOL "rgraph_plugin_abi_version"

@@ -155,6 +155,7 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(PassIndex pass, Extent output
   run->historyHeld = &historyHeld;
   run->frameCounter = &frame;
   run->emptyVao = emptyVao.id();
+  run->bindingRecord = &bound;
   run->output = output;
   run->jitter = pd.jitter;
   run->paramSet = defaultParams(type->params);
@@ -364,7 +365,8 @@ gl::TextureShape Executor::Impl::declaredShape(ResourceIndex r) const {
 // frame everything, after a pass what its changedState() names. Bindings are
 // not reset: a pass binds the framebuffer (and viewport), program and vertex
 // array it draws with; binding 0 in between would only make the driver
-// validate them again.
+// validate them again. What was bound through PassContext::bindings() is
+// remembered (GlBindings) until a pass says it bound something itself.
 void Executor::Impl::resetState(const PassRun& run) {
   const uint32_t d = dirtyState;
   if (d & kGlStateBlend) glDisable(GL_BLEND);
@@ -381,6 +383,7 @@ void Executor::Impl::resetState(const PassRun& run) {
   if (d & kGlStateScissor) glDisable(GL_SCISSOR_TEST);
   if (d & kGlStateColorMask) glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   if (d & kGlStateSrgb) glEnable(GL_FRAMEBUFFER_SRGB);
+  if (d & kGlStateBindings) bound.forget();
   dirtyState = 0;
   if (run.readOnlyDepth) {
     glDepthMask(GL_FALSE);
@@ -498,7 +501,10 @@ void Executor::renderFrame() {
     // The pass's framebuffer before its inputs: a pass usually reads what the
     // one before drew into, and binding that texture while its framebuffer is
     // still bound costs the driver a flush more.
-    if (run.fbo) glBindFramebuffer(GL_DRAW_FRAMEBUFFER, run.fbo->id());
+    if (run.fbo && im.bound.drawFramebuffer != run.fbo->id()) {
+      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, run.fbo->id());
+      im.bound.drawFramebuffer = run.fbo->id();
+    }
     im.applyClears(run);
     run.programs.bindSlots();
     try {

@@ -93,6 +93,7 @@ class PassRun final : public PassContext {
   const bool* historyHeld = nullptr;
   const uint64_t* frameCounter = nullptr;
   uint32_t emptyVao = 0;  // Executor::Impl::emptyVao
+  GlBindings* bindingRecord = nullptr;  // Executor::Impl::bound
   bool jitter = true;     // PassDecl::jitter
 
   const SlotBinding* find(std::string_view slot) const {
@@ -140,6 +141,7 @@ class PassRun final : public PassContext {
   const Scene* scene() const override { return scenePtr; }
   GpuScene* gpuScene() override { return gpuScenePtr; }
   uint32_t emptyVertexArray() const override { return emptyVao; }
+  GlBindings* bindings() override { return bindingRecord; }
   uint32_t program(size_t index) const override { return programs.program(index, name); }
   size_t programCount() const override { return programs.count(); }
 };
@@ -158,6 +160,7 @@ struct Executor::Impl {
   bool cpuPassTiming = true;              // Executor::setCpuPassTiming
   bool stateChecks = false;               // Executor::setStateChecks
   uint32_t dirtyState = kGlStateAll;      // GlStateGroup bits resetState() puts back
+  GlBindings bound;                       // PassContext::bindings: forgotten with kGlStateBindings
   std::map<std::string, uint32_t, std::less<>> imports;  // resource name -> caller's texture
   bool software = false;
 
@@ -228,6 +231,7 @@ struct Executor::Impl {
   // Throws when the state differs from the reset values in a group the
   // pass's changedState() leaves out (executor_state_check.cpp).
   void checkState(const exec_detail::PassRun& run) const;
+  void checkBindings(const exec_detail::PassRun& run) const;
   void assignMemoryBarriers();
   // History (executor_history.cpp): which textures are copied after a frame
   // (after createResources), which physicals must never be shared with

@@ -39,6 +39,36 @@ void Executor::Impl::checkState(const exec_detail::PassRun& run) const {
     if (!(declared & i.group) && !i.asReset)
       throw RuntimeError("pass '" + run.name + "' of type '" + run.typeName + "' left state changed: " + i.what +
                          ", but its changedState() says it leaves that group as it found it");
+  if (!(declared & kGlStateBindings)) checkBindings(run);
+}
+
+// The executor's record (GlBindings) against what is bound: a pass that binds
+// with raw GL calls and leaves kGlStateBindings out of changedState() would
+// make the next pass skip a bind it needs.
+void Executor::Impl::checkBindings(const exec_detail::PassRun& run) const {
+  GLint viewport[4] = {0, 0, 0, 0};
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  auto integer = [](GLenum pname) {
+    GLint v = 0;
+    glGetIntegerv(pname, &v);
+    return static_cast<uint32_t>(v);
+  };
+  struct Item {
+    const char* what;
+    uint32_t recorded, actual;
+  };
+  const Item items[] = {
+      {"draw framebuffer", bound.drawFramebuffer, integer(GL_DRAW_FRAMEBUFFER_BINDING)},
+      {"viewport width", bound.viewportWidth, static_cast<uint32_t>(viewport[2])},
+      {"viewport height", bound.viewportHeight, static_cast<uint32_t>(viewport[3])},
+      {"program", bound.program, integer(GL_CURRENT_PROGRAM)},
+      {"vertex array", bound.vertexArray, integer(GL_VERTEX_ARRAY_BINDING)},
+  };
+  for (const Item& i : items)
+    if (i.recorded != GlBindings::kUnknown && i.recorded != i.actual)
+      throw RuntimeError("pass '" + run.name + "' of type '" + run.typeName + "' bound another " + i.what + " (" +
+                         std::to_string(i.actual) + ", the executor's record says " + std::to_string(i.recorded) +
+                         ") without PassContext::bindings(), but its changedState() leaves out kGlStateBindings");
 }
 
 }  // namespace rgraph

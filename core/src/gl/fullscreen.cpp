@@ -11,10 +11,36 @@ void FullscreenTriangle::draw() const {
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
+void FullscreenTriangle::draw(PassContext& ctx) const {
+  bindVertexArray(ctx, id_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
 void bindPassFramebuffer(PassContext& ctx) {
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, ctx.framebuffer());
-  Extent e = ctx.framebufferExtent();
-  glViewport(0, 0, static_cast<GLsizei>(e.width), static_cast<GLsizei>(e.height));
+  GlBindings none;
+  GlBindings& b = ctx.bindings() ? *ctx.bindings() : none;
+  const uint32_t fbo = ctx.framebuffer();
+  if (b.drawFramebuffer != fbo) glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+  b.drawFramebuffer = fbo;
+  const Extent e = ctx.framebufferExtent();
+  if (b.viewportWidth != e.width || b.viewportHeight != e.height)
+    glViewport(0, 0, static_cast<GLsizei>(e.width), static_cast<GLsizei>(e.height));
+  b.viewportWidth = e.width;
+  b.viewportHeight = e.height;
+}
+
+void useProgram(PassContext& ctx, uint32_t program) {
+  GlBindings* b = ctx.bindings();
+  if (b && b->program == program) return;
+  glUseProgram(program);
+  if (b) b->program = program;
+}
+
+void bindVertexArray(PassContext& ctx, uint32_t vertexArray) {
+  GlBindings* b = ctx.bindings();
+  if (b && b->vertexArray == vertexArray) return;
+  glBindVertexArray(vertexArray);
+  if (b) b->vertexArray = vertexArray;
 }
 
 ShaderProgramSpec fullscreenProgram(std::string frag, std::vector<SamplerSlot> samplers,
@@ -41,9 +67,9 @@ void FullscreenPass::setup(PassContext& ctx) {
 
 void FullscreenPass::execute(PassContext& ctx) {
   bindPassFramebuffer(ctx);
-  glUseProgram(program_);
+  useProgram(ctx, program_);
   update(ctx);
-  triangle_->draw();
+  triangle_->draw(ctx);
 }
 
 }  // namespace rgraph::gl

@@ -22,13 +22,19 @@ class FullscreenTriangle {
   // Draws with someone else's empty vertex array (PassContext::emptyVertexArray).
   explicit FullscreenTriangle(uint32_t sharedVertexArray) : id_(sharedVertexArray) {}
   void draw() const;  // binds the vertex array and draws 3 vertices (and leaves it bound)
+  void draw(PassContext& ctx) const;  // the same, binding through ctx.bindings()
  private:
   VertexArray vao_;  // own, when none is shared
   uint32_t id_ = 0;
 };
 
-// Binds ctx.framebuffer() as draw framebuffer and sets the viewport to its extent.
+// Binds ctx.framebuffer() as draw framebuffer and sets the viewport to its
+// extent. These three bind through ctx.bindings(), skipping what is already
+// bound; a pass that binds only through them may leave kGlStateBindings out
+// of its changedState().
 void bindPassFramebuffer(PassContext& ctx);
+void useProgram(PassContext& ctx, uint32_t program);
+void bindVertexArray(PassContext& ctx, uint32_t vertexArray);
 
 // The spec of a program drawn over a fullscreen triangle: fullscreen.vert +
 // `frag`, reading `samplers` (slot, uniform, unit), for PassTypeDesc::programs.
