@@ -38,4 +38,12 @@ text=$(tr '\n' ' ' <"$src/docs/writing-a-pass.md" | grep -o 'reports [0-9,]* nai
 check "writing-a-pass.md naive bytes" "$(awk '{print $2}' <<<"$text" | num)" "$naive"
 check "writing-a-pass.md allocated bytes" "$(awk '{print $6}' <<<"$text" | num)" "$alloc"
 check "writing-a-pass.md allocated share" "$(awk '{print $8}' <<<"$text" | tr -d '()%')" "$(((alloc * 100 + naive / 2) / naive))"
+
+# deferred-ssao-bloom.json's description: "allocates N bytes in M textures" at 1920x1080.
+desc=$(grep -o 'allocates [0-9,]* bytes in [0-9]* textures' "$src/pipelines/deferred-ssao-bloom.json")
+[ -n "$desc" ] || { echo "FAIL: deferred-ssao-bloom.json's description no longer states its bytes" >&2; exit 1; }
+check "deferred-ssao-bloom.json description allocated bytes" "$(awk '{print $2}' <<<"$desc" | num)" "$alloc"
+textures=$("$rgraph" plan "$src/pipelines/deferred-ssao-bloom.json" --width 1920 --height 1080 |
+  sed -n 's/.* in \([0-9]*\) physical textures$/\1/p')
+check "deferred-ssao-bloom.json description textures" "$(awk '{print $5}' <<<"$desc")" "$textures"
 exit $fail
