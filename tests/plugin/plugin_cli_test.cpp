@@ -12,6 +12,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "support/run_command.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -22,30 +24,12 @@ const std::string kConfigs = std::string(RGRAPH_SOURCE_DIR) + "/tests/plugin/con
 const std::string kFixtures = RGRAPH_PLUGIN_FIXTURE_DIR;
 const std::string kPlugins = RGRAPH_PLUGIN_OUTPUT_DIR;
 
-struct Result {
-  int exit = -1;
-  std::string out;  // stdout + stderr
-  std::vector<std::string> lines() const {
-    std::vector<std::string> v;
-    std::istringstream s(out);
-    for (std::string l; std::getline(s, l);)
-      if (!l.empty()) v.push_back(l);
-    return v;
-  }
-};
+using Result = rgraph::testsupport::CommandResult;
 
 // Runs `rgraph ARGS` through the shell (RGRAPH_PLUGIN_PATH unset unless `env` sets it).
-Result rgraph(const std::string& args, const std::string& env = "env -u RGRAPH_PLUGIN_PATH") {
+Result runRgraph(const std::string& args, const std::string& env = "env -u RGRAPH_PLUGIN_PATH") {
   const std::string cmd = env + " '" + kCli + "' " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  int status = pclose(p);
-  r.exit = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return rgraph::testsupport::runCommand(cmd);
 }
 
 std::string canonical(const std::string& p) { return fs::weakly_canonical(p).string(); }
@@ -58,8 +42,8 @@ std::string tempPng(const std::string& name) {
 
 TEST(PluginCli, RenderWithMissingPluginIsOneLineAndExit1) {
   const std::string png = tempPng("missing.png");
-  Result r = rgraph("render " + kConfigs + "/missing-plugin.json --width 32 --height 32 --out " + png);
-  EXPECT_EQ(r.exit, 1) << r.out;
+  Result r = runRgraph("render " + kConfigs + "/missing-plugin.json --width 32 --height 32 --out " + png);
+  EXPECT_EQ(r.exitCode, 1) << r.out;
   ASSERT_EQ(r.lines().size(), 1u) << r.out;
   // The plugin's name in the config is on line 3, column 15.
   EXPECT_NE(r.out.find("missing-plugin.json:3:15: error: /plugins/0: plugin 'no_such_plugin': not found"),
@@ -69,17 +53,17 @@ TEST(PluginCli, RenderWithMissingPluginIsOneLineAndExit1) {
 }
 
 TEST(PluginCli, ValidateWithMissingPluginIsAPluginErrorDiagnostic) {
-  Result r = rgraph("validate --json " + kConfigs + "/missing-plugin.json");
-  EXPECT_EQ(r.exit, 1) << r.out;
+  Result r = runRgraph("validate --json " + kConfigs + "/missing-plugin.json");
+  EXPECT_EQ(r.exitCode, 1) << r.out;
   EXPECT_NE(r.out.find("\"code\": \"plugin_error\""), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"line\": 3"), std::string::npos) << r.out;
 }
 
 TEST(PluginCli, RenderWithWrongAbiPluginIsOneLineAndExit1) {
   const std::string png = tempPng("abi.png");
-  Result r = rgraph("render " + kConfigs + "/wrong-abi-plugin.json --plugin-path " + kFixtures +
+  Result r = runRgraph("render " + kConfigs + "/wrong-abi-plugin.json --plugin-path " + kFixtures +
                     " --width 32 --height 32 --out " + png);
-  EXPECT_EQ(r.exit, 1) << r.out;
+  EXPECT_EQ(r.exitCode, 1) << r.out;
   ASSERT_EQ(r.lines().size(), 1u) << r.out;
   // The expected version is the current ABI's (plugin_loader_test checks the number).
   EXPECT_NE(r.out.find("plugin 'fixture_wrong_abi' (" + canonical(kFixtures + "/librgraph_fixture_wrong_abi.so") +
@@ -90,14 +74,14 @@ TEST(PluginCli, RenderWithWrongAbiPluginIsOneLineAndExit1) {
 }
 
 TEST(PluginCli, PluginPathFromTheEnvironment) {
-  Result r = rgraph("validate " + kConfigs + "/wrong-abi-plugin.json", "env RGRAPH_PLUGIN_PATH=" + kFixtures);
-  EXPECT_EQ(r.exit, 1) << r.out;
+  Result r = runRgraph("validate " + kConfigs + "/wrong-abi-plugin.json", "env RGRAPH_PLUGIN_PATH=" + kFixtures);
+  EXPECT_EQ(r.exitCode, 1) << r.out;
   EXPECT_NE(r.out.find("ABI version mismatch"), std::string::npos) << r.out;
 }
 
 TEST(PluginCli, PassesListsPluginTypesWithTheirOrigin) {
-  Result r = rgraph("passes --plugin bloom --plugin ssao");
-  EXPECT_EQ(r.exit, 0) << r.out;
+  Result r = runRgraph("passes --plugin bloom --plugin ssao");
+  EXPECT_EQ(r.exitCode, 0) << r.out;
   const std::string bloom = canonical(kPlugins + "/librgraph_bloom.so");
   const std::string ssao = canonical(kPlugins + "/librgraph_ssao.so");
   for (const char* t : {"bloom_bright", "bloom_blur", "bloom_composite"})
@@ -108,16 +92,16 @@ TEST(PluginCli, PassesListsPluginTypesWithTheirOrigin) {
   EXPECT_EQ(r.out.find("(built-in)"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("tonemap"), std::string::npos) << r.out;
 
-  Result json = rgraph("passes --json --plugin bloom");
-  EXPECT_EQ(json.exit, 0);
+  Result json = runRgraph("passes --json --plugin bloom");
+  EXPECT_EQ(json.exitCode, 0);
   EXPECT_NE(json.out.find("\"origin\": \"" + bloom + "\""), std::string::npos) << json.out;
   EXPECT_EQ(json.out.find("\"origin\": \"built-in\""), std::string::npos) << json.out;
 }
 
 // Exactly the types the plugin registers, in the order it registers them.
 TEST(PluginCli, PassesWithOnePluginListsExactlyItsTypes) {
-  Result r = rgraph("passes --plugin bloom");
-  EXPECT_EQ(r.exit, 0) << r.out;
+  Result r = runRgraph("passes --plugin bloom");
+  EXPECT_EQ(r.exitCode, 0) << r.out;
   std::vector<std::string> headers;
   for (const auto& l : r.lines())
     if (!l.empty() && l[0] != ' ') headers.push_back(l.substr(0, l.find("  (")));
@@ -126,36 +110,36 @@ TEST(PluginCli, PassesWithOnePluginListsExactlyItsTypes) {
 
 // A type named with --plugin may be one of the plugin's or a built-in one.
 TEST(PluginCli, PassesTypeFindsAPluginType) {
-  Result r = rgraph("passes bloom_composite tonemap --plugin bloom");
-  EXPECT_EQ(r.exit, 0) << r.out;
+  Result r = runRgraph("passes bloom_composite tonemap --plugin bloom");
+  EXPECT_EQ(r.exitCode, 0) << r.out;
   EXPECT_EQ(r.out.rfind("bloom_composite  (", 0), 0u) << r.out;
   EXPECT_NE(r.out.find("\ntonemap  (built-in)\n"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("bloom_blur"), std::string::npos) << r.out;
-  Result without = rgraph("passes bloom_composite");
-  EXPECT_EQ(without.exit, 1) << without.out;
+  Result without = runRgraph("passes bloom_composite");
+  EXPECT_EQ(without.exitCode, 1) << without.out;
   EXPECT_NE(without.out.find("unknown pass type 'bloom_composite'"), std::string::npos) << without.out;
 }
 
 TEST(PluginCli, PassesWithoutPluginsListsNoPluginTypes) {
-  Result r = rgraph("passes");
-  EXPECT_EQ(r.exit, 0) << r.out;
+  Result r = runRgraph("passes");
+  EXPECT_EQ(r.exitCode, 0) << r.out;
   EXPECT_EQ(r.out.find("bloom_bright"), std::string::npos);
 }
 
 TEST(PluginCli, PassesWithMissingPluginIsOneLineAndExit1) {
-  Result r = rgraph("passes --plugin no_such_plugin");
-  EXPECT_EQ(r.exit, 1) << r.out;
+  Result r = runRgraph("passes --plugin no_such_plugin");
+  EXPECT_EQ(r.exitCode, 1) << r.out;
   ASSERT_EQ(r.lines().size(), 1u) << r.out;
   EXPECT_EQ(r.out.rfind("error: plugin 'no_such_plugin': not found", 0), 0u) << r.out;
 }
 
 TEST(PluginCli, ShippedSsaoBloomPipelineValidatesAndRenders) {
   const std::string pipeline = kSource + "/pipelines/deferred-ssao-bloom.json";
-  Result v = rgraph("validate " + pipeline);
-  EXPECT_EQ(v.exit, 0) << v.out;
+  Result v = runRgraph("validate " + pipeline);
+  EXPECT_EQ(v.exitCode, 0) << v.out;
   const std::string png = tempPng("ssao-bloom.png");
-  Result r = rgraph("render " + pipeline + " --width 96 --height 64 --out " + png);
-  EXPECT_EQ(r.exit, 0) << r.out;
+  Result r = runRgraph("render " + pipeline + " --width 96 --height 64 --out " + png);
+  EXPECT_EQ(r.exitCode, 0) << r.out;
   EXPECT_TRUE(fs::exists(png)) << r.out;
   std::error_code ec;
   fs::remove(png, ec);
@@ -188,9 +172,9 @@ size_t expectSharersDisjoint(const nlohmann::json& plan, const std::string& what
 }
 
 nlohmann::json planAt1080p(const std::string& pipeline) {
-  Result r = rgraph("plan --json --width 1920 --height 1080 " + kSource + "/pipelines/" + pipeline);
-  EXPECT_EQ(r.exit, 0) << r.out;
-  return r.exit == 0 ? nlohmann::json::parse(r.out) : nlohmann::json();
+  Result r = runRgraph("plan --json --width 1920 --height 1080 " + kSource + "/pipelines/" + pipeline);
+  EXPECT_EQ(r.exitCode, 0) << r.out;
+  return r.exitCode == 0 ? nlohmann::json::parse(r.out) : nlohmann::json();
 }
 
 }  // namespace
@@ -272,7 +256,7 @@ class DamagedPluginCli : public ::testing::Test {
   }
   // What every refusal says: the location (when from a config), the file, the problem.
   static void expectRefused(const Result& r, const DamagedPlugin& c, bool fromConfig) {
-    EXPECT_EQ(r.exit, 1) << c.file << "\n" << r.out;  // 128+N through the shell: killed by signal N
+    EXPECT_EQ(r.exitCode, 1) << c.file << "\n" << r.out;  // 128+N through the shell: killed by signal N
     ASSERT_EQ(r.lines().size(), 1u) << r.out;
     EXPECT_NE(r.out.find("(" + c.file + "): not a loadable plugin: "), std::string::npos) << r.out;
     EXPECT_NE(r.out.find(c.problem), std::string::npos) << r.out;
@@ -294,17 +278,17 @@ const std::string kSsaoBloom = kSource + "/pipelines/deferred-ssao-bloom.json";
 
 TEST_F(DamagedPluginCli, ValidateRefusesEachWithTheConfigLocationAndTheFile) {
   ASSERT_EQ(cases_.size(), 8u);
-  for (const auto& c : cases_) expectRefused(rgraph("validate " + kSsaoBloom + " --plugin-path " + c.dir), c, true);
+  for (const auto& c : cases_) expectRefused(runRgraph("validate " + kSsaoBloom + " --plugin-path " + c.dir), c, true);
 }
 
 TEST_F(DamagedPluginCli, PassesWithPluginRefusesEachNamingTheFile) {
-  for (const auto& c : cases_) expectRefused(rgraph("passes --plugin " + c.file), c, false);
+  for (const auto& c : cases_) expectRefused(runRgraph("passes --plugin " + c.file), c, false);
 }
 
 TEST_F(DamagedPluginCli, RenderRefusesEachAndWritesNoImage) {
   const std::string png = tempPng("damaged.png");
   for (const auto& c : cases_) {
-    expectRefused(rgraph("render " + kSsaoBloom + " --plugin-path " + c.dir + " --width 32 --height 32 --out " + png), c, true);
+    expectRefused(runRgraph("render " + kSsaoBloom + " --plugin-path " + c.dir + " --width 32 --height 32 --out " + png), c, true);
     EXPECT_FALSE(fs::exists(png)) << c.file;
   }
 }
@@ -313,8 +297,8 @@ TEST_F(DamagedPluginCli, RenderRefusesEachAndWritesNoImage) {
 // reported as not found. It is refused by name, at its place in the config.
 TEST(PluginCli, PluginNameWithANulByteIsRefusedAtItsConfigLocation) {
   for (const std::string& cmd : {std::string("validate"), "render --width 32 --height 32 --out " + tempPng("nul.png")}) {
-    Result r = rgraph(cmd + " " + kConfigs + "/nul-plugin-name.json");
-    EXPECT_EQ(r.exit, 1) << r.out;
+    Result r = runRgraph(cmd + " " + kConfigs + "/nul-plugin-name.json");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
     ASSERT_EQ(r.lines().size(), 1u) << r.out;
     EXPECT_NE(r.out.find("nul-plugin-name.json:3:15: error: /plugins/0: plugin 'bloom\\u0000': the name contains a NUL "
                          "byte (character 6); a plugin name or path cannot contain one"),

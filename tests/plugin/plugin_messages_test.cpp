@@ -29,26 +29,14 @@ const std::string kBrokenCopy = kBrokenRoot + "/share/rgraph/plugins/fixture_bro
 const std::string kBrokenSource = "tests/plugin/fixtures/shaders/broken.frag";
 const std::string kConfigs = "tests/plugin/configs/";
 
-struct Result {
-  int exit = -1;
-  std::string out;
-  std::vector<std::string> lines() const {
-    std::vector<std::string> v;
-    std::istringstream s(out);
-    for (std::string l; std::getline(s, l);)
-      if (!l.empty()) v.push_back(l);
-    return v;
-  }
-  bool has(const std::string& text) const { return out.find(text) != std::string::npos; }
-};
+using Result = rgraph::testsupport::CommandResult;
 
 // `rgraph ARGS` run in the source tree, stdout and stderr together, with no
 // plugin folder from the environment and a shader-check cache of its own.
 Result runRgraph(const std::string& args) {
   const std::string cache = (fs::temp_directory_path() / ("rgraph-messages-cache-" + std::to_string(getpid()))).string();
-  const auto r = runCommand("cd '" + kSource + "' && env -u RGRAPH_PLUGIN_PATH RGRAPH_CACHE_DIR='" + cache + "' '" +
-                            kCli + "' " + args + " 2>&1");
-  return {r.exitCode, r.out};
+  return runCommand("cd '" + kSource + "' && env -u RGRAPH_PLUGIN_PATH RGRAPH_CACHE_DIR='" + cache + "' '" + kCli +
+                    "' " + args + " 2>&1");
 }
 
 std::string tempPath(const std::string& name) {
@@ -75,7 +63,7 @@ TEST(PluginShaderErrors, ManifestBesideTheCopyNamesTheSource) {
 
 TEST(PluginShaderErrors, ValidateNamesTheSourceFile) {
   Result r = runRgraph(brokenShader("validate"));
-  EXPECT_EQ(r.exit, 1) << r.out;
+  EXPECT_EQ(r.exitCode, 1) << r.out;
   EXPECT_TRUE(r.has(kBrokenSource + ":9: error: ")) << r.out;
   EXPECT_FALSE(r.has("share/rgraph/plugins/fixture_broken_shader")) << r.out;
 }
@@ -84,7 +72,7 @@ TEST(PluginShaderErrors, RenderNamesTheSourceFile) {
   const std::string png = tempPath("broken.png");
   for (const std::string& checks : {std::string(), std::string(" --no-checks")}) {  // glslang's message, then the driver's
     Result r = runRgraph(brokenShader("render") + renderArgs(png) + checks);
-    EXPECT_EQ(r.exit, 1) << checks << "\n" << r.out;
+    EXPECT_EQ(r.exitCode, 1) << checks << "\n" << r.out;
     EXPECT_TRUE(r.has(kBrokenSource + ":9: error: ")) << checks << "\n" << r.out;
     EXPECT_FALSE(r.has("share/rgraph/plugins/fixture_broken_shader")) << checks << "\n" << r.out;
     EXPECT_FALSE(fs::exists(png));
@@ -121,7 +109,7 @@ TEST_F(CopiedPlugin, SourceEditedSinceTheCopySaysItIsACopyOfIt) {
   }
   pointManifestAt(source);
   Result r = validate();
-  EXPECT_EQ(r.exit, 1) << r.out;
+  EXPECT_EQ(r.exitCode, 1) << r.out;
   // Line 9 is the copy's line: the message names the copy, and says whose copy.
   EXPECT_TRUE(r.has(copy() + ":9: error: ")) << r.out;
   EXPECT_TRUE(r.has("(" + copy() + " is a copy of " + source +
@@ -132,13 +120,13 @@ TEST_F(CopiedPlugin, SourceEditedSinceTheCopySaysItIsACopyOfIt) {
 TEST_F(CopiedPlugin, SourceGoneOrNoManifestNamesTheCopy) {
   pointManifestAt(root_ + "/no-such-source.frag");
   Result r = validate();
-  EXPECT_EQ(r.exit, 1) << r.out;
+  EXPECT_EQ(r.exitCode, 1) << r.out;
   EXPECT_TRUE(r.has(copy() + ":9: error: ")) << r.out;
   EXPECT_FALSE(r.has("is a copy of")) << r.out;
 
   fs::remove(fs::path(copy()).parent_path() / "rgraph-shader-sources.txt");
   r = validate();
-  EXPECT_EQ(r.exit, 1) << r.out;
+  EXPECT_EQ(r.exitCode, 1) << r.out;
   EXPECT_TRUE(r.has(copy() + ":9: error: ")) << r.out;
 }
 
@@ -148,7 +136,7 @@ TEST(PluginShaderErrors, RenderShowsTheDriverErrorShortWithoutADoubledPrefix) {
   const std::string png = tempPath("driver.png");
   // --no-checks: glslang does not run, so the driver's compiler reports it.
   Result r = runRgraph(brokenShader("render") + renderArgs(png) + " --no-checks");
-  EXPECT_EQ(r.exit, 1) << r.out;
+  EXPECT_EQ(r.exitCode, 1) << r.out;
   const std::vector<std::string> lines = r.lines();
   ASSERT_FALSE(lines.empty()) << r.out;
   ASSERT_LE(lines.size(), 4u) << r.out;  // error, what refused it, which pass
@@ -165,7 +153,7 @@ TEST(PluginShaderErrors, RenderShowsTheDriversWholeLogAtDebugLevel) {
   const std::string png = tempPath("driver-debug.png");
   Result quiet = runRgraph(brokenShader("render") + renderArgs(png) + " --no-checks");
   Result r = runRgraph("--log-level debug " + brokenShader("render") + renderArgs(png) + " --no-checks");
-  EXPECT_EQ(r.exit, 1) << r.out;
+  EXPECT_EQ(r.exitCode, 1) << r.out;
   const size_t log = r.out.find("broken.frag (fragment shader): the driver's compile log:");
   ASSERT_NE(log, std::string::npos) << r.out;
   // The log follows, located at the source's lines like everything else.
@@ -181,7 +169,7 @@ TEST(PluginSuggestion, UnknownTypeNamesThePluginToAdd) {
   const std::string ssao = fs::weakly_canonical(kPlugins + "/librgraph_ssao.so").string();
   for (const std::string& cmd : {std::string("validate"), "render" + renderArgs(png)}) {
     Result r = runRgraph(cmd + " " + kConfigs + "ssao-without-plugins.json");
-    EXPECT_EQ(r.exit, 1) << cmd << "\n" << r.out;
+    EXPECT_EQ(r.exitCode, 1) << cmd << "\n" << r.out;
     ASSERT_EQ(r.lines().size(), 1u) << cmd << "\n" << r.out;
     EXPECT_EQ(r.lines()[0], kConfigs + "ssao-without-plugins.json:16:31: error: /passes/1/type: unknown pass type "
                                        "'ssao'; plugin \"ssao\" (" + ssao + ") provides it: add \"plugins\": "
@@ -194,7 +182,7 @@ TEST(PluginSuggestion, UnknownTypeNamesThePluginToAdd) {
 TEST(PluginSuggestion, WithAPluginsArraySaysToAddTheEntryToIt) {
   const std::string bloom = fs::weakly_canonical(kPlugins + "/librgraph_bloom.so").string();
   Result r = runRgraph("validate " + kConfigs + "bloom-not-listed.json");
-  EXPECT_EQ(r.exit, 1) << r.out;
+  EXPECT_EQ(r.exitCode, 1) << r.out;
   EXPECT_TRUE(r.has("bloom-not-listed.json:11:33: error: /passes/1/type: unknown pass type 'bloom_bright'; plugin "
                     "\"bloom\" (" + bloom + ") provides it: add \"bloom\" to the config's \"plugins\" array"))
       << r.out;
@@ -206,7 +194,7 @@ TEST(PluginSuggestion, ATypeNoPluginHasGetsNoSuggestion) {
   "passes": [ { "name": "x", "type": "no_plugin_has_this", "outputs": { "color": "o" } } ], "output": "o" })";
   Result r = runRgraph("validate '" + config + "'");
   fs::remove(config);
-  EXPECT_EQ(r.exit, 1) << r.out;
+  EXPECT_EQ(r.exitCode, 1) << r.out;
   EXPECT_TRUE(r.has("unknown pass type 'no_plugin_has_this'")) << r.out;
   EXPECT_FALSE(r.has("provides it")) << r.out;
 }
@@ -226,7 +214,7 @@ TEST(PluginSuggestion, DamagedPluginsOnThePathAreSkipped) {
   const std::string ssao = fs::weakly_canonical(kPlugins + "/librgraph_ssao.so").string();
   for (const std::string& cmd : {std::string("validate"), "render" + renderArgs(tempPath("damaged.png"))}) {
     Result r = runRgraph(cmd + " " + kConfigs + "ssao-without-plugins.json --plugin-path '" + dir + "'");
-    EXPECT_EQ(r.exit, 1) << cmd << "\n" << r.out;  // 128+N: killed by signal N
+    EXPECT_EQ(r.exitCode, 1) << cmd << "\n" << r.out;  // 128+N: killed by signal N
     ASSERT_EQ(r.lines().size(), 1u) << cmd << "\n" << r.out;
     EXPECT_TRUE(r.has("unknown pass type 'ssao'; plugin \"" + ssao + "\" (" + ssao + ") provides it: add \"plugins\": [\"" +
                       ssao + "\"] at the top level of the config"))

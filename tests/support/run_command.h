@@ -6,13 +6,25 @@
 
 #include <array>
 #include <cstdio>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace rgraph::testsupport {
 
 struct CommandResult {
   int exitCode = -1;  // -1: it could not start, or ended by a signal
   std::string out;    // stdout (append " 2>&1" to the command for stderr too)
+
+  // The output's non-empty lines: a one-line error is lines().size() == 1.
+  std::vector<std::string> lines() const {
+    std::vector<std::string> v;
+    std::istringstream s(out);
+    for (std::string l; std::getline(s, l);)
+      if (!l.empty()) v.push_back(l);
+    return v;
+  }
+  bool has(const std::string& text) const { return out.find(text) != std::string::npos; }
 };
 
 inline CommandResult runCommand(const std::string& command) {
