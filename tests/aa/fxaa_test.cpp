@@ -131,6 +131,60 @@ TEST_F(Fxaa, StaircaseEdgeMovesTowardsItsCoverage) {
   EXPECT_EQ(e.maxAbs, 0) << "fxaa changed flat pixels: " << e.describe();
 }
 
+// A wire thinner than a pixel in front of a fence: a white line 0.6 px
+// thick, centre row = 40.3 + 0.02 x, over grey posts 3 px wide every 24 px
+// on black. Sampled at pixel centres the wire is a 1-px dash in one row, a
+// gap, then a dash in the next row; its exact coverage hardly reaches the
+// rows either side of a dash. Those neighbours see a step towards the dash,
+// but there is no step edge between them to place: a blend that treats it
+// as one (its search stopping where the wire crosses a post) smears the wire
+// into them. They must stay about as close to the exact image as they were,
+// and the wire as a whole must come closer to it.
+TEST_F(Fxaa, ThinLineIsNotSmearedIntoItsNeighbours) {
+  auto onPost = [](int x) { return x % 24 < 3; };
+  auto inWire = [](double x, double y) { return std::abs(y - (40.3 + 0.02 * x)) < 0.3; };
+  auto exact = [&](int x, int row) {  // 16x16 samples; the posts fill whole pixels
+    int in = 0;
+    for (int j = 0; j < 16; ++j)
+      for (int i = 0; i < 16; ++i) in += inWire(x + (i + 0.5) / 16.0, row + (j + 0.5) / 16.0);
+    const double c = in / 256.0;
+    return c * 255.0 + (1.0 - c) * (onPost(x) ? 128.0 : 0.0);
+  };
+  const Image aliased = makeImage(kSize, [&](int x, int row) {
+    return glm::ivec3(inWire(x + 0.5, row + 0.5) ? 255 : onPost(x) ? 128 : 0);
+  });
+  const Image out = filter(aliased);
+  auto wireLit = [&](int x, int row) { return aliased.at(x, row)[0] == 255; };
+  double nbIn = 0.0, nbOut = 0.0, wireIn = 0.0, wireOut = 0.0;
+  int neighbours = 0, wirePixels = 0;
+  for (int row = 1; row + 1 < static_cast<int>(kSize.height); ++row)
+    for (int x = 0; x < static_cast<int>(kSize.width); ++x) {
+      const double want = exact(x, row);
+      const double errIn = std::abs(aliased.at(x, row)[0] - want), errOut = std::abs(out.at(x, row)[0] - want);
+      if (wireLit(x, row) || std::abs(want - aliased.at(x, row)[0]) > 1.0) {  // the wire, sampled or not
+        ++wirePixels;
+        wireIn += errIn;
+        wireOut += errOut;
+      }
+      if (!wireLit(x, row) && (wireLit(x, row - 1) || wireLit(x, row + 1))) {  // above or below a dash
+        ++neighbours;
+        nbIn += errIn;
+        nbOut += errOut;
+      }
+    }
+  std::printf(
+      "[ measure  ] thin wire: %d neighbours of its dashes, mean |error| vs exact %.1f -> %.1f levels; "
+      "%d wire pixels, %.1f -> %.1f levels\n",
+      neighbours, nbIn / neighbours, nbOut / neighbours, wirePixels, wireIn / wirePixels, wireOut / wirePixels);
+  ASSERT_GT(neighbours, static_cast<int>(kSize.width));  // above and below most dash pixels
+  // Up to ~13 levels each: the sub-pixel term (a dash pixel's 3x3 low-pass)
+  // moves its neighbours by 1/20 of the step; the step-edge blend would move
+  // them by up to half of it.
+  EXPECT_LE(nbOut, nbIn + 16.0 * neighbours) << "the wire was smeared into its neighbours "
+                                             << rtest::saveImage(out, "fxaa-thin-wire");
+  EXPECT_LE(wireOut, 0.7 * wireIn) << rtest::saveImage(out, "fxaa-thin-wire");
+}
+
 TEST_F(Fxaa, SizeMismatchIsAnErrorAtTheBinding) {
   std::string text = kFxaaOnly;
   text.replace(text.find(R"("output": { "format": "rgba8" })"), 31,

@@ -5,6 +5,10 @@
 //     not on an edge and is written unchanged (flat regions stay exact);
 //  2. edge orientation from second differences over the 3x3 block;
 //  3. the side of the edge (the neighbour across it with the larger step);
+//     when the pixel across is a line one pixel thin (the pixel beyond it is
+//     back on this pixel's side of the edge's mean), there is no step edge
+//     between the two to place: the line's coverage hardly reaches this pixel,
+//     so it gets no edge blend (step 4 is skipped; step 5 still applies);
 //  4. a search along the edge, on the boundary between the two rows (bilinear
 //     taps average them), in growing steps until the luma leaves the edge's
 //     mean by a quarter of its step: the nearer end says how far this pixel
@@ -33,6 +37,37 @@ float lumaAt(vec2 uv) { return luma(textureLod(u_input, uv, 0.0).rgb); }
 float lumaOff(ivec2 p, ivec2 o) {
   ivec2 size = textureSize(u_input, 0);
   return luma(texelFetch(u_input, clamp(p + o, ivec2(0), size - 1), 0).rgb);
+}
+
+// Step 4: the blend of pixel `p` towards the pixel across its edge (luma m,
+// edge mean edgeLuma, larger step gradient); `along` and `toEdge` are the
+// uv steps along the edge and from the pixel centre to the edge.
+float edgeBlend(ivec2 p, vec2 texel, vec2 along, vec2 toEdge, float m, float edgeLuma, float gradient) {
+  // Walk along the boundary between this pixel and the one across.
+  vec2 uvCenter = (vec2(p) + 0.5) * texel;
+  float stopAt = 0.25 * gradient;
+  vec2 uvNeg = uvCenter + toEdge - along, uvPos = uvCenter + toEdge + along;
+  float dNeg = lumaAt(uvNeg) - edgeLuma, dPos = lumaAt(uvPos) - edgeLuma;
+  bool doneNeg = abs(dNeg) >= stopAt, donePos = abs(dPos) >= stopAt;
+  for (int i = 1; i < kSteps && !(doneNeg && donePos); ++i) {
+    if (!doneNeg) {
+      uvNeg -= along * kStepSize[i];
+      dNeg = lumaAt(uvNeg) - edgeLuma;
+      doneNeg = abs(dNeg) >= stopAt;
+    }
+    if (!donePos) {
+      uvPos += along * kStepSize[i];
+      dPos = lumaAt(uvPos) - edgeLuma;
+      donePos = abs(dPos) >= stopAt;
+    }
+  }
+  float distNeg = dot(uvCenter - uvNeg, along) / dot(along, along);  // in pixels
+  float distPos = dot(uvPos - uvCenter, along) / dot(along, along);
+  float dEnd = distNeg < distPos ? dNeg : dPos;
+  // Blend only when the nearer end is where this pixel's side of the edge
+  // ends (its luma crosses the edge mean the other way than this pixel's).
+  bool consistent = ((m - edgeLuma) < 0.0) != (dEnd < 0.0);
+  return consistent ? 0.5 - min(distNeg, distPos) / (distNeg + distPos) : 0.0;
 }
 
 void main() {
@@ -73,40 +108,17 @@ void main() {
   float across = horizontal ? texel.y : texel.x;
   if (negative) across = -across;
   float edgeLuma = 0.5 * (m + (negative ? l1 : l2));
+  // A line one pixel thin across (the pixel beyond it is on this side again):
+  // no step edge to place between the two (see the top).
+  ivec2 acrossPixel = horizontal ? ivec2(0, negative ? -1 : 1) : ivec2(negative ? -1 : 1, 0);
+  bool thinLineAcross = (lumaOff(p, 2 * acrossPixel) < edgeLuma) == (m < edgeLuma);
 
-  // Walk along the boundary between this pixel and the one across.
-  vec2 uvEdge = (vec2(p) + 0.5) * texel;
-  if (horizontal) uvEdge.y += 0.5 * across;
-  else uvEdge.x += 0.5 * across;
   vec2 along = horizontal ? vec2(texel.x, 0.0) : vec2(0.0, texel.y);
-  float stopAt = 0.25 * gradient;
-  vec2 uvNeg = uvEdge - along, uvPos = uvEdge + along;
-  float dNeg = lumaAt(uvNeg) - edgeLuma, dPos = lumaAt(uvPos) - edgeLuma;
-  bool doneNeg = abs(dNeg) >= stopAt, donePos = abs(dPos) >= stopAt;
-  for (int i = 1; i < kSteps && !(doneNeg && donePos); ++i) {
-    if (!doneNeg) {
-      uvNeg -= along * kStepSize[i];
-      dNeg = lumaAt(uvNeg) - edgeLuma;
-      doneNeg = abs(dNeg) >= stopAt;
-    }
-    if (!donePos) {
-      uvPos += along * kStepSize[i];
-      dPos = lumaAt(uvPos) - edgeLuma;
-      donePos = abs(dPos) >= stopAt;
-    }
-  }
-  vec2 uvCenter = (vec2(p) + 0.5) * texel;
-  float distNeg = horizontal ? uvCenter.x - uvNeg.x : uvCenter.y - uvNeg.y;
-  float distPos = horizontal ? uvPos.x - uvCenter.x : uvPos.y - uvCenter.y;
-  bool nearerNeg = distNeg < distPos;
-  float dEnd = nearerNeg ? dNeg : dPos;
-  // Blend only when the nearer end is where this pixel's side of the edge
-  // ends (its luma crosses the edge mean the other way than this pixel's).
-  bool consistent = ((m - edgeLuma) < 0.0) != (dEnd < 0.0);
-  float edgeOffset = consistent ? 0.5 - min(distNeg, distPos) / (distNeg + distPos) : 0.0;
+  vec2 toEdge = 0.5 * (horizontal ? vec2(0.0, across) : vec2(across, 0.0));
+  float edgeOffset = thinLineAcross ? 0.0 : edgeBlend(p, texel, along, toEdge, m, edgeLuma, gradient);
 
   float offset = max(edgeOffset, subOffset);
-  vec2 uv = uvCenter;
+  vec2 uv = (vec2(p) + 0.5) * texel;
   if (horizontal) uv.y += offset * across;
   else uv.x += offset * across;
   outColor = vec4(textureLod(u_input, uv, 0.0).rgb, center.a);
