@@ -6,13 +6,20 @@
 // overflowing clusters are handled there).
 // The maths is include/lighting.glsl's, as in deferred_lighting.frag and
 // tiled_deferred.comp, so the methods agree.
+// With FAR_FIELD the listed lights are shaded without their cut and the
+// cluster's far field (the lights it does not list, clustered_far.comp)
+// is added (include/cluster_far_field.glsl).
 // Defines: one GBUFFER_*, one LIGHTING_*, one ATTENUATION_*; TARGET_FORMAT
-// (rgba16f, rgba32f or r11f_g11f_b10f). The grid is the list buffer's.
+// (rgba16f, rgba32f or r11f_g11f_b10f); FAR_FIELD. The grid is the list buffer's.
 #include "include/frame.glsl"
 #include "include/gbuffer.glsl"
 #include "include/gbuffer_read.glsl"
 #include "include/lighting.glsl"
 #include "include/clusters.glsl"
+#if defined(FAR_FIELD)
+#include "include/far_field.glsl"
+#include "include/cluster_far_field.glsl"
+#endif
 
 #ifndef TARGET_FORMAT
 #define TARGET_FORMAT rgba16f
@@ -38,5 +45,9 @@ void main() {
   if (u_ambientAndSun != 0) color += ambientTerm(s) + shadeDirectionalLight(s, V);
   const float viewDepth = max(-(u_view * vec4(s.position, 1.0)).z, 0.0);
   color += shadeClusterLights(px, viewDepth, u_pointLightCount, s, V);
+#if defined(FAR_FIELD)
+  if (u_pointLightCount > 0 && clusterListsFit(uint(data.length())))
+    color += shadeClusterFarField(clusterAt(px, viewDepth), s, V);
+#endif
   imageStore(u_target, px, vec4(color, 1.0));
 }

@@ -9,7 +9,9 @@
 // middle point; BIN_REACH > 1 keeps the lights near the bin in the list, so
 // that the tiles sum those at their own points.
 // Defines: as tiled_deferred.comp (GBUFFER_*, LIGHTING_*, ATTENUATION_*,
-// TILE_SIZE, FAR_FIELD) and BIN_TILES, MAX_BIN_LIGHTS, BIN_REACH.
+// TILE_SIZE, FAR_FIELD) and BIN_TILES, MAX_BIN_LIGHTS, BIN_REACH, BIN_BINDING
+// (passes/common/light_bins.cpp). clustered_deferred's far field runs it
+// too, with its clusters' TILE_SIZE.
 #include "include/frame.glsl"
 #include "include/gbuffer.glsl"
 #include "include/gbuffer_read.glsl"
@@ -19,6 +21,7 @@
 #ifndef TILE_SIZE
 #define TILE_SIZE 16
 #endif
+#define BIN_WRITER
 #include "include/tile_bins.glsl"
 #if defined(FAR_FIELD)
 #define FAR_FIELD_CUBES 1
@@ -28,7 +31,6 @@
 layout(local_size_x = 16, local_size_y = 16, local_size_z = 1) in;
 
 layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
-layout(std430, binding = 1) writeonly buffer Bins { uint bins[]; };
 uniform int u_pointLightCount;
 
 shared uint s_minDepth, s_maxDepth, s_count;

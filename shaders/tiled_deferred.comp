@@ -72,7 +72,6 @@ const uint kLanes = uint(TILE_SIZE * TILE_SIZE);
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE, local_size_z = 1) in;
 
 layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
-layout(std430, binding = 1) readonly buffer Bins { uint bins[]; };  // tiled_bin.comp's lists
 layout(TARGET_FORMAT, binding = 0) uniform image2D u_target;
 uniform int u_pointLightCount;
 uniform int u_ambientAndSun;  // 1: add ambient and the directional light
@@ -204,20 +203,10 @@ void main() {
     // The bin's far field (the lights its list leaves out), moved to the
     // tile's point to first order: direction bin `local`.
     if (binned && local < uint(FAR_FIELD_BINS)) {
-      const vec3 binPoint = uintBitsToFloat(uvec3(bins[record + 4u], bins[record + 5u], bins[record + 6u]));
       vec3 v[4];
-      for (uint j = 0u; j < 4u; ++j)
-        for (uint c = 0u; c < 3u; ++c) v[j][c] = uintBitsToFloat(bins[record + 8u + (4u * local + j) * 3u + c]);
-      // The bin's mean light seen from the tile's point: the direction and
-      // distance change, the weight follows the gradient.
-      const vec3 offset = farPoint - binPoint, mean = farFieldMeanLight(v[1], v[3]) - offset;
-      const float scale = farFieldScaleAt(v[0], v[2], offset), distance = length(mean);
-      const vec3 dir = distance > 1e-12 ? mean * (length(v[1]) * scale / distance) : vec3(0.0);
-      v[0] *= scale;
-      v[1] = dir;
-      v[3] = dir * distance;
-      for (uint j = 0u; j < 4u; ++j)
-        for (uint c = 0u; c < 3u; ++c) atomicAdd(s_farSums[4][(4u * local + j) * 3u + c], farFieldFixed(v[j][c]));
+      binFarField(record, local, v);
+      farFieldMove(v, farPoint - binFarFieldPoint(record));
+      farFieldAddSums(4, int(local), v);
     }
 #endif
   }

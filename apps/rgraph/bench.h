@@ -27,7 +27,7 @@ namespace rgraph::cli::bench {
 
 // ---------------------------------------------------------------- what is swept
 
-extern const std::vector<std::string> kMethods;  // forward_lit, fullscreen, fullscreen_radius, light_volumes, tiled, tiled_far, clustered
+extern const std::vector<std::string> kMethods;  // forward_lit, fullscreen, fullscreen_radius, light_volumes, tiled, tiled_far, clustered, clustered_far
 extern const std::vector<std::string> kLayouts;  // pbr, learnopengl, compact, fp32
 constexpr double kDefaultThreshold = 5.0 / 256.0;
 

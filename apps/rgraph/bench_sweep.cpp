@@ -18,7 +18,7 @@ namespace rgraph::cli::bench {
 using nlohmann::json;
 
 const std::vector<std::string> kMethods = {"forward_lit", "fullscreen", "fullscreen_radius", "light_volumes",
-                                           "tiled",       "tiled_far",  "clustered"};
+                                           "tiled",       "tiled_far",  "clustered",        "clustered_far"};
 const std::vector<std::string> kLayouts = {"pbr", "learnopengl", "compact", "fp32"};
 
 std::string Config::key() const {
@@ -36,6 +36,7 @@ std::string methodTitle(const std::string& m) {
   if (m == "tiled") return "tiled";
   if (m == "tiled_far") return "tiled + far field";
   if (m == "clustered") return "clustered";
+  if (m == "clustered_far") return "clustered + far field";
   return m;
 }
 
@@ -142,7 +143,8 @@ std::string pipelineJson(const Config& c, bool reference) {
                         {"inputs", vin},
                         {"outputs", {{"color", "hdr_lit"}}}});
       lit = "hdr_lit";
-    } else if (c.method == "tiled" || c.method == "tiled_far" || c.method == "clustered") {
+    } else if (c.method == "tiled" || c.method == "tiled_far" || c.method == "clustered" ||
+               c.method == "clustered_far") {
       const bool tiled = c.method.rfind("tiled", 0) == 0;
       if (c.method.find("_far") != std::string::npos) params["far_field"] = true;
       passes.push_back({{"name", c.method},

@@ -23,6 +23,8 @@
 #include "rgraph/gl/uniform.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/passes/cluster_lists.h"
+#include "rgraph/passes/far_field.h"
+#include "rgraph/passes/light_bins.h"
 #include "rgraph/passes/lighting_options.h"
 #include "rgraph/registry.h"
 
@@ -30,11 +32,30 @@ namespace {
 using namespace rgraph;
 
 constexpr int kShadeGroup = 8;  // clustered_deferred.comp's local_size_x and _y
+constexpr uint32_t kFarFieldBinding = 3;  // include/cluster_far_field.glsl's buffer
+constexpr int kFarFieldRecord = 4 + 16 * 12;  // its CLUSTER_FAR_RECORD (uints per cluster)
+
+bool farField(const ParamSet& p) { return p.getBool("far_field", false); }
+
+// The far field's bins: one cluster tile, or as many as make 64 pixels, a
+// side (on binding 2: the lists are on 1).
+lighting::BinGrid binGrid(const ParamSet& p) {
+  const int tile = clusters::grid(p).tileSize;
+  return {tile, std::max(1, (64 + tile - 1) / tile), true, 2};
+}
+
+// Lighting, G-buffer and far-field defines: every program but the list build.
+std::vector<std::string> shadingDefines(const ParamSet& p) {
+  std::vector<std::string> defines = lighting::shadingDefines(p);
+  lighting::addFarFieldDefine(p, defines);
+  return defines;
+}
 
 class ClusteredDeferredPass final : public PassInstance {
  public:
   ~ClusteredDeferredPass() override {
     if (buffer_) glDeleteBuffers(1, &buffer_);
+    if (farFields_) glDeleteBuffers(1, &farFields_);
   }
 
   void setup(PassContext& ctx) override {
@@ -47,11 +68,23 @@ class ClusteredDeferredPass final : public PassInstance {
     ambientAndSun_ = gl::Uniform(shade_, "u_ambientAndSun");
     load_ = gl::Uniform(shade_, "u_load");
     if (buffer_) glDeleteBuffers(1, &buffer_);
-    buffer_ = 0;
-    if (ctx.bound(clusters::kSlot)) return;  // another pass builds the lists
+    if (farFields_) glDeleteBuffers(1, &farFields_);
+    buffer_ = farFields_ = 0;
+    if (ctx.bound(clusters::kSlot)) return;  // another pass builds the lists (the check refuses far_field then)
+    const clusters::Grid g = clusters::grid(ctx.params());
     glCreateBuffers(1, &buffer_);
-    glNamedBufferStorage(buffer_, static_cast<GLsizeiptr>(clusters::bufferBytes(clusters::grid(ctx.params()), ctx.extent("color"))),
-                         nullptr, GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferStorage(buffer_, static_cast<GLsizeiptr>(clusters::bufferBytes(g, ctx.extent("color"))), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+    if (!farField(ctx.params())) return;
+    // After the shading programs: the bins', then the far field's.
+    const Extent size = ctx.extent("color");
+    bins_.setup(ctx.program(1 + formats.size()), binGrid(ctx.params()), size);
+    far_ = ctx.program(2 + formats.size());
+    farLightCount_ = gl::Uniform(far_, "u_pointLightCount");
+    tiles_ = {(size.width + g.tileSize - 1) / g.tileSize, (size.height + g.tileSize - 1) / g.tileSize};
+    glCreateBuffers(1, &farFields_);
+    glNamedBufferStorage(farFields_, static_cast<GLsizeiptr>(tiles_.width) * tiles_.height * g.slices * kFarFieldRecord * 4,
+                         nullptr, 0);
   }
 
   void execute(PassContext& ctx) override {
@@ -66,6 +99,14 @@ class ClusteredDeferredPass final : public PassInstance {
     }
     scene.bindFrame();
     scene.bindPointLights(lighting::threshold(ctx.params()));
+    if (farFields_) {
+      bins_.build(lights, size);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kFarFieldBinding, farFields_);
+      glUseProgram(far_);
+      farLightCount_.set(lights);
+      glDispatchCompute(tiles_.width, tiles_.height, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
     glUseProgram(shade_);
     pointLightCount_.set(lights);
     ambientAndSun_.set(ctx.params().getBool("ambient_and_sun", true));
@@ -80,9 +121,11 @@ class ClusteredDeferredPass final : public PassInstance {
   }
 
  private:
-  uint32_t shade_ = 0, buffer_ = 0;
+  uint32_t shade_ = 0, buffer_ = 0, far_ = 0, farFields_ = 0;
+  Extent tiles_;
   clusters::Builder builder_;
-  gl::Uniform pointLightCount_, ambientAndSun_, load_;
+  lighting::LightBins bins_;
+  gl::Uniform pointLightCount_, ambientAndSun_, load_, farLightCount_;
 };
 
 PassTypeDesc makeClusteredDeferredPass() {
@@ -99,6 +142,7 @@ PassTypeDesc makeClusteredDeferredPass() {
                            "a cluster with more lights than its list holds: shade_all (every light there; correct, "
                            "slow) or truncate (only the listed ones; wrong, shows where clusters overflow)",
                            {"shade_all", "truncate"}));
+  d.params.push_back(lighting::farFieldParam());
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
   d.programs = [](const ParamSet& p) {
     std::vector<ShaderProgramSpec> v;
@@ -106,16 +150,35 @@ PassTypeDesc makeClusteredDeferredPass() {
     for (Format target : lighting::hdrFormats()) {  // setup() takes the one of the bound target's format
       ShaderProgramSpec s;
       s.comp = "clustered_deferred.comp";
-      s.defines = lighting::shadingDefines(p);
+      s.defines = shadingDefines(p);
       s.defines.push_back(std::string("TARGET_FORMAT=") + lighting::hdrImageQualifier(target));
       if (p.getString("overflow", "shade_all") == "truncate") s.defines.push_back("CLUSTER_OVERFLOW_TRUNCATE");
       s.samplers = lighting::gbufferSamplers();
       s.drawsToAttachments = false;
       v.push_back(std::move(s));
     }
+    if (farField(p)) {
+      std::vector<std::string> defines = shadingDefines(p);
+      for (auto& g : clusters::gridDefines(p)) defines.push_back(std::move(g));
+      v.push_back(lighting::binProgram(defines, binGrid(p)));
+      ShaderProgramSpec far;
+      far.comp = "clustered_far.comp";
+      far.defines = std::move(defines);
+      for (auto& b : lighting::binDefines(binGrid(p))) far.defines.push_back(std::move(b));
+      far.samplers = lighting::gbufferSamplers();
+      far.drawsToAttachments = false;
+      v.push_back(std::move(far));
+    }
     return v;
   };
-  d.check = clusters::checkReaderSlot;  // the G-buffer's slots: gbufferReader's rule
+  // The G-buffer's slots: gbufferReader's rule.
+  d.check = [](const PassCheckContext& ctx, PassChecks& checks) {
+    clusters::checkReaderSlot(ctx, checks);
+    if (farField(ctx.params()) && ctx.bound(clusters::kSlot))
+      checks.slotError(clusters::kSlot, "far_field sums per cluster what the pass's own lists leave out: leave '" +
+                                            std::string(clusters::kSlot) +
+                                            "' unbound (the pass builds its lists) or set far_field false");
+  };
   d.create = [] { return std::make_unique<ClusteredDeferredPass>(); };
   return d;
 }

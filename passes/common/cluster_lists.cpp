@@ -30,12 +30,16 @@ uint64_t bufferBytes(const Grid& g, Extent size) {
   return (4 + tiles * g.slices * (1 + uint64_t(g.maxLights))) * 4;
 }
 
-ShaderProgramSpec buildProgram(const ParamSet& p) {
+std::vector<std::string> gridDefines(const ParamSet& p) {
   const Grid g = grid(p);
+  return {"TILE_SIZE=" + std::to_string(g.tileSize), "SLICES=" + std::to_string(g.slices),
+          "MAX_CLUSTER_LIGHTS=" + std::to_string(g.maxLights)};
+}
+
+ShaderProgramSpec buildProgram(const ParamSet& p) {
   ShaderProgramSpec build;
   build.comp = "clustered_build.comp";
-  build.defines = {"TILE_SIZE=" + std::to_string(g.tileSize), "SLICES=" + std::to_string(g.slices),
-                   "MAX_CLUSTER_LIGHTS=" + std::to_string(g.maxLights)};
+  build.defines = gridDefines(p);
   build.drawsToAttachments = false;
   return build;
 }

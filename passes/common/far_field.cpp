@@ -7,9 +7,10 @@ namespace rgraph::lighting {
 
 ParamDecl farFieldParam() {
   return decl::param("far_field", ParamType::boolean, false,
-                     "add the lights a tile does not list as a low-frequency far-field term (16 direction bins "
-                     "summed per tile and per quarter, each shaded as one light), and shade the listed ones "
-                     "without their cut: recovers most of the cut-off's error (attenuation classic only)");
+                     "add the lights a tile or cluster does not list as a low-frequency far-field term (16 "
+                     "direction bins summed per tile and quarter, or per cluster with pixels, each shaded as one "
+                     "light), and shade the listed ones without their cut: recovers most of the cut-off's error "
+                     "(attenuation classic only)");
 }
 
 void addFarFieldDefine(const ParamSet& p, std::vector<std::string>& defines) {

@@ -19,6 +19,7 @@
 #include "rgraph/gl/uniform.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/passes/far_field.h"
+#include "rgraph/passes/light_bins.h"
 #include "rgraph/passes/lighting_options.h"
 #include "rgraph/registry.h"
 
@@ -36,28 +37,25 @@ int maxTileLights(const ParamSet& p) {
   return static_cast<int>(std::clamp<int64_t>(std::min(p.getInt("max_tile_lights", 1024), fit), 1, 65536));
 }
 
-// Tiles per bin side: bins of at least 64 pixels, so that the bin buffer
-// stays small (about 2.4 KiB per 64x64 pixels).
-int binTiles(const ParamSet& p) { return std::max<int>(2, static_cast<int>(64 / p.getInt("tile_size", 16))); }
-constexpr int kMaxBinLights = 512;
-constexpr int kBinHeader = 200;  // include/tile_bins.glsl's BIN_HEADER
-constexpr GLuint kBinBinding = 1;
+// The bins: at least 64 pixels a side, so that the bin buffer stays small
+// (about 2.4 KiB per 64x64 pixels), on storage-buffer binding 1.
+lighting::BinGrid binGrid(const ParamSet& p) {
+  const int tile = static_cast<int>(p.getInt("tile_size", 16));
+  return {tile, std::max(2, 64 / tile), p.getBool("far_field", false), 1};
+}
 
-// What both programs share: lighting, G-buffer, tile and bin defines.
+// What both programs share: lighting, G-buffer, tile and far-field defines
+// (the bin program adds the bins' own, lighting::binProgram).
 std::vector<std::string> commonDefines(const ParamSet& p) {
   std::vector<std::string> defines = lighting::shadingDefines(p);
   defines.push_back("TILE_SIZE=" + std::to_string(p.getInt("tile_size", 16)));
-  defines.push_back("BIN_TILES=" + std::to_string(binTiles(p)));
-  defines.push_back("MAX_BIN_LIGHTS=" + std::to_string(kMaxBinLights));
-  // With the far field the bins keep the lights within twice their radius,
-  // so that the tiles, not the coarse bins, sum the nearer unlisted ones.
-  defines.push_back(std::string("BIN_REACH=") + (p.getBool("far_field", false) ? "2.0" : "1.0"));
   lighting::addFarFieldDefine(p, defines);
   return defines;
 }
 
 std::vector<std::string> programDefines(const ParamSet& p, Format target) {
   std::vector<std::string> defines = commonDefines(p);
+  for (auto& d : lighting::binDefines(binGrid(p))) defines.push_back(std::move(d));
   defines.push_back("MAX_TILE_LIGHTS=" + std::to_string(maxTileLights(p)));
   defines.push_back(std::string("TARGET_FORMAT=") + lighting::hdrImageQualifier(target));
   return defines;
@@ -65,10 +63,6 @@ std::vector<std::string> programDefines(const ParamSet& p, Format target) {
 
 class TiledDeferredPass final : public PassInstance {
  public:
-  ~TiledDeferredPass() override {
-    if (bins_) glDeleteBuffers(1, &bins_);
-  }
-
   void setup(PassContext& ctx) override {
     tile_ = static_cast<int>(ctx.params().getInt("tile_size", 16));
     GLint invocations = 0, groupX = 0, groupY = 0;
@@ -83,15 +77,7 @@ class TiledDeferredPass final : public PassInstance {
     // format (the image format qualifier is a define), in the order of hdrFormats().
     const auto& formats = lighting::hdrFormats();
     program_ = ctx.program(1 + (std::find(formats.begin(), formats.end(), ctx.format("color")) - formats.begin()));
-    binProgram_ = ctx.program(0);
-    binLightCount_ = gl::Uniform(binProgram_, "u_pointLightCount");
-    binPixels_ = tile_ * binTiles(ctx.params());
-    const Extent size = ctx.extent("color");
-    const GLsizeiptr bins = static_cast<GLsizeiptr>((size.width + binPixels_ - 1) / binPixels_) *
-                            ((size.height + binPixels_ - 1) / binPixels_);
-    if (bins_) glDeleteBuffers(1, &bins_);
-    glCreateBuffers(1, &bins_);
-    glNamedBufferStorage(bins_, bins * (kBinHeader + kMaxBinLights) * 4, nullptr, 0);
+    bins_.setup(ctx.program(0), binGrid(ctx.params()), ctx.extent("color"));
     pointLightCount_ = gl::Uniform(program_, "u_pointLightCount");
     ambientAndSun_ = gl::Uniform(program_, "u_ambientAndSun");
     load_ = gl::Uniform(program_, "u_load");
@@ -104,13 +90,7 @@ class TiledDeferredPass final : public PassInstance {
     const int lights = points ? static_cast<int>(scene.pointLightCount()) : 0;
     scene.bindFrame();
     scene.bindPointLights(lighting::threshold(ctx.params()));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBinBinding, bins_);
-    if (lights > 0) {
-      glUseProgram(binProgram_);
-      binLightCount_.set(lights);
-      glDispatchCompute((size.width + binPixels_ - 1) / binPixels_, (size.height + binPixels_ - 1) / binPixels_, 1);
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    }
+    bins_.build(lights, size);
     glUseProgram(program_);
     pointLightCount_.set(lights);
     ambientAndSun_.set(ctx.params().getBool("ambient_and_sun", true));
@@ -125,9 +105,10 @@ class TiledDeferredPass final : public PassInstance {
   }
 
  private:
-  uint32_t program_ = 0, binProgram_ = 0, bins_ = 0;
-  int tile_ = 16, binPixels_ = 64;
-  gl::Uniform pointLightCount_, ambientAndSun_, load_, binLightCount_;
+  uint32_t program_ = 0;
+  int tile_ = 16;
+  lighting::LightBins bins_;
+  gl::Uniform pointLightCount_, ambientAndSun_, load_;
 };
 
 PassTypeDesc makeTiledDeferredPass() {
@@ -145,12 +126,7 @@ PassTypeDesc makeTiledDeferredPass() {
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
   d.programs = [](const ParamSet& p) {
     std::vector<ShaderProgramSpec> v;
-    ShaderProgramSpec bin;
-    bin.comp = "tiled_bin.comp";
-    bin.defines = commonDefines(p);
-    bin.samplers = lighting::gbufferSamplers();
-    bin.drawsToAttachments = false;
-    v.push_back(std::move(bin));
+    v.push_back(lighting::binProgram(commonDefines(p), binGrid(p)));
     for (Format target : lighting::hdrFormats()) {  // setup() takes the one of the bound target's format
       ShaderProgramSpec s;
       s.comp = "tiled_deferred.comp";

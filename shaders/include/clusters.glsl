@@ -11,7 +11,9 @@
 // The builder (CLUSTER_LISTS_BUILD) takes the grid from its defines and the
 // pass that dispatches it writes the header; readers take the grid from the
 // header, so that it is stated once, by the pass that builds the lists
-// (passes/common/cluster_lists.cpp).
+// (passes/common/cluster_lists.cpp); a reader of the lists its own pass
+// built may take the grid from the same defines (CLUSTER_GRID_DEFINES:
+// clustered_far.comp, whose shared arrays need it at compile time).
 #ifdef CLUSTER_LISTS_BUILD
 layout(std430, binding = 1) buffer Clusters {
 #else
@@ -22,7 +24,7 @@ layout(std430, binding = 1) readonly buffer Clusters {
   uint data[];          // counts[clusterCount()], then indices[clusterCount() * MAX_CLUSTER_LIGHTS]
 };
 
-#ifdef CLUSTER_LISTS_BUILD
+#if defined(CLUSTER_LISTS_BUILD) || defined(CLUSTER_GRID_DEFINES)
 #ifndef TILE_SIZE
 #define TILE_SIZE 32
 #endif
@@ -74,4 +76,10 @@ bool clusterListsFit(uint bufferUints) {
 int clusterIndex(ivec2 tile, int slice) {
   const ivec2 tiles = clusterTiles();
   return (slice * tiles.y + tile.y) * tiles.x + tile.x;
+}
+
+// The cluster of the pixel `px` at positive view depth `viewDepth`; a pixel
+// past the grid (a target larger than the viewport) takes the edge tile's.
+int clusterAt(ivec2 px, float viewDepth) {
+  return clusterIndex(min(px / TILE_SIZE, clusterTiles() - 1), clusterSlice(viewDepth));
 }

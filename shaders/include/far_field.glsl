@@ -56,6 +56,19 @@ vec3 farFieldMeanLight(vec3 dir, vec3 offsets) {
   return len > 1e-12 ? dir * (length(offsets) / (len * len)) : vec3(0.0);
 }
 
+// A set's direction bin (farFieldAdd's sums v) summed at one point, seen
+// from `offset` away to first order: its mean light's direction and
+// distance change, its radiance follows the gradient (tiled_deferred.comp
+// moves its bin's set to a tile, clustered_far.comp to a cluster).
+void farFieldMove(inout vec3 v[4], vec3 offset) {
+  const vec3 mean = farFieldMeanLight(v[1], v[3]) - offset;
+  const float scale = farFieldScaleAt(v[0], v[2], offset), distance = length(mean);
+  const vec3 dir = distance > 1e-12 ? mean * (length(v[1]) * scale / distance) : vec3(0.0);
+  v[0] *= scale;
+  v[1] = dir;
+  v[3] = dir * distance;
+}
+
 // One bin's light at a surface: `radiance` times `scale` from the bin's mean
 // light at `toLight` (surface to light), also scaled by the length of the
 // weighted direction sum `dir` over the weight (1 when the bin's lights agree
@@ -83,6 +96,12 @@ void farFieldClear(uint local, uint groupSize) {
     s_farSums[i / uint(FAR_FIELD_VALUES)][i % uint(FAR_FIELD_VALUES)] = 0;
 }
 
+// Adds the sums v of direction bin b to shared set `set`.
+void farFieldAddSums(int set, int b, vec3 v[4]) {
+  for (int j = 0; j < 4; ++j)
+    for (int c = 0; c < 3; ++c) atomicAdd(s_farSums[set][(4 * b + j) * 3 + c], farFieldFixed(v[j][c]));
+}
+
 // Adds `light`'s radiance at point p to its bin of shared set `set` (bin b:
 // radiance in sums 4b, the directions weighted by the radiance's mean w in
 // 4b+1, the gradient of w with respect to p in 4b+2: pixels away from p
@@ -105,9 +124,7 @@ void farFieldAdd(int set, PointLight light, vec3 p) {
   const int bin = (L.x >= 0.0 ? 1 : 0) + (L.z >= 0.0 ? 2 : 0) + (abs(L.x) >= abs(L.z) ? 4 : 0) + (L.y >= 0.0 ? 8 : 0);
   const float w = dot(radiance, vec3(1.0 / 3.0));
   // d att / d p = att^2 (linear + 2 quadratic d) L: nearer the light, brighter.
-  const vec3 v[4] = vec3[4](radiance, L * w, L * (w * att * (k.y + 2.0 * k.z * d)), toLight * w);
-  for (int j = 0; j < 4; ++j)
-    for (int c = 0; c < 3; ++c) atomicAdd(s_farSums[set][(4 * bin + j) * 3 + c], farFieldFixed(v[j][c]));
+  farFieldAddSums(set, bin, vec3[4](radiance, L * w, L * (w * att * (k.y + 2.0 * k.z * d)), toLight * w));
 }
 
 // Bin b of shared set `set` as floats: radiance, weighted direction,

@@ -267,7 +267,7 @@ TEST(ShaderCheck, EveryShippedPipelineHasNoShaderDiagnostics) {
   EXPECT_GE(checked, 8u);
   // Programs shared between pipelines are compiled once.
   EXPECT_GT(checker.stats().cacheHits, 0u);
-  EXPECT_LT(checker.stats().programsCompiled, 40u);
+  EXPECT_LT(checker.stats().programsCompiled, 48u);
   // Well under a second in a release build; generous for sanitizer builds.
   EXPECT_LT(seconds, 10.0);
   std::printf("checked %zu pipelines: %zu programs compiled, %zu cache hits, %.3f s in glslang, %.3f s in all\n",

@@ -31,6 +31,10 @@ std::vector<ParamDecl> gridParams();
 Grid grid(const ParamSet& params);
 // The list buffer for `g` over a viewport of `size`: header, counts, lists.
 uint64_t bufferBytes(const Grid& g, Extent size);
+// The grid as defines (TILE_SIZE, SLICES, MAX_CLUSTER_LIGHTS): the build
+// program's, and those of a program that reads lists its own pass built
+// (CLUSTER_GRID_DEFINES in include/clusters.glsl).
+std::vector<std::string> gridDefines(const ParamSet& params);
 // The build program (clustered_build.comp with the grid's defines).
 ShaderProgramSpec buildProgram(const ParamSet& params);
 
