@@ -4,13 +4,14 @@
 
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/lighting_options.h"
 
 namespace rgraph::clusters {
 
-std::vector<ParamDecl> gridParams() {
+std::vector<ParamDecl> gridParams(int defaultTileSize) {
   using namespace rgraph::decl;
   return {
-      ranged("tile_size", ParamType::integer, int64_t{32}, 4, 256, "cluster width and height in pixels"),
+      ranged("tile_size", ParamType::integer, int64_t{defaultTileSize}, 4, 256, "cluster width and height in pixels"),
       ranged("slices", ParamType::integer, int64_t{24}, 1, 256,
              "depth slices, spaced exponentially from the camera's near to its far plane"),
       ranged("max_cluster_lights", ParamType::integer, int64_t{256}, 1, 4096,
@@ -40,6 +41,16 @@ ShaderProgramSpec buildProgram(const ParamSet& p) {
   ShaderProgramSpec build;
   build.comp = "clustered_build.comp";
   build.defines = gridDefines(p);
+  build.drawsToAttachments = false;
+  return build;
+}
+
+ShaderProgramSpec depthBoundedBuildProgram(const ParamSet& p, std::vector<std::string> binDefines) {
+  ShaderProgramSpec build = buildProgram(p);
+  for (auto& d : lighting::shadingDefines(p)) build.defines.push_back(std::move(d));
+  for (auto& d : binDefines) build.defines.push_back(std::move(d));
+  build.defines.push_back("CLUSTER_DEPTH_BOUNDS");
+  build.samplers = lighting::gbufferSamplers();
   build.drawsToAttachments = false;
   return build;
 }

@@ -186,7 +186,9 @@ TEST_F(Clustered, LightStraddlingTheNearPlaneLightsAsFullscreen) {
 TEST_F(Clustered, MoreTileCandidatesThanSharedMemoryHoldsTestsEveryLight) {
   // No cut-off: all 1,100 lights reach every tile, past the 1,024 candidates
   // a tile keeps in shared memory (clustered_build.comp), so the build tests
-  // every light per slice; lists of 2,048 hold them all (no overflow).
+  // every light per slice; lists of 2,048 hold them all (no overflow). (The
+  // bins the build culls first overflow too: past 512 lights a tile culls
+  // every light.)
   const Scene scene = makeManyLightsScene(1100);
   const json params = {{"threshold", 0.0}, {"max_cluster_lights", 2048}};
   ShaderLibrary shaders;
@@ -200,7 +202,15 @@ TEST_F(Clustered, MoreTileCandidatesThanSharedMemoryHoldsTestsEveryLight) {
   constexpr size_t kClusters = 2 * 2 * 24;
   ASSERT_EQ(data.size(), 4 + kClusters * (1 + 2048));
   EXPECT_EQ(data[0], 0u) << "overflowed clusters";
-  for (size_t c = 0; c < kClusters; ++c) ASSERT_EQ(data[4 + c], 1100u) << "cluster " << c;
+  // clustered_deferred lists lights only for clusters that hold pixels (their
+  // pixels' depths bound them): every such cluster lists all 1,100.
+  size_t withPixels = 0;
+  for (size_t c = 0; c < kClusters; ++c)
+    if (data[4 + c] != 0u) {
+      ASSERT_EQ(data[4 + c], 1100u) << "cluster " << c;
+      ++withPixels;
+    }
+  EXPECT_GE(withPixels, 4u) << "every tile has clusters with pixels";
   const rtest::ImageDiff d = rtest::compareImages(clustered, full, 1);
   std::printf("[ measure  ] no cut-off, 1,100 lights: clustered vs fullscreen %s\n", d.describe().c_str());
   EXPECT_EQ(d.over, 0u) << d.describe();

@@ -256,8 +256,19 @@ TEST_F(Stability, ClustersListSpotLightsOnlyWhereTheirConesReach) {
   auto listed = [](const PointLight& light) {
     Scene s = spotScene();
     s.pointLights = {light};
-    const PipelineConfig cfg =
-        pipelineFromJson(computePipeline("clustered_deferred", {"blinn_phong", "classic", kThreshold}), "clustered");
+    // The lists a cluster_lights pass builds: every cluster's, whether it
+    // holds pixels or not (clustered_deferred's own lists only those with
+    // pixels, bounded by their depths). 144x96 at its default 32-pixel tiles,
+    // 24 slices and 256 lights a list: (4 + 5 x 3 x 24 x 257) x 4 bytes.
+    json doc = computePipeline("clustered_deferred", {"blinn_phong", "classic", kThreshold});
+    doc["resources"]["clusters"] = {{"type", "buffer"}, {"buffer_bytes", 370096}};
+    doc["passes"].insert(doc["passes"].begin(), json{{"name", "cluster_lights"},
+                                                     {"type", "cluster_lights"},
+                                                     {"params", {{"threshold", kThreshold}}},
+                                                     {"outputs", {{"clusters", "clusters"}}}});
+    for (json& pass : doc["passes"])
+      if (pass["name"] == "lighting") pass["inputs"]["clusters"] = "clusters";
+    const PipelineConfig cfg = pipelineFromJson(doc, "clustered");
     Executor exec(cfg, PassRegistry::builtins(), sharedShaders(), &s);
     exec.resize(kSize);
     exec.renderFrame();

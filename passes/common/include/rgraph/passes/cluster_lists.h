@@ -26,8 +26,8 @@ struct Grid {
   int maxLights = 256;  // light indices one cluster's list holds
 };
 
-// tile_size, slices, max_cluster_lights.
-std::vector<ParamDecl> gridParams();
+// tile_size (default `defaultTileSize`), slices, max_cluster_lights.
+std::vector<ParamDecl> gridParams(int defaultTileSize = 32);
 Grid grid(const ParamSet& params);
 // The list buffer for `g` over a viewport of `size`: header, counts, lists.
 uint64_t bufferBytes(const Grid& g, Extent size);
@@ -37,6 +37,14 @@ uint64_t bufferBytes(const Grid& g, Extent size);
 std::vector<std::string> gridDefines(const ParamSet& params);
 // The build program (clustered_build.comp with the grid's defines).
 ShaderProgramSpec buildProgram(const ParamSet& params);
+// The build program of a pass that reads the G-buffer and builds lists for
+// its own pixels only (clustered_deferred): CLUSTER_DEPTH_BOUNDS bounds each
+// cluster's box by its pixels' depths (a cluster without pixels lists
+// nothing), so that a cluster's list holds what reaches its pixels, not its
+// whole depth slice; each tile culls the list of its light bin
+// (rgraph/passes/light_bins.h, `binDefines`) instead of every light. With the
+// pass's shading defines and G-buffer samplers.
+ShaderProgramSpec depthBoundedBuildProgram(const ParamSet& params, std::vector<std::string> binDefines);
 
 // The optional storage_read slot of a pass that shades with the lists, and
 // its check (bound: a buffer, not a texture).
