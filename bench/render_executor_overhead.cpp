@@ -46,6 +46,7 @@
 #include "rgraph/pipeline_load.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "../apps/rgraph/median.h"
 
 namespace {
 using namespace rgraph;
@@ -63,12 +64,7 @@ double wallUs() {
   return static_cast<double>(t.tv_sec) * 1e6 + static_cast<double>(t.tv_nsec) * 1e-3;
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using rgraph::cli::median;  // the median render --stats and rgraph bench report
 
 // One pipeline two ways: through an Executor, and written out.
 struct Case {

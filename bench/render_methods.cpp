@@ -42,6 +42,7 @@
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
 #include "render_context.h"
+#include "../apps/rgraph/median.h"
 
 namespace {
 using namespace rgraph;
@@ -81,12 +82,7 @@ ImageStats compare(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b)
   return {d.maxAbs, d.shareOver(2), d.psnr(99.0)};
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using rgraph::cli::median;  // the median render --stats and rgraph bench report
 
 struct Runner {
   std::string name;
