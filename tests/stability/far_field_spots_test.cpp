@@ -62,15 +62,9 @@ Scene ringScene(bool aimedAt) {
   return s;
 }
 
-// fullscreenPipeline with its lighting pass turned into `type` with far_field.
+// `type` with far_field on, the rest as the fullscreen pipeline.
 json farFieldPipeline(const std::string& type, const LightingParams& l) {
-  json doc = fullscreenPipeline({"fp32", ""}, l);
-  for (json& pass : doc["passes"])
-    if (pass["name"] == "lighting") {
-      pass["type"] = type;
-      pass["params"]["far_field"] = true;
-    }
-  return doc;
+  return computePipeline(type, l, {{"far_field", true}});
 }
 
 size_t pixelsBrighter(const Frame& a, const Frame& b, int by) {

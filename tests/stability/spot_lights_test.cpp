@@ -73,14 +73,6 @@ Scene spotScene() {
   return s;
 }
 
-// fullscreenPipeline with its lighting pass turned into another compute
-// lighting pass type (the same inputs, output and parameters).
-json computePipeline(const std::string& type, const LightingParams& l) {
-  json doc = fullscreenPipeline({"fp32", ""}, l);
-  for (json& pass : doc["passes"])
-    if (pass["name"] == "lighting") pass["type"] = type;
-  return doc;
-}
 
 struct Method {
   std::string name;

@@ -146,6 +146,16 @@ nlohmann::json fullscreenPipeline(const GBufferSpec& g, const LightingParams& l,
   return doc;
 }
 
+nlohmann::json computePipeline(const std::string& type, const LightingParams& l, const nlohmann::json& extraParams) {
+  nlohmann::json doc = fullscreenPipeline({"fp32", ""}, l);
+  for (nlohmann::json& pass : doc["passes"])
+    if (pass["name"] == "lighting") {
+      pass["type"] = type;
+      pass["params"].update(extraParams);
+    }
+  return doc;
+}
+
 nlohmann::json lightVolumesPipeline(const std::string& cull, const LightingParams& l, double gamma) {
   const GBufferJson gb = gbuffer({"fp32", ""});
   json doc = {{"version", 1}, {"description", "stability test: light volumes, cull " + cull}};

@@ -68,6 +68,11 @@ struct GBufferSpec {
 // "hdr" -> tonemap (operator none; gamma 1: linear bytes, as the repo's
 // LearnOpenGL pipelines) -> rgba8 "output".
 nlohmann::json fullscreenPipeline(const GBufferSpec& g, const LightingParams& l, double gamma = 1.0);
+// fullscreenPipeline with its lighting pass turned into another lighting
+// pass type reading the same inputs (tiled_deferred, clustered_deferred),
+// `extraParams` merged into its parameters.
+nlohmann::json computePipeline(const std::string& type, const LightingParams& l,
+                               const nlohmann::json& extraParams = nlohmann::json::object());
 // geometry (fp32) -> deferred_lighting (ambient + directional only) ->
 // light_volumes (cull front|back, depth-tested) into rgba32f "hdr" (final
 // version "hdr_lit") -> tonemap -> output.
