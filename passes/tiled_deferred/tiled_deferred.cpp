@@ -4,10 +4,11 @@
 // culling below does not grow with the number of lights in the scene at
 // constant overlap. In the second, each 16x16 tile of
 // the G-buffer finds its depth bounds, culls its bin's lights against its
-// frustum into a shared-memory list, refines that list per 8x8 quarter
-// (shaders/tiled_deferred.comp says why), and shades its pixels with their
-// quarter's list only (ambient and the directional light too, unless another pass adds
-// them), storing the HDR result with image stores. Same lighting maths and
+// frustum into a shared-memory list, marks which of them meet each half row
+// of 8 pixels (per 8x8 quarter with far_field; shaders/tiled_deferred.comp
+// says why), and shades its pixels with their half row's lights only
+// (ambient and the directional light too, unless another pass adds them),
+// storing the HDR result with image stores. Same lighting maths and
 // defines as deferred_lighting and light_volumes (rgraph/passes/lighting_options.h).
 #include <GL/glcorearb.h>
 
@@ -26,15 +27,27 @@
 namespace {
 using namespace rgraph;
 
-// Shared memory: the tile's list and its four quarters' lists (each a subset
-// of the tile's: 5 x 4 bytes a light) plus the counters and depth bounds
-// (< 128 bytes) and, with far_field, the far field's sums and near-light
-// list (tiled_deferred.comp, < 10 KiB), within the 32 KiB every GL 4.5 device
-// has (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE's minimum), so that the program does
-// not depend on the device and validate checks the one that runs.
+// Shared memory: 20 bytes a listed light (the tile's list and either its
+// four quarters' lists or the lights' view-space spheres), the counters and
+// depth bounds (< 128 bytes) and either, with far_field, the far field's sums
+// and near-light list (< 10 KiB) or, without, each of the tile's 2 x
+// tile_size half rows' depth bounds and a bit per listed light
+// (tiled_deferred.comp), within the 32 KiB every GL 4.5 device has (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE's
+// minimum), so that the program does not depend on the device and validate
+// checks the one that runs: 1,344 lights at tile_size 16, 1,120 with far_field.
+int64_t tileSharedBytes(int64_t lights, int64_t tile, bool farField) {
+  const int64_t rows = 2 * tile;
+  return 128 + 20 * lights + (farField ? 10240 : rows * 8 + rows * 4 * ((lights + 31) / 32));
+}
+
 int maxTileLights(const ParamSet& p) {
-  const int64_t fit = (32768 - 128 - (p.getBool("far_field", false) ? 10240 : 0)) / 20;
-  return static_cast<int>(std::clamp<int64_t>(std::min(p.getInt("max_tile_lights", 1024), fit), 1, 65536));
+  const int64_t tile = p.getInt("tile_size", 16);
+  const bool farField = p.getBool("far_field", false);
+  int64_t n = std::clamp<int64_t>(p.getInt("max_tile_lights", 1024), 1, 65536);
+  // The largest count that fits: the bytes grow by at least 20 a light.
+  if (tileSharedBytes(n, tile, farField) > 32768) n = (32768 - tileSharedBytes(0, tile, farField)) / 20;
+  while (n > 1 && tileSharedBytes(n, tile, farField) > 32768) --n;
+  return static_cast<int>(n);
 }
 
 // The bins: at least 64 pixels a side, so that the bin buffer stays small
@@ -116,7 +129,7 @@ PassTypeDesc makeTiledDeferredPass() {
   PassTypeDesc d = lighting::computeLightingPass(
       "tiled_deferred",
       "Tiled deferred lighting (compute): lights culled per 16x16 tile against its depth bounds, "
-      "each pixel shaded with its tile's list");
+      "then per half row of 8 pixels; each pixel shaded with its half row's lights");
   d.params.push_back(ranged("tile_size", ParamType::integer, int64_t{16}, 4, 32,
                             "tile edge in pixels (tile_size^2 invocations per work group)"));
   d.params.push_back(ranged("max_tile_lights", ParamType::integer, int64_t{1024}, 16, 16384,

@@ -1,5 +1,5 @@
 // Culling a point light's sphere against a screen rectangle's frustum between
-// two view depths: shared by tiled_deferred.comp (tiles and their quarters)
+// two view depths: shared by tiled_deferred.comp (tiles, half rows, quarters)
 // and tiled_bin.comp (the groups of tiles it lists lights for). Needs
 // include/frame.glsl first.
 
