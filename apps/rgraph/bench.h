@@ -84,6 +84,11 @@ struct FrameBudget {
   int minFrames = 3;       // timed frames, at least
   int maxFrames = 5;       // and at most
   double budgetMs = 1500;  // timed frames are cut to fit this
+  // A first frame longer than this (ms; 0: never) is the only one: its time,
+  // shader compilation included, is the point's (the full sweep's every-light
+  // loops at 10,000 lights take tens of seconds a frame, compilation well
+  // under one).
+  double singleFrameMs = 0;
 };
 
 struct Measured {

@@ -62,18 +62,28 @@ Measured measure(PipelineConfig cfg, const Scene& scene, Extent size, ShaderLibr
   m.naiveBytes = exec.plan().naiveBytes;
 
   auto frame = [&]() { return timedFrame(exec); };
-  for (int i = 0; i < budget.warm; ++i) {
-    // The first frame compiles shaders; a dear point needs no second warm-up.
-    if (frame() > budget.budgetMs / 3) break;
-  }
-  int target = budget.maxFrames;
-  for (int i = 0; i < target; ++i) {
-    const double ms = frame();
+  auto keep = [&](double ms) {
     m.frameMs.push_back(ms);
     for (const auto& t : exec.timings()) {
       if (!m.passMs.count(t.name)) m.passOrder.push_back(t.name);
       m.passMs[t.name].push_back(t.ms);
     }
+  };
+  int target = budget.maxFrames;
+  for (int i = 0; i < budget.warm; ++i) {
+    // The first frame compiles shaders; a dear point needs no second warm-up,
+    // and a very dear one no other frame.
+    const double ms = frame();
+    if (i == 0 && budget.singleFrameMs > 0 && ms > budget.singleFrameMs) {
+      keep(ms);
+      target = 0;
+      break;
+    }
+    if (ms > budget.budgetMs / 3) break;
+  }
+  for (int i = 0; i < target; ++i) {
+    const double ms = frame();
+    keep(ms);
     if (i == 0) {  // the first timed frame sets how many fit the budget
       const int fit = static_cast<int>(budget.budgetMs / std::max(ms, 1e-3));
       target = std::clamp(fit, budget.minFrames, budget.maxFrames);
