@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 
 namespace rgraph {
 class GlContext;
@@ -18,5 +19,20 @@ GlContext& renderContext();
 // the context is destroyed: drop the GL objects here.
 void atContextRelease(std::function<void()> release);
 void releaseRenderContext();
+
+// A benchmark file's GL state: `make()` (returning std::unique_ptr<T>) runs
+// once, in the shared context, on first use; the object is dropped when the
+// context is released. One per T.
+template <class T, class Make>
+T& contextSingleton(Make make) {
+  static std::unique_ptr<T> slot;
+  if (!slot) {
+    renderContext();
+    std::unique_ptr<T> made = make();
+    atContextRelease([] { slot.reset(); });
+    slot = std::move(made);
+  }
+  return *slot;
+}
 
 }  // namespace rgraph::bench

@@ -316,17 +316,8 @@ void checkSameImage(Case& c) {
   if (flat) c.error = "the executor's image is one colour: nothing to compare";
 }
 
-std::unique_ptr<World>& worldSlot() {
-  static std::unique_ptr<World> w;
-  return w;
-}
-
-World& world() {
-  auto& slot = worldSlot();
-  if (slot) return *slot;
+std::unique_ptr<World> makeWorld() {
   auto w = std::make_unique<World>();
-  bench::renderContext();
-  bench::atContextRelease([] { worldSlot().reset(); });
   w->shaders = std::make_unique<ShaderLibrary>();
   const std::pair<const char*, void (*)(World&, Case&)> cases[] = {{"chain200_16x16", setUpChain},
                                                                    {"default_32x32", setUpDefault}};
@@ -339,9 +330,10 @@ World& world() {
       c.error = e.what();
     }
   }
-  slot = std::move(w);
-  return *slot;
+  return w;
 }
+
+World& world() { return bench::contextSingleton<World>(makeWorld); }
 
 struct Sample {
   double cpuUs = 0, wallUs = 0;

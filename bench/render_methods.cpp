@@ -111,14 +111,7 @@ struct World {
   std::map<std::string, Runner> runners;
 };
 
-std::unique_ptr<World>& worldSlot() {
-  static std::unique_ptr<World> w;
-  return w;
-}
-
-World& world() {
-  auto& slot = worldSlot();
-  if (slot) return *slot;
+std::unique_ptr<World> makeWorld() {
   auto w = std::make_unique<World>();
   const char* sceneEnv = std::getenv("RGRAPH_BENCH_SCENE");
   const std::string sceneSpec = sceneEnv && *sceneEnv ? sceneEnv : "many-lights:256";
@@ -126,8 +119,6 @@ World& world() {
     unsigned wd = 0, ht = 0;
     if (std::sscanf(sizeEnv, "%ux%u", &wd, &ht) == 2 && wd > 0 && ht > 0) w->size = {wd, ht};
   }
-  bench::renderContext();
-  bench::atContextRelease([] { worldSlot().reset(); });
   w->shaders = std::make_unique<ShaderLibrary>();
   w->scene = std::make_unique<Scene>(loadSceneAny(sceneSpec));
   const SceneFeatures features = sceneFeatures(*w->scene);
@@ -153,9 +144,10 @@ World& world() {
     r.passOrder.clear();
     w->runners.emplace(m.name, std::move(r));
   }
-  slot = std::move(w);
-  return *slot;
+  return w;
 }
+
+World& world() { return bench::contextSingleton<World>(makeWorld); }
 
 void reportImage(benchmark::State& state, const Runner& r) {
   World& w = world();
