@@ -179,10 +179,13 @@ void bloomRowError(const json& shipped, PostRow& row, const Scene& scene, Shader
 
 // The ambient visibility the lighting pass sees, at the output size (R of
 // RGBA): "ao", or for half_bilinear "ao_half" upsampled bilinearly as the
-// lighting pass's sampler does (texel centres, edges clamped).
+// lighting pass's sampler does (texel centres, edges clamped). That variant
+// ends at the lighting pass's "hdr" (output-sized, so no size warning):
+// nothing runs after the pass that reads "ao_half", so its texture still
+// holds it.
 std::vector<float> aoOf(const json& shipped, const PostRow& row, const Scene& scene, ShaderLibrary& shaders) {
   const bool bilinear = row.method == "half_bilinear";
-  PipelineConfig cfg = build(variant(shipped, row, bilinear ? "ao_half" : "ao"), row);
+  PipelineConfig cfg = build(variant(shipped, row, bilinear ? "hdr" : "ao"), row);
   const std::unique_ptr<Executor> exec = makeExecutor(cfg, scene, row.size, shaders);
   exec->renderFrame();
   if (!bilinear) return exec->readTextureRGBA32F("ao");
