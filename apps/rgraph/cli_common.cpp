@@ -113,4 +113,10 @@ std::string defaultPipelinePath() {
   return (std::filesystem::path(RGRAPH_PIPELINE_SOURCE_DIR) / name).string();
 }
 
+nlohmann::json memoryJson(const Plan& plan) {
+  return {{"naive_bytes", plan.naiveBytes},
+          {"allocated_bytes", plan.allocatedBytes},
+          {"peak_live_bytes", plan.peakLiveBytes}};
+}
+
 }  // namespace rgraph::cli

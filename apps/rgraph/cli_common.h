@@ -2,6 +2,7 @@
 // the config loader and the registry, and printing diagnostics.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,6 +40,10 @@ bool addShaderPaths(const std::vector<std::string>& dirs);
 void printDiagnostics(const Diagnostics& diags);
 // Diagnostics as the JSON array `rgraph validate --json` prints.
 std::string diagnosticsJson(const Diagnostics& diags);
+
+// A plan's "memory" object as `plan --json` and `render --stats` write it:
+// naive_bytes, allocated_bytes, peak_live_bytes (Plan's fields of those names).
+nlohmann::json memoryJson(const Plan& plan);
 
 // Compile options for --width/--height and --max-texture-size (16384, the
 // OpenGL 4.5 minimum, when not given), with the limit's origin for messages.

@@ -78,7 +78,7 @@ nlohmann::json planJson(const Plan& plan) {
           {"passes", passes},
           {"resources", resources},
           {"physical", physical},
-          {"memory", {{"naive_bytes", plan.naiveBytes}, {"allocated_bytes", plan.allocatedBytes}}}};
+          {"memory", memoryJson(plan)}};
 }
 
 std::string mib(uint64_t bytes) {
@@ -119,7 +119,8 @@ void printPlanText(const Plan& plan) {
     std::cout << "\n";
   }
   std::cout << "memory: naive " << mib(plan.naiveBytes) << ", allocated " << mib(plan.allocatedBytes) << " in "
-            << plan.physical.size() << " physical textures\n";
+            << plan.physical.size() << " physical textures; peak live " << mib(plan.peakLiveBytes)
+            << " (the least any allocator needs)\n";
 }
 
 }  // namespace
@@ -170,8 +171,7 @@ int runPlan(const std::string& path, const SizeOptions& size, bool json, const s
     out["scene"] = {{"source", scene.source},
                     {"adaptations", report.notes},
                     {"gbuffer_bytes_per_pixel", {{"before", before}, {"after", after}}},
-                    {"memory_before", {{"naive_bytes", result->second.naiveBytes},
-                                       {"allocated_bytes", result->second.allocatedBytes}}}};
+                    {"memory_before", memoryJson(result->second)}};
     std::cout << out.dump(2) << "\n";
   } else {
     std::cout << "adapted to scene " << scene.source << ":\n";

@@ -34,7 +34,7 @@ void writeStats(const std::string& path, const std::vector<double>& frameMs,
                           {"frame_ms_max", *mx},
                           {"frames", frameMs.size()},
                           {"passes", passes},
-                          {"memory", {{"naive_bytes", plan.naiveBytes}, {"allocated_bytes", plan.allocatedBytes}}}};
+                          {"memory", memoryJson(plan)}};
   std::ofstream f(path);
   if (!f) throw RuntimeError("cannot write stats file '" + path + "'");
   f << stats.dump(2) << "\n";

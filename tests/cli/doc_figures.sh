@@ -44,6 +44,6 @@ desc=$(grep -o 'allocates [0-9,]* bytes in [0-9]* textures' "$src/pipelines/defe
 [ -n "$desc" ] || { echo "FAIL: deferred-ssao-bloom.json's description no longer states its bytes" >&2; exit 1; }
 check "deferred-ssao-bloom.json description allocated bytes" "$(awk '{print $2}' <<<"$desc" | num)" "$alloc"
 textures=$("$rgraph" plan "$src/pipelines/deferred-ssao-bloom.json" --width 1920 --height 1080 |
-  sed -n 's/.* in \([0-9]*\) physical textures$/\1/p')
+  sed -n 's/.* in \([0-9]*\) physical textures;.*/\1/p')
 check "deferred-ssao-bloom.json description textures" "$(awk '{print $5}' <<<"$desc")" "$textures"
 exit $fail

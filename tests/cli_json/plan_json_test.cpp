@@ -58,6 +58,7 @@ TEST(CliPlanJson, ChainOfPostPassesNeedsTwoPhysicalTextures) {
   const uint64_t texture = 640ull * 360 * 8;
   EXPECT_EQ(plan.at("memory").at("naive_bytes"), 5 * texture);
   EXPECT_EQ(plan.at("memory").at("allocated_bytes"), 2 * texture);
+  EXPECT_EQ(plan.at("memory").at("peak_live_bytes"), 2 * texture) << "two live at each pass of the chain";
   const auto* post1 = findByName(plan.at("resources"), "post1");
   ASSERT_NE(post1, nullptr);
   EXPECT_EQ(post1->at("first_pass"), "invert1");

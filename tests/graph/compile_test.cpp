@@ -365,6 +365,7 @@ TEST(Compile, AliasingSharesExactlyAlternateChainTextures) {
   EXPECT_EQ(plan.allocatedBytes, 2 * one);
   EXPECT_EQ(plan.physical[0].extent, (Extent{1280, 720}));
   EXPECT_EQ(plan.physical[0].bytes, one);
+  EXPECT_EQ(plan.peakLiveBytes, 2 * one) << "two textures live at each middle pass: aliasing is optimal here";
 
   CompileOptions noAlias;
   noAlias.alias = false;
@@ -416,6 +417,13 @@ TEST(Compile, IncompatibleDescriptorsNeverShare) {
   EXPECT_EQ(plan.physicalTexture(res(plan, "e").physical).mips, 11u);  // full chain of 1280x720
   EXPECT_EQ(plan.physicalTexture(res(plan, "g").physical).samples, 4u);
   EXPECT_LT(plan.allocatedBytes, plan.naiveBytes);
+  // Two textures are live at each middle pass; the largest pair is c and d,
+  // or g (4 samples) and f: what a format-agnostic allocator would need.
+  const uint64_t px = 1280ull * 720ull, rgba8 = px * 4;
+  const uint64_t bytesG = res(plan, "g").bytes;
+  EXPECT_EQ(bytesG, 4 * rgba8);
+  EXPECT_EQ(plan.peakLiveBytes, rgba8 + bytesG) << "f and g live at pg";
+  EXPECT_LT(plan.peakLiveBytes, plan.allocatedBytes) << "formats and sizes keep the others apart";
 }
 
 TEST(Compile, BuffersArePooledBySize) {

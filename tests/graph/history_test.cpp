@@ -199,6 +199,7 @@ TEST(History, HistoryAndSourceAreNeverAliased) {
   const uint64_t tex1 = res(plan, "x").bytes;
   EXPECT_EQ(plan.naiveBytes, plain.naiveBytes + tex1) << "naive counts the history too";
   EXPECT_EQ(plan.allocatedBytes, 4 * tex1) << "x, x_prev, and two for the chain";
+  EXPECT_EQ(plan.peakLiveBytes, 4 * tex1) << "x and x_prev live the whole frame, with two of the chain";
   EXPECT_EQ(checkPlanContract(plan), "");
 }
 

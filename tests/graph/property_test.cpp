@@ -1,6 +1,7 @@
 // Properties over a few hundred random DAGs (fixed seeds): valid topological
 // order, culling closed under data dependencies, exact lifetimes, and sound
 // aliasing. The expected edges come from the generator, not from compile().
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <set>
@@ -126,6 +127,17 @@ void checkPlan(const RandomGraph& g, const Plan& plan, const CompileOptions& opt
   if (!options.alias) {
     EXPECT_EQ(plan.physical.size(), liveTransients);
   }
+  // Peak live bytes, step by step (no histories here): the most of the
+  // transients' bytes whose lifetimes hold one step; no allocation is below it.
+  uint64_t peak = 0;
+  for (size_t s = 0; s < plan.order.size(); ++s) {
+    uint64_t live = 0;
+    for (const auto& pr : plan.resources)
+      if (pr.physical.valid() && pr.firstPass.value() <= s && s <= pr.lastPass.value()) live += pr.bytes;
+    peak = std::max(peak, live);
+  }
+  EXPECT_EQ(plan.peakLiveBytes, peak);
+  EXPECT_LE(plan.peakLiveBytes, plan.allocatedBytes);
 }
 
 TEST(Property, RandomDagsCompileSoundly) {

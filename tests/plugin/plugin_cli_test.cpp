@@ -199,6 +199,10 @@ TEST(PluginCli, SsaoBloomPipelineAllocatesAtMost45PercentOfItsFormerNaiveAt1080p
   EXPECT_EQ(allocated, 61171200u);
   EXPECT_LE(double(allocated), 0.45 * 160704000.0);
   EXPECT_EQ(plan["memory"]["naive_bytes"].get<uint64_t>(), allocated) << "nothing aliases";
+  // At the lighting pass the G-buffer (normal 4, albedo 4, material 2, depth
+  // 4 bytes a pixel), the visibility (1) and the HDR target (8) are live: an
+  // allocator that aliased across formats and sizes would still need 78%.
+  EXPECT_EQ(plan["memory"]["peak_live_bytes"].get<uint64_t>(), 23 * full);
   EXPECT_EQ(plan["physical"].size(), 11u);
   EXPECT_EQ(expectSharersDisjoint(plan, "deferred-ssao-bloom.json"), 0u);
 }

@@ -56,11 +56,15 @@ TEST(TestingInline, ChainOrderLifetimesAliasingAndMemory) {
   EXPECT_EQ(p.bytes("a"), 8192u);
   EXPECT_EQ(p.naiveBytes(), 3u * 8192u);
   EXPECT_EQ(p.allocatedBytes(), 2u * 8192u);
+  EXPECT_EQ(p.peakLiveBytes(), 2u * 8192u);  // two live at inv1 and at inv2
   const std::string d = p.describe();
   EXPECT_NE(d.find("pipeline <inline> at 64x32: ok (0 errors, 0 warnings)"), std::string::npos) << d;
   EXPECT_NE(d.find("order: fill -> inv1 -> inv2 -> show"), std::string::npos) << d;
   EXPECT_NE(d.find(": a, c\n"), std::string::npos) << d;
-  EXPECT_NE(d.find("memory: naive 0.02 MiB (24576 bytes), allocated 0.02 MiB (16384 bytes)"), std::string::npos) << d;
+  EXPECT_NE(d.find("memory: naive 0.02 MiB (24576 bytes), allocated 0.02 MiB (16384 bytes), peak live 0.02 MiB "
+                   "(16384 bytes)"),
+            std::string::npos)
+      << d;
   EXPECT_NE(p.describeResource("c").find("used from step 2 (inv2) to step 3 (show)"), std::string::npos)
       << p.describeResource("c");
   EXPECT_NE(p.describeResource("c").find("shared with a, c"), std::string::npos) << p.describeResource("c");

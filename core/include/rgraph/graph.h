@@ -257,6 +257,10 @@ struct Plan {
   std::string outputVersion;                // the version that becomes the image (see GraphDesc::output)
   uint64_t naiveBytes = 0;                  // every live transient on its own
   uint64_t allocatedBytes = 0;              // after aliasing
+  // The most transient bytes live at one pass: the least any allocator needs,
+  // one that aliases across formats and sizes (a GPU memory heap) included.
+  // allocatedBytes - peakLiveBytes is what sharing only identical textures costs.
+  uint64_t peakLiveBytes = 0;
   Diagnostics diagnostics;
   bool ok() const { return !hasErrors(diagnostics); }
 

@@ -203,10 +203,12 @@ class CompiledPipeline {
   // when there is none (not loaded, or an output error).
   std::string outputResource() const;
   std::string outputVersion() const;
-  // Every used transient on its own, and after aliasing (Plan::naiveBytes,
-  // Plan::allocatedBytes); 0 when not loaded.
+  // Every used transient on its own, after aliasing, and the most live at one
+  // pass (Plan::naiveBytes, Plan::allocatedBytes, Plan::peakLiveBytes); 0
+  // when not loaded.
   uint64_t naiveBytes() const;
   uint64_t allocatedBytes() const;
+  uint64_t peakLiveBytes() const;
 
   // ---- adaptation (Options::scene)
   // One line per change adaptToScene made ("pass 'x': ..."); empty without a scene.

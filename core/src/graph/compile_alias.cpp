@@ -1,5 +1,6 @@
 // The graph compiler, step 7: lifetimes over the execution order, then
 // greedy aliasing by first use. See compile.cpp for the outline.
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <queue>
@@ -105,6 +106,27 @@ void Compiler::lifetimesAndAliasing() {
     plan_.physical[phys].resources.push_back(ResourceIndex(r));
     rs.physical = phys;
     if (pool) pool->busy.push({rs.last, phys});
+  }
+  peakLiveBytes(byFirst);
+}
+
+// Bytes live at each pass of the order (a whole-frame resource at all of
+// them), as differences at lifetime ends; the peak is the largest prefix sum.
+void Compiler::peakLiveBytes(const std::vector<uint32_t>& used) {
+  const size_t n = plan_.order.size();
+  if (n == 0) return;
+  std::vector<int64_t> change(n + 1, 0);
+  for (uint32_t r : used) {
+    const Res& rs = r_[r];
+    if (rs.imported || !rs.valid) continue;
+    const bool own = wholeFrame(r);
+    change[own ? 0 : static_cast<size_t>(rs.first)] += static_cast<int64_t>(rs.bytes);
+    change[own ? n : static_cast<size_t>(rs.last) + 1] -= static_cast<int64_t>(rs.bytes);
+  }
+  int64_t live = 0;
+  for (size_t i = 0; i < n; ++i) {
+    live += change[i];
+    plan_.peakLiveBytes = std::max(plan_.peakLiveBytes, static_cast<uint64_t>(live));
   }
 }
 

@@ -160,6 +160,7 @@ class Compiler {
   void keepHistorySources(std::vector<uint32_t>& stack);
   // compile_alias.cpp
   void lifetimesAndAliasing();
+  void peakLiveBytes(const std::vector<uint32_t>& used);  // Plan::peakLiveBytes, after lifetimesAndAliasing
   // compile_history.cpp
   void history();
   std::string descriptorString(uint32_t r) const;

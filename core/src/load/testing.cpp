@@ -306,6 +306,7 @@ std::string CompiledPipeline::outputVersion() const {
 
 uint64_t CompiledPipeline::naiveBytes() const { return plan_.naiveBytes; }
 uint64_t CompiledPipeline::allocatedBytes() const { return plan_.allocatedBytes; }
+uint64_t CompiledPipeline::peakLiveBytes() const { return plan_.peakLiveBytes; }
 
 // ---------------------------------------------------------------- summaries
 
@@ -373,7 +374,8 @@ std::string CompiledPipeline::describe() const {
     out += "texture #" + std::to_string(t.index) + " " + std::string(formatName(t.format)) + " " +
            extentText(t.extent) + ": " + join(t.resources, ", ") + "\n";
   out += "output: " + (outputResource().empty() ? std::string("none") : outputVersion()) + "\n";
-  out += "memory: naive " + bytesText(naiveBytes()) + ", allocated " + bytesText(allocatedBytes()) + "\n";
+  out += "memory: naive " + bytesText(naiveBytes()) + ", allocated " + bytesText(allocatedBytes()) + ", peak live " +
+         bytesText(peakLiveBytes()) + "\n";
   return out;
 }
 
