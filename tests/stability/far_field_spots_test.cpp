@@ -67,17 +67,6 @@ json farFieldPipeline(const std::string& type, const LightingParams& l) {
   return computePipeline(type, l, {{"far_field", true}});
 }
 
-size_t pixelsBrighter(const Frame& a, const Frame& b, int by) {
-  size_t n = 0;
-  for (size_t i = 0; i + 3 < a.rgba.size(); i += 4)
-    for (int c = 0; c < 3; ++c)
-      if (int(a.rgba[i + c]) - int(b.rgba[i + c]) >= by) {
-        ++n;
-        break;
-      }
-  return n;
-}
-
 Frame fullscreen(const Scene& scene, double threshold, const std::string& name) {
   return renderFrame(pipelineFromJson(fullscreenPipeline({"fp32", ""}, {"blinn_phong", "classic", threshold}), name),
                      scene, kSize);

@@ -87,17 +87,6 @@ std::vector<Method> methods(const LightingParams& l) {
           {"forward_lit", forwardPipeline(l), 1}};
 }
 
-size_t pixelsBrighter(const Frame& a, const Frame& b, int by) {
-  size_t n = 0;
-  for (size_t i = 0; i + 3 < a.rgba.size(); i += 4)
-    for (int c = 0; c < 3; ++c)
-      if (int(a.rgba[i + c]) - int(b.rgba[i + c]) >= by) {
-        ++n;
-        break;
-      }
-  return n;
-}
-
 void expectEveryMethodMatchesFullscreen(const Scene& scene, const LightingParams& l, const std::string& name) {
   const size_t pixels = size_t{kSize.width} * kSize.height;
   const Frame ref = renderFrame(pipelineFromJson(fullscreenPipeline({"fp32", ""}, l), "fullscreen"), scene, kSize);

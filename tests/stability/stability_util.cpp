@@ -257,6 +257,17 @@ std::string Diff::describe() const {
   return s;
 }
 
+size_t pixelsBrighter(const Frame& a, const Frame& b, int by) {
+  size_t n = 0;
+  for (size_t i = 0; i + 3 < a.rgba.size(); i += 4)
+    for (int c = 0; c < 3; ++c)
+      if (int(a.rgba[i + c]) - int(b.rgba[i + c]) >= by) {
+        ++n;
+        break;
+      }
+  return n;
+}
+
 Diff compare8(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, Extent e, const std::vector<bool>* mask) {
   Diff d;
   const size_t n = static_cast<size_t>(e.width) * e.height;

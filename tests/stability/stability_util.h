@@ -115,6 +115,8 @@ struct Diff {
 Diff compare8(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, Extent e,
               const std::vector<bool>* mask = nullptr);
 std::string psnrText(double psnr);
+// Pixels of `a` with some RGB channel at least `by` (8-bit) above `b`'s.
+size_t pixelsBrighter(const Frame& a, const Frame& b, int by);
 
 // Writes a PNG under <build dir>/stability-output (working directory of the
 // test) for looking at failures; returns the path ("" when it could not).
