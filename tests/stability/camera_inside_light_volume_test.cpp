@@ -28,12 +28,7 @@ Scene wallScene(glm::vec3 lightPos, float intensity) {
   addDraw(s, cube, mat, glm::scale(translate({0.0f, 0.0f, -0.25f}), glm::vec3(4.0f, 4.0f, 0.25f)), "wall");
   s.pointLights.push_back(pointLight(lightPos, {1.0f, 0.9f, 0.7f}, intensity));
   s.ambient = glm::vec3(0.05f);
-  s.camera.position = glm::vec3(0.0f, 0.0f, 2.0f);
-  s.camera.target = glm::vec3(0.0f, 0.0f, 0.0f);
-  s.camera.fovY = 60.0f;
-  s.camera.near = 0.05f;
-  s.camera.far = 20.0f;
-  s.hasCamera = true;
+  placeCamera(s, glm::vec3(0.0f, 0.0f, 2.0f), glm::vec3(0.0f, 0.0f, 0.0f), 60.0f, 0.05f, 20.0f);
   return s;
 }
 

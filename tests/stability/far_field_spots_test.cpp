@@ -53,12 +53,7 @@ Scene ringScene(bool aimedAt) {
     s.pointLights.push_back(spot(pos, aimedAt ? toMiddle : glm::vec3(-toMiddle.x, 1.0f, -toMiddle.z)));
   }
   s.ambient = glm::vec3(0.03f);
-  s.camera.position = glm::vec3(0.0f, 3.0f, 0.3f);
-  s.camera.target = glm::vec3(0.0f, 0.0f, -0.5f);
-  s.camera.fovY = 50.0f;
-  s.camera.near = 0.1f;
-  s.camera.far = 40.0f;
-  s.hasCamera = true;
+  placeCamera(s, glm::vec3(0.0f, 3.0f, 0.3f), glm::vec3(0.0f, 0.0f, -0.5f), 50.0f, 0.1f, 40.0f);
   return s;
 }
 

@@ -82,13 +82,8 @@ Scene grazingTerrain() {
   addDraw(s, mesh, addMaterial(s, {0.8f, 0.8f, 0.8f, 1.0f}, 0.0f, 0.6f, 0.6f), tilt, "terrain");
   const glm::vec3 up = glm::vec3(tilt * glm::vec4(0, 1, 0, 0));
   const glm::vec3 ahead = glm::vec3(tilt * glm::vec4(0.3f, 0, -1, 0));
-  s.camera.position = glm::vec3(tilt * glm::vec4(0.0f, 0.25f, 6.0f, 1.0f));
-  s.camera.target = s.camera.position + 6.0f * glm::normalize(ahead) - 0.2f * up;
-  s.camera.up = up;
-  s.camera.fovY = 50.0f;
-  s.camera.near = 0.05f;
-  s.camera.far = 40.0f;
-  s.hasCamera = true;
+  const glm::vec3 eye(tilt * glm::vec4(0.0f, 0.25f, 6.0f, 1.0f));
+  placeCamera(s, eye, eye + 6.0f * glm::normalize(ahead) - 0.2f * up, 50.0f, 0.05f, 40.0f, up);
   s.pointLights.push_back(pointLight(glm::vec3(tilt * glm::vec4(1.0f, 0.6f, -2.0f, 1.0f)), {1.0f, 0.95f, 0.9f}, 3.0f,
                                      1.0f, 0.35f, 0.44f));
   DirectionalLight sun;
@@ -105,12 +100,7 @@ Scene sphereScene() {
   s.source = "test:sphere";
   const int mesh = addMesh(s, makeUvSphere(1.0f, 96, 48));
   addDraw(s, mesh, addMaterial(s, {0.8f, 0.8f, 0.8f, 1.0f}, 0.0f, 0.6f, 0.6f), glm::mat4(1.0f), "sphere");
-  s.camera.position = glm::vec3(0.3f, 0.4f, 3.0f);
-  s.camera.target = glm::vec3(0.0f);
-  s.camera.fovY = 45.0f;
-  s.camera.near = 0.1f;
-  s.camera.far = 20.0f;
-  s.hasCamera = true;
+  placeCamera(s, glm::vec3(0.3f, 0.4f, 3.0f), glm::vec3(0.0f), 45.0f, 0.1f, 20.0f);
   s.pointLights.push_back(pointLight({1.5f, 1.2f, 0.5f}, {1.0f, 0.95f, 0.9f}, 4.0f, 1.0f, 0.35f, 0.44f));
   DirectionalLight sun;
   sun.direction = glm::normalize(glm::vec3(0.4f, -0.3f, 1.0f));  // from behind the sphere: lights the rim

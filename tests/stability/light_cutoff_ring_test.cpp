@@ -32,13 +32,7 @@ Scene floorScene() {
           "floor");
   s.pointLights.push_back(pointLight({0.0f, kHeight, 0.0f}, {1.0f, 1.0f, 1.0f}, 1.0f));  // LearnOpenGL: 1, 0.7, 1.8
   s.ambient = glm::vec3(0.02f);
-  s.camera.position = glm::vec3(0.0f, 26.0f, 0.0f);
-  s.camera.target = glm::vec3(0.0f);
-  s.camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
-  s.camera.fovY = 60.0f;
-  s.camera.near = 1.0f;
-  s.camera.far = 40.0f;
-  s.hasCamera = true;
+  placeCamera(s, glm::vec3(0.0f, 26.0f, 0.0f), glm::vec3(0.0f), 60.0f, 1.0f, 40.0f, glm::vec3(0.0f, 0.0f, -1.0f));
   return s;
 }
 

@@ -258,12 +258,7 @@ Scene degenerateScene() {
   sun.intensity = 0.5f;
   s.directionalLights.push_back(sun);
   s.ambient = glm::vec3(0.05f);
-  s.camera.position = glm::vec3(0.0f, 0.2f, 3.0f);
-  s.camera.target = glm::vec3(0.0f, 0.2f, 0.0f);
-  s.camera.fovY = 60.0f;
-  s.camera.near = 0.1f;
-  s.camera.far = 20.0f;
-  s.hasCamera = true;
+  placeCamera(s, glm::vec3(0.0f, 0.2f, 3.0f), glm::vec3(0.0f, 0.2f, 0.0f), 60.0f, 0.1f, 20.0f);
   return s;
 }
 

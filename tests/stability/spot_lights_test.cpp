@@ -64,12 +64,7 @@ Scene spotScene() {
       pointLight({-2.0f, 0.8f, -2.5f}, {0.9f, 0.7f, 0.4f}, 1.0f),
   };
   s.ambient = glm::vec3(0.03f);
-  s.camera.position = glm::vec3(0.5f, 5.5f, 8.0f);
-  s.camera.target = glm::vec3(0.0f, 0.0f, -0.5f);
-  s.camera.fovY = 50.0f;
-  s.camera.near = 0.1f;
-  s.camera.far = 40.0f;
-  s.hasCamera = true;
+  placeCamera(s, glm::vec3(0.5f, 5.5f, 8.0f), glm::vec3(0.0f, 0.0f, -0.5f), 50.0f, 0.1f, 40.0f);
   return s;
 }
 
@@ -159,12 +154,7 @@ TEST_F(Stability, SpotLightCutOffAndHardEdgesMatchFullscreen) {
     s.pointLights.push_back(spot({0.2f, -0.1f, c.wallDistance}, {0.1f, 0.05f, -1.0f}, c.inner, c.outer,
                                  {1.0f, 0.9f, 0.8f}, c.intensity, 0.7f, 1.8f));
     s.ambient = glm::vec3(0.02f);
-    s.camera.position = glm::vec3(0.0f, 0.0f, c.cameraDistance);
-    s.camera.target = glm::vec3(0.0f);
-    s.camera.fovY = 60.0f;
-    s.camera.near = 0.1f;
-    s.camera.far = 30.0f;
-    s.hasCamera = true;
+    placeCamera(s, glm::vec3(0.0f, 0.0f, c.cameraDistance), glm::vec3(0.0f), 60.0f, 0.1f, 30.0f);
     const LightingParams l{"blinn_phong", "classic", kHighThreshold};
     const float r = lightRadius(s.pointLights[0], float(kHighThreshold));
     if (std::string(c.name) != "hard-edge") ASSERT_LT(c.wallDistance, r) << "the cut-off must reach the wall";
@@ -201,12 +191,7 @@ TEST_F(Stability, CameraInsideSpotLightVolume) {
   s.pointLights.push_back(
       spot({0.0f, 0.0f, 3.0f}, {0.05f, 0.0f, -1.0f}, 15.0f, 30.0f, {1.0f, 0.9f, 0.7f}, 1.0f, 0.09f, 0.032f));
   s.ambient = glm::vec3(0.05f);
-  s.camera.position = glm::vec3(0.0f, 0.0f, 2.0f);
-  s.camera.target = glm::vec3(0.0f);
-  s.camera.fovY = 60.0f;
-  s.camera.near = 0.05f;
-  s.camera.far = 20.0f;
-  s.hasCamera = true;
+  placeCamera(s, glm::vec3(0.0f, 0.0f, 2.0f), glm::vec3(0.0f), 60.0f, 0.05f, 20.0f);
   const PointLight& l = s.pointLights[0];
   const glm::vec3 toCamera = s.camera.position - l.position;
   ASSERT_LT(glm::length(toCamera), lightRadius(l, float(kThreshold)));

@@ -352,6 +352,17 @@ PointLight pointLight(glm::vec3 pos, glm::vec3 color, float intensity, float con
   return l;
 }
 
+void placeCamera(Scene& s, glm::vec3 position, glm::vec3 target, float fovY, float nearPlane, float farPlane,
+                 glm::vec3 up) {
+  s.camera.position = position;
+  s.camera.target = target;
+  s.camera.up = up;
+  s.camera.fovY = fovY;
+  s.camera.near = nearPlane;
+  s.camera.far = farPlane;
+  s.hasCamera = true;
+}
+
 Scene smallStillLife(glm::vec3 offset, bool withLight) {
   Scene s;
   s.source = "test:small-still-life";
@@ -367,12 +378,7 @@ Scene smallStillLife(glm::vec3 offset, bool withLight) {
   if (withLight)
     s.pointLights.push_back(pointLight(offset + glm::vec3(0.6f, 1.4f, 1.3f), {1.0f, 0.9f, 0.8f}, 2.0f, 1.0f, 0.35f, 0.44f));
   s.ambient = glm::vec3(0.05f);
-  s.camera.position = offset + glm::vec3(0.0f, 2.0f, 3.6f);
-  s.camera.target = offset + glm::vec3(0.0f, 0.3f, 0.0f);
-  s.camera.fovY = 50.0f;
-  s.camera.near = 0.1f;
-  s.camera.far = 100.0f;
-  s.hasCamera = true;
+  placeCamera(s, offset + glm::vec3(0.0f, 2.0f, 3.6f), offset + glm::vec3(0.0f, 0.3f, 0.0f), 50.0f, 0.1f, 100.0f);
   return s;
 }
 

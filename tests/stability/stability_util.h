@@ -133,6 +133,10 @@ void addDraw(Scene& s, int mesh, int material, const glm::mat4& xf, const std::s
 PointLight pointLight(glm::vec3 pos, glm::vec3 color, float intensity = 1.0f, float constant = 1.0f,
                       float linear = 0.7f, float quadratic = 1.8f);
 inline glm::mat4 translate(glm::vec3 t) { return glm::translate(glm::mat4(1.0f), t); }
+// Gives the scene its camera: at `position` looking at `target`, `fovY`
+// degrees vertically, between `nearPlane` and `farPlane`, `up` up.
+void placeCamera(Scene& s, glm::vec3 position, glm::vec3 target, float fovY, float nearPlane, float farPlane,
+                 glm::vec3 up = glm::vec3(0.0f, 1.0f, 0.0f));
 
 // A floor (6 x 6), a cube rotated on it and a sphere, one warm point light,
 // ambient 0.05, no directional light; the camera ~4 units away. Everything
