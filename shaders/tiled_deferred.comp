@@ -136,7 +136,8 @@ void main() {
     s_rowMin[local] = 0x7f7fffffu;
     s_rowMax[local] = 0u;
   }
-  for (uint w = local; w < kRows * kRowWords; w += uint(TILE_SIZE * TILE_SIZE)) s_rowLights[w / kRowWords][w % kRowWords] = 0u;
+  for (uint w = local; w < kRows * kRowWords; w += uint(TILE_SIZE * TILE_SIZE))
+    s_rowLights[w / kRowWords][w % kRowWords] = 0u;
 #endif
 #if defined(FAR_FIELD)
   if (local < 4u) {

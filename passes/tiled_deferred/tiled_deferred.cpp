@@ -32,9 +32,10 @@ using namespace rgraph;
 // depth bounds (< 128 bytes) and either, with far_field, the far field's sums
 // and near-light list (< 10 KiB) or, without, each of the tile's 2 x
 // tile_size half rows' depth bounds and a bit per listed light
-// (tiled_deferred.comp), within the 32 KiB every GL 4.5 device has (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE's
-// minimum), so that the program does not depend on the device and validate
-// checks the one that runs: 1,344 lights at tile_size 16, 1,120 with far_field.
+// (tiled_deferred.comp), within the 32 KiB every GL 4.5 device has
+// (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE's minimum), so that the program does not
+// depend on the device and validate checks the one that runs: 1,344 lights at
+// tile_size 16, 1,120 with far_field.
 int64_t tileSharedBytes(int64_t lights, int64_t tile, bool farField) {
   const int64_t rows = 2 * tile;
   return 128 + 20 * lights + (farField ? 10240 : rows * 8 + rows * 4 * ((lights + 31) / 32));
