@@ -38,6 +38,10 @@ text=$(tr '\n' ' ' <"$src/docs/writing-a-pass.md" | grep -o 'reports [0-9,]* nai
 check "writing-a-pass.md naive bytes" "$(awk '{print $2}' <<<"$text" | num)" "$naive"
 check "writing-a-pass.md allocated bytes" "$(awk '{print $6}' <<<"$text" | num)" "$alloc"
 check "writing-a-pass.md allocated share" "$(awk '{print $8}' <<<"$text" | tr -d '()%')" "$(((alloc * 100 + naive / 2) / naive))"
+peak=$(grep -o '"peak_live_bytes": [0-9]*' <<<"$json" | grep -o '[0-9]*$')
+text=$(tr '\n' ' ' <"$src/docs/writing-a-pass.md" | grep -o 'its peak live bytes, [0-9,]* at the lighting pass')
+[ -n "$text" ] || { echo "FAIL: docs/writing-a-pass.md no longer states the plan's peak live bytes" >&2; exit 1; }
+check "writing-a-pass.md peak live bytes" "$(awk '{print $5}' <<<"$text" | num)" "$peak"
 
 # deferred-ssao-bloom.json's description: "allocates N bytes in M textures" at 1920x1080.
 desc=$(grep -o 'allocates [0-9,]* bytes in [0-9]* textures' "$src/pipelines/deferred-ssao-bloom.json")
