@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Install dependencies, build, and run the whole test suite.
 #   scripts/test.sh              release-ish build in ./build
-#   scripts/test.sh --sanitize   AddressSanitizer + UBSan build in ./build-asan
+#   scripts/test.sh --sanitize   AddressSanitizer + UBSan (+ -D_GLIBCXX_ASSERTIONS) build in ./build-asan
 #   scripts/test.sh --fuzz       clang-14 libFuzzer build in ./build-fuzz, fuzz smoke runs only (docs/fuzzing.md)
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -278,6 +278,28 @@ TEST(ConfigBuild, IntegralFloatIsAnInteger) {
   EXPECT_EQ(cfg.params[0].getInt("count"), 3);
 }
 
+// Params that declare no minimum or no maximum (a string, an unbounded vec4, a
+// number with only a minimum): checking their values must not read the bound
+// they lack (an empty std::optional; caught by -D_GLIBCXX_ASSERTIONS, which the
+// sanitizer build defines). issue 25.
+TEST(ConfigBuild, ParamsWithoutBoundsAreChecked) {
+  Diagnostics diags;
+  PipelineConfig cfg = loadText(R"({"version": 1, "resources": {"a": {"format": "rgba8"}},
+    "passes": [{"name": "t", "type": "tweak", "outputs": {"color": "a"},
+                "params": {"label": "y", "rect": [0, 0, 2, 2], "big": 7, "bias": 5}}],
+    "output": "a"})",
+                                diags);
+  ASSERT_TRUE(diags.empty()) << allDiagnostics(diags);
+  EXPECT_EQ(cfg.params[0].getInt("big"), 7);
+  Diagnostics below;
+  loadText(R"({"version": 1, "resources": {"a": {"format": "rgba8"}},
+    "passes": [{"name": "t", "type": "tweak", "outputs": {"color": "a"}, "params": {"bias": -2}}],
+    "output": "a"})",
+           below);
+  ASSERT_EQ(below.size(), 1u) << allDiagnostics(below);
+  EXPECT_NE(below[0].message.find("value -2, below its minimum -1"), std::string::npos) << below[0].message;
+}
+
 TEST(ConfigBuild, ReportsEveryErrorInFileOrder) {
   Diagnostics diags;
   loadText(R"({

@@ -22,13 +22,33 @@
 // Several renderers in one context (a main view and an inset, say) may share
 // one RenderScene: the scene is uploaded to the GPU once, lights edited once.
 //
+// Contexts. A renderer and a RenderScene belong to the GL context current
+// when they first draw (the scene: when it is uploaded). Drawing either in
+// another context throws RuntimeError saying so, and draws nothing: also in a
+// context sharing objects with the first, since GL never shares the vertex
+// arrays and framebuffers they hold. Each context needs its own renderers and
+// its own RenderScene (RenderScene::load again). The context is told apart by
+// the window system's name for it (EGL, GLX) and, where neither knows it, by
+// whether the scene's buffer is a buffer there.
+//
+// Re-entry. While render() runs, its setAfterPass callback may use the
+// read-backs (readResourceRGBA32F, readOutputRGBA8) and the const queries;
+// any other Renderer call from inside it (reload, reloadJson, setSize,
+// setScene, setCamera, importTexture, render itself, ...) throws RuntimeError
+// naming the call ("called from inside a render() callback") and changes
+// nothing: nothing is deferred to the end of the frame.
+//
 // Errors. Config problems (JSON, graph, pass checks, shader checks) are
 // Diagnostics with file:line:col and the JSON path, never exceptions: the
 // factories return nullptr, reload() returns false and keeps the last good
 // pipeline. What can only fail on the device (a framebuffer the driver calls
 // incomplete, a shader the driver refuses, a texture over its size limit) and
 // misuse (an imported texture that does not match its declaration, an unknown
-// resource name) throw rgraph::RuntimeError with one clear message.
+// resource name, a light or camera outside the ranges of scene files) throw
+// rgraph::RuntimeError with one clear message. A call that throws or returns
+// false changes nothing: what size(), scene(), pipeline() and the next frame
+// see is the state after the last call that succeeded (setSize and setScene
+// succeed at once; the next frame builds for them, even after a failed reload).
 //
 // GL state contract. render() (and the read-backs) change GL state while they run and, with
 // RendererOptions::restoreGlState (the default), put back everything they may touch before they return: the draw and
@@ -72,8 +92,8 @@ class Executor;
 class GpuScene;
 
 // A scene that renderers draw: the CPU data, edits to its lights, and one GPU
-// upload shared by every renderer that draws it in the current context (or
-// its share group).
+// upload shared by every renderer that draws it, all in the one GL context
+// it was uploaded in (Contexts, top of this file).
 class RenderScene {
  public:
   // A scene file (.json), a glTF (.gltf/.glb) or a procedural name
@@ -93,8 +113,11 @@ class RenderScene {
   // place (they grow only past a power of two). Exception: when the scene
   // gains its first point light or loses its last one, renderers adapt their
   // pipeline to it again (no point lights: no light volumes) at their next
-  // frame. A light with a non-finite or out-of-range value throws RuntimeError
-  // and changes nothing.
+  // frame. A light or ambient outside the ranges scene files have (negative
+  // colour, intensity, attenuation or radius, a spot's cone, a zero
+  // directional light, a position not finite or beyond +-1e15: rgraph/scene.h
+  // pointLightProblem and the others, scenes/README.md) throws RuntimeError
+  // naming the light and the value, and changes nothing.
   size_t pointLightCount() const;
   const PointLight& pointLight(size_t index) const;
   void setPointLight(size_t index, const PointLight& light);
@@ -106,7 +129,8 @@ class RenderScene {
   // Increases with every light or ambient edit.
   uint64_t lightsVersion() const;
 
-  // The GPU copy, uploaded on first use (a GL context must be current).
+  // The GPU copy, uploaded on first use (a GL context must be current; later
+  // calls throw RuntimeError in any other context, see Contexts above).
   GpuScene& gpu();
   // How many times the geometry, textures and materials were uploaded: 1 once
   // any renderer has drawn the scene, however many renderers share it.
@@ -166,7 +190,9 @@ class Renderer {
   // camera becomes the scene's camera. Adapts the pipeline at the next frame.
   void setScene(std::shared_ptr<RenderScene> scene);
   const std::shared_ptr<RenderScene>& scene() const;
-  // Per frame; no rebuild. Each renderer has its own camera.
+  // Per frame; no rebuild. Each renderer has its own camera. Held to the
+  // scene files' ranges (0 < fov < 180 degrees, 0 < near < far, position and
+  // target finite and apart): RuntimeError otherwise, the camera unchanged.
   void setCamera(const Camera& camera);
   const Camera& camera() const;
   // The next frame follows no previous one (a cut, a teleport): history
@@ -187,7 +213,10 @@ class Renderer {
   // the resource is unknown, not imported, or a buffer. After setSize, import
   // textures of the new size (one of the old size makes the next render()
   // throw). Kept across reload() while the reloaded declaration still matches
-  // (else the next frame throws).
+  // (else the next frame throws). Checked again at every render(): a texture
+  // deleted or redefined (glTextureStorage on a new name, a new size) since
+  // makes render() throw RuntimeError naming the resource, before drawing.
+  // A texture without storage (glCreateTextures alone) is refused as such.
   void importTexture(const std::string& resource, uint32_t glTexture);
   // Back to a texture rgraph owns.
   void releaseTexture(const std::string& resource);
@@ -247,7 +276,8 @@ class Renderer {
 
   // Called after each pass of every frame with its step in plan().order
   // (GL work recorded, before the next pass): copy a resource out as it was
-  // right after a pass wrote it. Kept across rebuilds and reloads.
+  // right after a pass wrote it. Kept across rebuilds and reloads. The
+  // callback may not change the renderer (Re-entry, top of this file).
   void setAfterPass(std::function<void(size_t step)> callback);
 
   // How many times GL objects were (re)built for this renderer: the first

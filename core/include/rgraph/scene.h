@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -311,12 +312,36 @@ struct Scene {
   void validate() const;
 };
 
-// The checks validate() makes on one light or the camera, for edits made
-// after loading (rgraph/renderer.h). Throw RuntimeError "<where>: point light
-// <index>: ..." and the like.
+// The valid ranges of lights, the ambient light and the camera, one set for
+// scene files, glTF-loaded and procedural scenes and the embedding API
+// (scenes/README.md lists them): nullopt when the value is valid, else which
+// member breaks them, named by its scene-file key ("intensity", "fov",
+// "outer_cone_deg"; "" for a rule over several) and why.
+//   point light: position finite within kMaxWorldCoordinate; color and
+//     intensity >= 0; constant, linear, quadratic >= 0, not all 0; radius >= 0
+//     (or +infinity: no falloff); a spot's direction a unit vector and
+//     0 <= inner_cone_deg < outer_cone_deg <= 90
+//   directional light: a finite non-zero direction; color, intensity >= 0
+//   camera: position and target finite within kMaxWorldCoordinate and apart;
+//     a non-zero up; 0 < fov < 180 degrees; 0 < near < far (finite)
+//   ambient: finite, >= 0
+struct SceneValueProblem {
+  std::string key;
+  std::string message;
+};
+std::optional<SceneValueProblem> pointLightProblem(const PointLight& light);
+std::optional<SceneValueProblem> directionalLightProblem(const DirectionalLight& light);
+std::optional<SceneValueProblem> cameraProblem(const Camera& camera);
+std::optional<SceneValueProblem> ambientProblem(const glm::vec3& ambient);
+
+// Those checks (and, for the camera, a finite view-projection), as validate()
+// makes them and for edits made after loading (rgraph/renderer.h). Throw
+// RuntimeError "<where>: point light <index>: intensity: must be >= 0, got -1"
+// and the like.
 void validatePointLight(const PointLight& light, size_t index, const std::string& where);
 void validateDirectionalLight(const DirectionalLight& light, size_t index, const std::string& where);
 void validateCamera(const Camera& camera, const std::string& where);
+void validateAmbient(const glm::vec3& ambient, const std::string& where);
 
 struct SceneFeatures;  // rgraph/pass.h
 // What this scene needs from a pipeline (point lights, blending, normal maps,

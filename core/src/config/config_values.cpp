@@ -152,17 +152,21 @@ std::optional<ParamValue> checkParamValue(const ParamDecl& decl, const Json& v, 
   auto wrongType = [&](const std::string& exp) {
     return fail(DiagCode::param_type, pointer, "expected " + exp + ", got " + jsonTypeName(v));
   };
-  const std::string rangeText =
-      decl.min && decl.max ? "outside its range [" + formatNumber(*decl.min) + ", " + formatNumber(*decl.max) + "]"
-      : decl.min           ? "below its minimum " + formatNumber(*decl.min)
-                           : "above its maximum " + formatNumber(*decl.max);
+  // Called only for a value beyond a bound the declaration has (a param may
+  // declare neither: nothing to dereference then).
+  auto rangeText = [&]() -> std::string {
+    if (decl.min && decl.max) return "outside its range [" + formatNumber(*decl.min) + ", " + formatNumber(*decl.max) + "]";
+    if (decl.min) return "below its minimum " + formatNumber(*decl.min);
+    if (decl.max) return "above its maximum " + formatNumber(*decl.max);
+    return "outside its range";
+  };
   // One number against the declared range and the float range; `where` is the
   // value or vector component `component` (-1: the value itself).
   auto number = [&](const Json& x, const std::string& where, int component) {
     const double d = x.get<double>();
     const std::string c = "component " + std::to_string(component);
     if ((decl.min && d < *decl.min) || (decl.max && d > *decl.max)) {
-      fail(DiagCode::param_range, where, (component < 0 ? "value " : c + " is ") + describeValue(x) + ", " + rangeText);
+      fail(DiagCode::param_range, where, (component < 0 ? "value " : c + " is ") + describeValue(x) + ", " + rangeText());
       return false;
     }
     if (std::string why = floatProblem(d); !why.empty()) {
@@ -184,7 +188,7 @@ std::optional<ParamValue> checkParamValue(const ParamDecl& decl, const Json& v, 
         return fail(DiagCode::param_type, pointer, "expected int, got " + describeValue(v));
       const std::string shown = describeValue(v);
       if ((i.status == S::too_large && decl.max) || (i.status == S::too_small && decl.min))
-        return fail(DiagCode::param_range, pointer, "value " + shown + ", " + rangeText);
+        return fail(DiagCode::param_range, pointer, "value " + shown + ", " + rangeText());
       if (i.status == S::too_large)
         return fail(DiagCode::param_range, pointer,
                     "value " + shown + " is too large: an int parameter is at most " +
@@ -195,7 +199,7 @@ std::optional<ParamValue> checkParamValue(const ParamDecl& decl, const Json& v, 
                         std::to_string(std::numeric_limits<int64_t>::min()));
       const double d = static_cast<double>(i.value);
       if ((decl.min && d < *decl.min) || (decl.max && d > *decl.max))
-        return fail(DiagCode::param_range, pointer, "value " + shown + ", " + rangeText);
+        return fail(DiagCode::param_range, pointer, "value " + shown + ", " + rangeText());
       return ParamValue{i.value};
     }
     case ParamType::number: {

@@ -8,6 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cstring>
+#include <map>
 #include <mutex>
 #include <vector>
 
@@ -102,6 +103,23 @@ thread_local GlContext* tCurrent = nullptr;
 // glfwTerminate destroys every window: terminate only when the last one goes.
 int gGlfwWindows = 0;
 
+// eglGetPlatformDisplay returns the same display to every headless context,
+// and eglTerminate ends every context on it: terminate only when the last of
+// this process's contexts on it goes (a second GlContext must not end the first).
+std::mutex gDisplayMutex;
+std::map<EGLDisplay, int> gDisplayUsers;
+void useDisplay(EGLDisplay d) {
+  std::lock_guard<std::mutex> lock(gDisplayMutex);
+  ++gDisplayUsers[d];
+}
+bool lastDisplayUser(EGLDisplay d) {
+  std::lock_guard<std::mutex> lock(gDisplayMutex);
+  auto it = gDisplayUsers.find(d);
+  if (it == gDisplayUsers.end() || --it->second > 0) return it == gDisplayUsers.end();
+  gDisplayUsers.erase(it);
+  return true;
+}
+
 // GLFW reports errors through a callback; keep the last one for exceptions.
 std::string& glfwLastError() {
   static std::string e;
@@ -156,7 +174,7 @@ GlContext::~GlContext() {
   if (impl_->display != EGL_NO_DISPLAY) {
     if (wasCurrent) eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     if (impl_->context != EGL_NO_CONTEXT) eglDestroyContext(impl_->display, impl_->context);
-    eglTerminate(impl_->display);
+    if (lastDisplayUser(impl_->display)) eglTerminate(impl_->display);
   }
 }
 
@@ -257,6 +275,7 @@ std::unique_ptr<GlContext> GlContext::createImpl(const ContextOptions& options) 
     EGLDisplay display = openDisplay(im.platform, why);
     if (display == EGL_NO_DISPLAY) throw RuntimeError("cannot open an EGL display: " + why);
     im.display = display;
+    useDisplay(display);
     const char* dpyExts = eglQueryString(display, EGL_EXTENSIONS);
     if (!eglBindAPI(EGL_OPENGL_API))
       throw RuntimeError("EGL (" + im.platform + ") does not support desktop OpenGL: " +

@@ -270,6 +270,7 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(PassIndex pass, Extent output
 }
 
 void Executor::Impl::build(Extent output) {
+  context = gl::currentContext();
   CompileOptions opts;
   opts.output = output;
   // The device's own limit, so that a texture it cannot hold is a located
@@ -469,6 +470,7 @@ Executor::~Executor() {
 void Executor::resize(Extent output) {
   if (output.width == 0 || output.height == 0)
     throw RuntimeError("cannot render at " + std::to_string(output.width) + "x" + std::to_string(output.height));
+  impl_->requireContext("Executor::resize");  // teardown would delete another context's objects
   if (impl_->built && impl_->size == output) return;
   impl_->teardown();
   try {
@@ -482,6 +484,9 @@ void Executor::resize(Extent output) {
 void Executor::renderFrame() {
   Impl& im = *impl_;
   if (!im.built) throw RuntimeError("Executor::renderFrame: call resize() first");
+  im.requireContext("Executor::renderFrame");
+  if (im.gpuScene) im.gpuScene->requireUploadContext("Executor::renderFrame");
+  im.checkImports();
   using Clock = std::chrono::steady_clock;
   im.updateFrameBlock();
   im.beginHistory();

@@ -13,6 +13,7 @@
 
 #include "imported_texture.h"
 #include "pass_programs.h"
+#include "rgraph/gl/context_identity.h"
 #include "rgraph/gl/executor.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/objects.h"
@@ -165,6 +166,7 @@ struct Executor::Impl {
   bool software = false;
 
   bool built = false;
+  gl::ContextIdentity context;  // where the built objects live (set by build)
   Extent size;
   Plan plan;
   using SharedTexture = exec_detail::SharedTexture;
@@ -225,6 +227,13 @@ struct Executor::Impl {
   // A reusable texture of this description (unless !reuse), else a new one.
   SharedTexture takeTexture(Format format, Extent extent, uint32_t mips, uint32_t samples, bool reuse = true);
   gl::TextureShape declaredShape(ResourceIndex r) const;
+  // Before each frame: every caller's texture still a texture of its
+  // declaration (not deleted or redefined since importTexture); throws
+  // RuntimeError naming the resource.
+  void checkImports() const;
+  // Throws RuntimeError (starting with `who`) when a built executor is used
+  // in a GL context other than the one its objects were made in.
+  void requireContext(const char* who) const;
   std::unique_ptr<exec_detail::PassRun> createRun(PassIndex pass, Extent output);
   void applyClears(exec_detail::PassRun& run);
   void resetState(const exec_detail::PassRun& run);

@@ -32,6 +32,23 @@ void Executor::importTexture(const std::string& resource, uint32_t texture) {
   im.imports[resource] = texture;
 }
 
+void Executor::Impl::checkImports() const {
+  for (const auto& [resource, texture] : imports) {
+    const ResourceIndex r = resourceIndex(resource);
+    if (!r.valid()) continue;  // (importTexture and build refuse unknown names)
+    const std::string mismatch = gl::checkImportedTexture(resource, declaredShape(r), texture);
+    if (!mismatch.empty())
+      throw RuntimeError("Executor::renderFrame: " + mismatch + " (deleted or redefined since importTexture?)");
+  }
+}
+
+void Executor::Impl::requireContext(const char* who) const {
+  if (!built || gl::currentContext() == context) return;
+  throw RuntimeError(std::string(who) +
+                     ": the current GL context is not the one this pipeline's GL objects were made in (its framebuffers "
+                     "and vertex arrays exist only there): make that context current, or make a renderer for this one");
+}
+
 void Executor::releaseTexture(const std::string& resource) {
   Impl& im = *impl_;
   if (im.imports.erase(resource) == 0 || !im.built) return;

@@ -78,7 +78,7 @@ struct GpuScene::Locations {
       hasOcclusionTex;
 };
 
-GpuScene::GpuScene(const Scene& scene) : scene_(scene) {
+GpuScene::GpuScene(const Scene& scene) : scene_(scene), uploadedIn_(gl::currentContext()) {
   scene_.validate();
   meshes_.reserve(scene.meshes.size());
   hasTangents_ = scene.hasNormalMaps();
@@ -137,6 +137,17 @@ GpuScene::GpuScene(const Scene& scene) : scene_(scene) {
 }
 
 GpuScene::~GpuScene() = default;
+
+void GpuScene::requireUploadContext(const std::string& who) const {
+  // The window system's name for the context where it knows one; in any case
+  // the Frame block must be a buffer here (one glIsBuffer: a context that
+  // shares nothing with the upload's has no such buffer, or another one).
+  if (gl::currentContext() == uploadedIn_ && glIsBuffer(frame_.id())) return;
+  throw RuntimeError(who + ": the scene '" + (scene_.source.empty() ? std::string("(built in code)") : scene_.source) +
+                     "' was uploaded to the GPU in another GL context: a RenderScene draws only in the context it was "
+                     "first drawn in (not in another one, even one sharing objects with it: GL never shares vertex "
+                     "arrays). Make that context current, or make a RenderScene for this context");
+}
 
 GpuScene::GpuMesh GpuScene::upload(const MeshData& mesh, bool tangents) const {
   GpuMesh g;
@@ -298,7 +309,15 @@ std::vector<float> GpuScene::pointLightRadii(float threshold) const {
 }
 
 uint32_t GpuScene::pointLightBuffer(float threshold) {
+  if (lightBuffers_.size() >= kLightBufferCacheSize && !lightBuffers_.count(threshold)) {
+    // A new threshold (a slider dragged, a param edited): the least recently
+    // used one's buffer goes (its last draws are already recorded).
+    auto oldest = std::min_element(lightBuffers_.begin(), lightBuffers_.end(),
+                                   [](const auto& a, const auto& b) { return a.second.lastUse < b.second.lastUse; });
+    lightBuffers_.erase(oldest);
+  }
   LightBuffer& slot = lightBuffers_[threshold];
+  slot.lastUse = ++lightBufferUses_;
   if (slot.buffer && slot.version == lightsVersion_) return slot.buffer.id();
   const std::vector<float> radii = pointLightRadii(threshold);
   std::vector<GpuPointLight> lights;

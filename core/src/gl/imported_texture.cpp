@@ -77,6 +77,11 @@ std::string checkImportedTexture(const std::string& resource, const TextureShape
   glGetTextureParameteriv(texture, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
   if (immutable) glGetTextureParameteriv(texture, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
   const uint32_t gotSamples = texSamples > 1 ? static_cast<uint32_t>(texSamples) : 1;
+  // A name from glCreateTextures alone reports GL's default internal format
+  // (GL_RGBA) at 0x0: say what is missing rather than describe that.
+  if (width == 0 || height == 0)
+    return head + "has no storage (glTexStorage* never called); the resource is " +
+           describe(std::string(formatName(declared.format)), declared.extent, samples, 1, false);
   const uint32_t wantLevels = declared.mips == 0 ? fullMipCount(declared.extent) : declared.mips;
   // Mip levels count only where the resource declares more than one and the
   // texture's storage is immutable (a mutable texture's levels are not fixed).

@@ -91,8 +91,7 @@ void RenderScene::setDirectionalLights(std::vector<DirectionalLight> lights) {
 }
 
 void RenderScene::setAmbient(const glm::vec3& ambient) {
-  if (!std::isfinite(ambient.x) || !std::isfinite(ambient.y) || !std::isfinite(ambient.z))
-    throw RuntimeError(impl_->where() + ": the ambient light is not finite");
+  validateAmbient(ambient, impl_->where());
   impl_->scene.ambient = ambient;
   impl_->lightsEdited();
 }
@@ -103,6 +102,8 @@ GpuScene& RenderScene::gpu() {
   if (!impl_->gpu) {
     impl_->gpu = std::make_unique<GpuScene>(impl_->scene);
     ++impl_->uploads;
+  } else {
+    impl_->gpu->requireUploadContext("RenderScene::gpu");
   }
   return *impl_->gpu;
 }

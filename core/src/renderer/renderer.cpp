@@ -66,6 +66,12 @@ struct Renderer::Impl {
   gl::Framebuffer readFramebuffer;  // the output, for blits into the caller's framebuffer
   uint32_t readAttached = 0;
 
+  // True while render() runs: its setAfterPass callback may read (the
+  // read-backs, plan, timings) but not change the renderer (refuseInFrame).
+  bool rendering = false;
+  class FrameScope;
+  void refuseInFrame(const char* call) const;
+
   class CallerState;
   // Loads and checks a pipeline (the file, or `text`): nullopt with diags
   // when validate would refuse it.
@@ -80,6 +86,30 @@ struct Renderer::Impl {
   void buildExecutor();
   void prepareFrame();
   void blitOutput(uint32_t framebuffer, const Viewport& viewport);
+};
+
+// A change in the middle of a frame would free or rebind what the running
+// executor is using (reload: the executor itself; setAfterPass: the callback
+// running): refused, so that the frame ends as it began.
+void Renderer::Impl::refuseInFrame(const char* call) const {
+  if (rendering)
+    throw RuntimeError(std::string("Renderer::") + call +
+                       " called from inside a render() callback (setAfterPass): a frame is running; only the "
+                       "read-backs and queries may be used there. Make the call after render() returns");
+}
+
+class Renderer::Impl::FrameScope {
+ public:
+  explicit FrameScope(Impl& im) : im_(im) {
+    im_.refuseInFrame("render");
+    im_.rendering = true;
+  }
+  ~FrameScope() { im_.rendering = false; }
+  FrameScope(const FrameScope&) = delete;
+  FrameScope& operator=(const FrameScope&) = delete;
+
+ private:
+  Impl& im_;
 };
 
 std::optional<PipelineConfig> Renderer::Impl::load(const std::optional<std::string>& text,
@@ -112,6 +142,9 @@ bool Renderer::Impl::replace(PipelineConfig next, Diagnostics& diags) {
   if (const size_t retired = shaders.retireChanged())
     spdlog::info("{} program(s) built from changed shader files will be compiled again", retired);
   PipelineConfig previous = std::move(source);
+  // A rebuild pending before (setSize, setScene, an import) stays pending on
+  // failure: the next frame builds the last good pipeline for it.
+  const bool pendingRebuild = rebuild;
   source = std::move(next);
   rebuild = true;
   planBeforeFrame.reset();
@@ -127,7 +160,7 @@ bool Renderer::Impl::replace(PipelineConfig next, Diagnostics& diags) {
     source = std::move(previous);
     shaders.restoreRetired();
     adapt();
-    rebuild = false;
+    rebuild = pendingRebuild;
     Diagnostic d;
     d.code = DiagCode::device_error;
     d.message = e.what();
@@ -242,6 +275,7 @@ std::unique_ptr<Renderer> Renderer::fromJson(std::string_view json, const std::s
 }
 
 void Renderer::setScene(std::shared_ptr<RenderScene> scene) {
+  impl_->refuseInFrame("setScene");
   impl_->scene = std::move(scene);
   impl_->sceneVersionSeen = impl_->scene ? impl_->scene->lightsVersion() : 0;
   impl_->camera = impl_->scene ? impl_->scene->scene().camera : Camera{};
@@ -252,6 +286,7 @@ void Renderer::setScene(std::shared_ptr<RenderScene> scene) {
 const std::shared_ptr<RenderScene>& Renderer::scene() const { return impl_->scene; }
 
 void Renderer::setCamera(const Camera& camera) {
+  impl_->refuseInFrame("setCamera");
   validateCamera(camera, "Renderer::setCamera");
   impl_->camera = camera;
 }
@@ -261,10 +296,12 @@ const Camera& Renderer::camera() const { return impl_->camera; }
 // A rebuild pending (new scene, size or pipeline) makes a new executor,
 // which starts without history on its own.
 void Renderer::cameraCut() {
+  impl_->refuseInFrame("cameraCut");
   if (impl_->executor) impl_->executor->cameraCut();
 }
 
 void Renderer::setSize(Extent size) {
+  impl_->refuseInFrame("setSize");
   if (size.width == 0 || size.height == 0)
     throw RuntimeError("Renderer::setSize: cannot render at " + std::to_string(size.width) + "x" +
                        std::to_string(size.height));
@@ -279,6 +316,7 @@ void Renderer::setSize(Extent size) {
 Extent Renderer::size() const { return impl_->size; }
 
 void Renderer::importTexture(const std::string& resource, uint32_t glTexture) {
+  impl_->refuseInFrame("importTexture");
   Impl& im = *impl_;
   if (std::string refusal = gl::checkImportName(im.source.graph, resource); !refusal.empty())
     throw RuntimeError(refusal);
@@ -300,6 +338,7 @@ void Renderer::importTexture(const std::string& resource, uint32_t glTexture) {
 }
 
 void Renderer::releaseTexture(const std::string& resource) {
+  impl_->refuseInFrame("releaseTexture");
   if (impl_->imports.erase(resource) && impl_->executor && !impl_->rebuild) impl_->executor->releaseTexture(resource);
 }
 
@@ -325,12 +364,14 @@ class Renderer::Impl::CallerState {
 };
 
 void Renderer::render() {
+  Impl::FrameScope frame(*impl_);
   Impl::CallerState state(impl_->options.restoreGlState);
   impl_->prepareFrame();
   impl_->executor->renderFrame();
 }
 
 void Renderer::render(uint32_t framebuffer, const Viewport& viewport) {
+  Impl::FrameScope frame(*impl_);
   Impl::CallerState state(impl_->options.restoreGlState);
   impl_->prepareFrame();
   impl_->executor->renderFrame();
@@ -338,12 +379,14 @@ void Renderer::render(uint32_t framebuffer, const Viewport& viewport) {
 }
 
 bool Renderer::reload(Diagnostics& diags) {
+  impl_->refuseInFrame("reload");
   std::optional<PipelineConfig> loaded =
       impl_->path.empty() ? impl_->load(impl_->json, diags) : impl_->load(std::nullopt, diags);
   return loaded && impl_->replace(std::move(*loaded), diags);
 }
 
 bool Renderer::reloadJson(std::string_view json, Diagnostics& diags) {
+  impl_->refuseInFrame("reloadJson");
   const std::string text(json);
   std::optional<PipelineConfig> loaded = impl_->load(text, diags);
   if (!loaded || !impl_->replace(std::move(*loaded), diags)) return false;
@@ -403,6 +446,7 @@ std::vector<float> Renderer::readResourceRGBA32F(const std::string& name) const 
 }
 
 void Renderer::setCpuPassTiming(bool on) {
+  impl_->refuseInFrame("setCpuPassTiming");
   impl_->cpuPassTiming = on;
   if (impl_->executor) impl_->executor->setCpuPassTiming(on);
 }
@@ -410,6 +454,7 @@ void Renderer::setCpuPassTiming(bool on) {
 bool Renderer::cpuPassTiming() const { return impl_->cpuPassTiming; }
 
 void Renderer::setAfterPass(std::function<void(size_t)> callback) {
+  impl_->refuseInFrame("setAfterPass");
   impl_->afterPass = std::move(callback);
   if (impl_->executor) impl_->executor->setAfterPass(impl_->afterPass);
 }

@@ -269,49 +269,116 @@ void validateNumbers(const Scene& s) {
   }
   for (size_t i = 0; i < s.pointLights.size(); ++i) validatePointLight(s.pointLights[i], i, where);
   for (size_t i = 0; i < s.directionalLights.size(); ++i) validateDirectionalLight(s.directionalLights[i], i, where);
-  if (!finiteVec(s.ambient)) fail("the ambient light is not finite");
+  validateAmbient(s.ambient, where);
   if (!s.hasCamera) return;  // the caller frames the scene: finite within the bounds above
   validateCamera(s.camera, where);
 }
 }  // namespace
 
-void validatePointLight(const PointLight& l, size_t index, const std::string& where) {
-  auto fail = [&](const std::string& msg) {
-    throw RuntimeError(where + ": point light " + std::to_string(index) + ": " + msg);
-  };
-  if (!inWorld(l.position))
-    fail("position " + vecText(l.position) + " exceeds +-" + limitText() + " units");
-  // (An infinite radius is a light without falloff: callers cap it, see lightRadius.)
-  if (!finiteVec(l.color) || !std::isfinite(l.intensity) || !std::isfinite(l.constant) || !std::isfinite(l.linear) ||
-      !std::isfinite(l.quadratic) || std::isnan(l.radius))
-    fail("colour, intensity or attenuation is not finite");
-  if (!l.spot) return;
+namespace {
+std::string numberText(float v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", double(v));
+  return b;
+}
+SceneValueProblem problem(std::string key, std::string message) { return {std::move(key), std::move(message)}; }
+// NaN first (it compares false with every bound), then the world's extent
+// (an infinity, or a file's 1e39 read as a float, exceeds it).
+std::optional<SceneValueProblem> positionProblem(const char* key, const glm::vec3& v) {
+  if (std::isnan(v.x) || std::isnan(v.y) || std::isnan(v.z)) return problem(key, vecText(v) + " is not a finite number");
+  if (!inWorld(v)) return problem(key, vecText(v) + " exceeds +-" + limitText() + " units");
+  return std::nullopt;
+}
+std::optional<SceneValueProblem> colorProblem(const glm::vec3& color, float intensity) {
+  if (!finiteVec(color)) return problem("color", vecText(color) + " is not a finite number");
+  if (color.x < 0.0f || color.y < 0.0f || color.z < 0.0f) return problem("color", "values must be >= 0, got " + vecText(color));
+  if (!std::isfinite(intensity)) return problem("intensity", "is not a finite number");
+  if (intensity < 0.0f) return problem("intensity", "must be >= 0, got " + numberText(intensity));
+  return std::nullopt;
+}
+}  // namespace
+
+// The ranges scene files and the API share, stated here once (scenes/README.md
+// lists them for files). Keys are the scene file's.
+std::optional<SceneValueProblem> pointLightProblem(const PointLight& l) {
+  if (auto p = positionProblem("position", l.position)) return p;
+  if (auto p = colorProblem(l.color, l.intensity)) return p;
+  const std::pair<const char*, float> terms[] = {{"constant", l.constant}, {"linear", l.linear}, {"quadratic", l.quadratic}};
+  for (const auto& [key, v] : terms) {
+    if (!std::isfinite(v)) return problem(key, "is not a finite number");
+    if (v < 0.0f) return problem(key, "must be >= 0, got " + numberText(v));
+  }
+  if (l.constant + l.linear + l.quadratic <= 0.0f) return problem("", "constant, linear and quadratic cannot all be 0");
+  // (An infinite radius is a light without falloff: callers cap it, see
+  // lightRadius; 0 is one that never reaches the cut-off.)
+  if (std::isnan(l.radius)) return problem("radius", "is not a number");
+  if (l.radius < 0.0f) return problem("radius", "must be >= 0, got " + numberText(l.radius));
+  if (!l.spot) return std::nullopt;
   const float len = finiteVec(l.direction) ? glm::length(l.direction) : 0.0f;
-  if (!(std::abs(len - 1.0f) < 1e-3f)) fail("spot direction " + vecText(l.direction) + " is not a unit vector");
+  if (!(std::abs(len - 1.0f) < 1e-3f)) return problem("direction", vecText(l.direction) + " is not a unit vector");
   // The ranges of glTF's KHR_lights_punctual (in degrees): a cone wider than a
   // half-space has no light volume of this shape, and inner >= outer no ramp.
   if (!(l.outerConeDeg > 0.0f && l.outerConeDeg <= 90.0f))
-    fail("spot outer cone angle " + std::to_string(l.outerConeDeg) + " is not in (0, 90] degrees");
+    return problem("outer_cone_deg", "must be in (0, 90] degrees (a half-angle from the axis), got " + numberText(l.outerConeDeg));
   if (!(l.innerConeDeg >= 0.0f && l.innerConeDeg < l.outerConeDeg))
-    fail("spot inner cone angle " + std::to_string(l.innerConeDeg) + " is not in [0, outer cone angle " +
-         std::to_string(l.outerConeDeg) + ") degrees");
+    return problem("inner_cone_deg", "must be >= 0 and less than outer_cone_deg (" + numberText(l.outerConeDeg) +
+                                         "), got " + numberText(l.innerConeDeg));
+  return std::nullopt;
+}
+
+std::optional<SceneValueProblem> directionalLightProblem(const DirectionalLight& l) {
+  if (!finiteVec(l.direction)) return problem("direction", vecText(l.direction) + " is not a finite number");
+  // Scaled by its largest component first: the length of (1e38, 1e38, 0) overflows a float.
+  const float largest = std::max({std::abs(l.direction.x), std::abs(l.direction.y), std::abs(l.direction.z)});
+  if (!(largest > 0.0f)) return problem("direction", "must not be the zero vector");
+  return colorProblem(l.color, l.intensity);
+}
+
+std::optional<SceneValueProblem> cameraProblem(const Camera& c) {
+  if (auto p = positionProblem("position", c.position)) return p;
+  if (auto p = positionProblem("target", c.target)) return p;
+  if (c.target == c.position) return problem("target", "must differ from the position");
+  if (!finiteVec(c.up) || glm::length(c.up) == 0.0f) return problem("up", "must be a finite, non-zero vector");
+  if (!(c.fovY > 0.0f && c.fovY < 180.0f)) return problem("fov", "must be in (0, 180) degrees, got " + numberText(c.fovY));
+  if (!(c.near > 0.0f && std::isfinite(c.near))) return problem("near", "must be > 0, got " + numberText(c.near));
+  if (!(c.far > c.near && std::isfinite(c.far)))
+    return problem("far", "must be greater than near (" + numberText(c.near) + "), got " + numberText(c.far));
+  return std::nullopt;
+}
+
+std::optional<SceneValueProblem> ambientProblem(const glm::vec3& ambient) {
+  if (!finiteVec(ambient)) return problem("ambient", vecText(ambient) + " is not a finite number");
+  if (ambient.x < 0.0f || ambient.y < 0.0f || ambient.z < 0.0f)
+    return problem("ambient", "values must be >= 0, got " + vecText(ambient));
+  return std::nullopt;
+}
+
+namespace {
+std::string problemText(const SceneValueProblem& p) { return p.key.empty() ? p.message : p.key + ": " + p.message; }
+}  // namespace
+
+void validatePointLight(const PointLight& l, size_t index, const std::string& where) {
+  if (auto p = pointLightProblem(l))
+    throw RuntimeError(where + ": point light " + std::to_string(index) + ": " + problemText(*p));
 }
 
 void validateDirectionalLight(const DirectionalLight& l, size_t index, const std::string& where) {
-  if (!finiteVec(l.direction) || !finiteVec(l.color) || !std::isfinite(l.intensity))
-    throw RuntimeError(where + ": directional light " + std::to_string(index) +
-                       ": direction, colour or intensity is not finite");
+  if (auto p = directionalLightProblem(l))
+    throw RuntimeError(where + ": directional light " + std::to_string(index) + ": " + problemText(*p));
 }
 
 void validateCamera(const Camera& camera, const std::string& where) {
   auto fail = [&](const std::string& msg) { throw RuntimeError(where + ": " + msg); };
-  if (!inWorld(camera.position) || !inWorld(camera.target))
-    fail("camera position or target exceeds +-" + limitText() + " units");
+  if (auto p = cameraProblem(camera)) fail("camera " + problemText(*p));
   const glm::mat4 vp = camera.viewProjection(1.0f);
   for (int c = 0; c < 4; ++c)
     if (!finiteVec(glm::vec3(vp[c])) || !std::isfinite(vp[c].w))
       fail("camera: its view and projection are not finite (near " + std::to_string(camera.near) + ", far " +
            std::to_string(camera.far) + ", fov " + std::to_string(camera.fovY) + ")");
+}
+
+void validateAmbient(const glm::vec3& ambient, const std::string& where) {
+  if (auto p = ambientProblem(ambient)) throw RuntimeError(where + ": " + problemText(*p));
 }
 
 void Scene::validate() const {

@@ -55,7 +55,10 @@ class SceneFileParser {
       if (lights.size() > kMaxSceneLights) fail("/lights", tooManyLights(std::to_string(lights.size())));
       for (size_t i = 0; i < lights.size(); ++i) addLight(scene, lights[i], "/lights/" + std::to_string(i));
     }
-    if (doc.contains("ambient")) scene.ambient = vec3OrScalar(doc["ambient"], "/ambient", 0.0f);
+    if (doc.contains("ambient")) {
+      scene.ambient = vec3OrScalar(doc["ambient"], "/ambient", kAnyValue);
+      if (auto p = ambientProblem(scene.ambient)) fail("/ambient", p->message);
+    }
     if (doc.contains("camera")) {
       scene.camera = camera(doc["camera"], "/camera");
       scene.hasCamera = true;
@@ -104,6 +107,13 @@ class SceneFileParser {
   [[noreturn]] void failAtOffset(size_t offset, const std::string& msg) const {
     const cd::LineColumn lc = locator_->position(offset);
     throw RuntimeError(file_ + ":" + std::to_string(lc.line) + ":" + std::to_string(lc.column) + ": " + msg);
+  }
+
+  // The ranges of lights, ambient and camera are the API's too (pointLightProblem
+  // and the others, rgraph/scene.h): values are read as given, then checked there.
+  static constexpr float kAnyValue = -std::numeric_limits<float>::max();
+  [[noreturn]] void failProblem(const std::string& ptr, const SceneValueProblem& p) const {
+    fail(p.key.empty() ? ptr : ptr + "/" + p.key, p.message);
   }
 
   static std::string tooManyLights(const std::string& count) {
@@ -169,7 +179,7 @@ class SceneFileParser {
       m = glm::rotate(m, r.x, glm::vec3(1, 0, 0));
     }
     if (j.contains("scale")) {
-      const glm::vec3 s = vec3OrScalar(j["scale"], ptr + "/scale", -std::numeric_limits<float>::max());
+      const glm::vec3 s = vec3OrScalar(j["scale"], ptr + "/scale", kAnyValue);
       if (s.x == 0.0f || s.y == 0.0f || s.z == 0.0f) fail(ptr + "/scale", "scale must not be zero");
       m = glm::scale(m, s);
     }
@@ -328,11 +338,7 @@ class SceneFileParser {
     l.spot = true;
     l.direction = glm::normalize(d / largest);
     l.outerConeDeg = numberOr(j, "outer_cone_deg", ptr, 45.0f);
-    if (!(l.outerConeDeg > 0.0f && l.outerConeDeg <= 90.0f))
-      fail(ptr + "/outer_cone_deg", "must be in (0, 90] degrees (a half-angle from the axis)");
     l.innerConeDeg = numberOr(j, "inner_cone_deg", ptr, 0.0f);
-    if (!(l.innerConeDeg >= 0.0f && l.innerConeDeg < l.outerConeDeg))
-      fail(ptr + "/inner_cone_deg", "must be >= 0 and less than outer_cone_deg (" + json(l.outerConeDeg).dump() + ")");
   }
 
   void addLight(Scene& scene, const json& j, const std::string& ptr) const {
@@ -340,8 +346,7 @@ class SceneFileParser {
     if (!j.contains("type")) fail(ptr, "missing \"type\" (\"point\", \"spot\" or \"directional\")");
     const std::string type = string(j["type"], ptr + "/type");
     const float intensity = numberOr(j, "intensity", ptr, 1.0f);
-    if (intensity < 0.0f) fail(ptr + "/intensity", "must be >= 0");
-    const glm::vec3 color = j.contains("color") ? vec3OrScalar(j["color"], ptr + "/color", 0.0f) : glm::vec3(1.0f);
+    const glm::vec3 color = j.contains("color") ? vec3OrScalar(j["color"], ptr + "/color", kAnyValue) : glm::vec3(1.0f);
     if (type == "point" || type == "spot") {
       const bool spot = type == "spot";
       if (spot)
@@ -357,27 +362,21 @@ class SceneFileParser {
       l.constant = numberOr(j, "constant", ptr, 1.0f);
       l.linear = numberOr(j, "linear", ptr, 0.7f);
       l.quadratic = numberOr(j, "quadratic", ptr, 1.8f);
-      if (l.constant < 0.0f) fail(ptr + "/constant", "must be >= 0");
-      if (l.linear < 0.0f) fail(ptr + "/linear", "must be >= 0");
-      if (l.quadratic < 0.0f) fail(ptr + "/quadratic", "must be >= 0");
-      if (l.constant + l.linear + l.quadratic <= 0.0f) fail(ptr, "constant, linear and quadratic cannot all be 0");
-      if (j.contains("radius")) {
-        l.radius = number(j["radius"], ptr + "/radius");
-        if (l.radius <= 0.0f) fail(ptr + "/radius", "must be > 0");
-      } else {
-        l.radius = lightRadius(l);
-      }
+      l.radius = j.contains("radius") ? number(j["radius"], ptr + "/radius") : 0.0f;
       if (spot) spotCone(j, ptr, l);
+      if (auto p = pointLightProblem(l)) failProblem(ptr, *p);
+      if (!j.contains("radius")) l.radius = lightRadius(l);
       scene.pointLights.push_back(l);
     } else if (type == "directional") {
       unknownKeys(j, ptr, {"type", "direction", "color", "intensity"});
       if (!j.contains("direction")) fail(ptr, "a directional light needs \"direction\"");
       DirectionalLight l;
-      const glm::vec3 d = vec3(j["direction"], ptr + "/direction");
-      if (glm::length(d) == 0.0f) fail(ptr + "/direction", "must not be the zero vector");
-      l.direction = glm::normalize(d);
+      l.direction = vec3(j["direction"], ptr + "/direction");
       l.color = color;
       l.intensity = intensity;
+      if (auto p = directionalLightProblem(l)) failProblem(ptr, *p);
+      const glm::vec3 d = l.direction;
+      l.direction = glm::normalize(d / std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}));
       scene.directionalLights.push_back(l);
     } else {
       fail(ptr + "/type", "expected \"point\", \"spot\" or \"directional\", got \"" + type + "\"");
@@ -393,7 +392,6 @@ class SceneFileParser {
     if (j.contains("target") && j.contains("forward")) fail(ptr, "give \"target\" or \"forward\", not both");
     if (j.contains("target")) {
       c.target = vec3(j["target"], ptr + "/target");
-      if (c.target == c.position) fail(ptr + "/target", "must differ from the position");
     } else if (j.contains("forward")) {
       const glm::vec3 f = vec3(j["forward"], ptr + "/forward");
       if (glm::length(f) == 0.0f) fail(ptr + "/forward", "must not be the zero vector");
@@ -401,23 +399,18 @@ class SceneFileParser {
     } else {
       c.target = c.position + glm::vec3(0, 0, -1);
     }
-    if (j.contains("up")) {
-      c.up = vec3(j["up"], ptr + "/up");
-      if (glm::length(c.up) == 0.0f) fail(ptr + "/up", "must not be the zero vector");
-      c.up = glm::normalize(c.up);
-    }
+    if (j.contains("up")) c.up = vec3(j["up"], ptr + "/up");
+    c.fovY = numberOr(j, "fov", ptr, 45.0f);
+    c.near = numberOr(j, "near", ptr, 0.1f);
+    c.far = numberOr(j, "far", ptr, 100.0f);
+    if (auto p = cameraProblem(c)) failProblem(ptr, *p);
+    c.up = glm::normalize(c.up / std::max({std::abs(c.up.x), std::abs(c.up.y), std::abs(c.up.z)}));
     // Looking straight along up (e.g. straight down with the default up) leaves the view without an orientation.
     if (const glm::vec3 valid = c.validUp(); valid != c.up) {
       warn(j.contains("up") ? ptr + "/up" : ptr, "the up vector is parallel to the view direction; using up = [" + std::to_string(valid.x) +
                                                      ", " + std::to_string(valid.y) + ", " + std::to_string(valid.z) + "]");
       c.up = valid;
     }
-    c.fovY = numberOr(j, "fov", ptr, 45.0f);
-    if (!(c.fovY > 0.0f && c.fovY < 180.0f)) fail(ptr + "/fov", "must be in (0, 180) degrees");
-    c.near = numberOr(j, "near", ptr, 0.1f);
-    if (!(c.near > 0.0f)) fail(ptr + "/near", "must be > 0");
-    c.far = numberOr(j, "far", ptr, 100.0f);
-    if (!(c.far > c.near)) fail(ptr + "/far", "must be greater than near");
     return c;
   }
 

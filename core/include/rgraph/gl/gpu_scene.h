@@ -20,10 +20,12 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "rgraph/gl/context_identity.h"
 #include "rgraph/gl/objects.h"
 #include "rgraph/graph.h"
 
@@ -47,12 +49,19 @@ struct FrameMotion {
 
 class GpuScene {
  public:
+  static constexpr size_t kLightBufferCacheSize = 4;
   explicit GpuScene(const Scene& scene);  // uploads; needs a current GL context
   ~GpuScene();
   GpuScene(const GpuScene&) = delete;
   GpuScene& operator=(const GpuScene&) = delete;
 
   const Scene& scene() const { return scene_; }
+
+  // Throws RuntimeError (starting with `who`) unless the current GL context
+  // is the one the scene was uploaded in. Its vertex arrays exist only there
+  // (GL never shares them, not even between contexts of one share group), and
+  // its buffers and textures only there and in its share group.
+  void requireUploadContext(const std::string& who) const;
 
   // Fills the Frame block for this viewport (camera aspect) and binds it at 0:
   // the scene's camera, or `camera` (renderers sharing one GpuScene each have
@@ -77,7 +86,10 @@ class GpuScene {
 
   // Point and spot lights with radii solved for `threshold` (LearnOpenGL: 5/256 of the
   // brightest channel) and capped at the distance beyond which the scene has
-  // no geometry. threshold <= 0: no cut-off (radius -1). Cached per threshold.
+  // no geometry. threshold <= 0: no cut-off (radius -1). Cached for the
+  // kLightBufferCacheSize thresholds used last (passes with different
+  // thresholds, renderers sharing the scene), so that a threshold dragged
+  // through many values holds no more buffers than that.
   // The buffer holds the point lights first, then the spot lights (its last
   // spotLightCount() entries), each in scene order.
   // Binds the buffer at shader storage binding 0.
@@ -126,6 +138,7 @@ class GpuScene {
   void bindMaterial(uint32_t program, int material) const;
 
   const Scene& scene_;
+  gl::ContextIdentity uploadedIn_;
   std::vector<GpuMesh> meshes_;
   GpuMesh icosphere_, cube_, spotVolume_;
   float icosphereScale_ = 1.0f, spotVolumeScale_ = 1.0f;
@@ -147,8 +160,10 @@ class GpuScene {
     gl::Buffer buffer;
     size_t capacity = 0;  // lights it can hold
     uint64_t version = 0;
+    uint64_t lastUse = 0;  // lightBufferUses_ at its last use
   };
-  std::map<float, LightBuffer> lightBuffers_;
+  std::map<float, LightBuffer> lightBuffers_;  // at most kLightBufferCacheSize
+  uint64_t lightBufferUses_ = 0;  // a clock for evicting the least recently used
   uint64_t lightsVersion_ = 0;
   glm::vec3 eye_{0.0f};  // the camera of the current frame (back-to-front sorting)
   mutable std::map<uint32_t, std::unique_ptr<Locations>> locations_;
