@@ -140,6 +140,15 @@ std::string shaderNameProblem(const std::string& s) {
   return {};
 }
 
+// Only for a value beyond a bound the declaration has: a param may declare
+// neither (an empty std::optional must not be read).
+std::string rangeOf(const ParamDecl& decl) {
+  if (decl.min && decl.max) return "outside its range [" + formatNumber(*decl.min) + ", " + formatNumber(*decl.max) + "]";
+  if (decl.min) return "below its minimum " + formatNumber(*decl.min);
+  if (decl.max) return "above its maximum " + formatNumber(*decl.max);
+  return "outside its range";
+}
+
 }  // namespace
 
 std::optional<ParamValue> checkParamValue(const ParamDecl& decl, const Json& v, const std::string& pointer,
@@ -152,21 +161,14 @@ std::optional<ParamValue> checkParamValue(const ParamDecl& decl, const Json& v, 
   auto wrongType = [&](const std::string& exp) {
     return fail(DiagCode::param_type, pointer, "expected " + exp + ", got " + jsonTypeName(v));
   };
-  // Called only for a value beyond a bound the declaration has (a param may
-  // declare neither: nothing to dereference then).
-  auto rangeText = [&]() -> std::string {
-    if (decl.min && decl.max) return "outside its range [" + formatNumber(*decl.min) + ", " + formatNumber(*decl.max) + "]";
-    if (decl.min) return "below its minimum " + formatNumber(*decl.min);
-    if (decl.max) return "above its maximum " + formatNumber(*decl.max);
-    return "outside its range";
-  };
+  const std::string rangeText = rangeOf(decl);
   // One number against the declared range and the float range; `where` is the
   // value or vector component `component` (-1: the value itself).
   auto number = [&](const Json& x, const std::string& where, int component) {
     const double d = x.get<double>();
     const std::string c = "component " + std::to_string(component);
     if ((decl.min && d < *decl.min) || (decl.max && d > *decl.max)) {
-      fail(DiagCode::param_range, where, (component < 0 ? "value " : c + " is ") + describeValue(x) + ", " + rangeText());
+      fail(DiagCode::param_range, where, (component < 0 ? "value " : c + " is ") + describeValue(x) + ", " + rangeText);
       return false;
     }
     if (std::string why = floatProblem(d); !why.empty()) {
@@ -188,7 +190,7 @@ std::optional<ParamValue> checkParamValue(const ParamDecl& decl, const Json& v, 
         return fail(DiagCode::param_type, pointer, "expected int, got " + describeValue(v));
       const std::string shown = describeValue(v);
       if ((i.status == S::too_large && decl.max) || (i.status == S::too_small && decl.min))
-        return fail(DiagCode::param_range, pointer, "value " + shown + ", " + rangeText());
+        return fail(DiagCode::param_range, pointer, "value " + shown + ", " + rangeText);
       if (i.status == S::too_large)
         return fail(DiagCode::param_range, pointer,
                     "value " + shown + " is too large: an int parameter is at most " +
@@ -199,7 +201,7 @@ std::optional<ParamValue> checkParamValue(const ParamDecl& decl, const Json& v, 
                         std::to_string(std::numeric_limits<int64_t>::min()));
       const double d = static_cast<double>(i.value);
       if ((decl.min && d < *decl.min) || (decl.max && d > *decl.max))
-        return fail(DiagCode::param_range, pointer, "value " + shown + ", " + rangeText());
+        return fail(DiagCode::param_range, pointer, "value " + shown + ", " + rangeText);
       return ParamValue{i.value};
     }
     case ParamType::number: {
@@ -209,12 +211,14 @@ std::optional<ParamValue> checkParamValue(const ParamDecl& decl, const Json& v, 
     }
     case ParamType::string:
       if (!v.is_string()) return wrongType(expected);
-      return ParamValue{v.get<std::string>()};
+      // Strings are built in place: GCC 12 warns (-Wfree-nonheap-object,
+      // wrongly) about a temporary ParamValue holding one here.
+      return std::optional<ParamValue>(std::in_place, std::in_place_type<std::string>, v.get<std::string>());
     case ParamType::shader: {
       if (!v.is_string()) return wrongType("a shader file name (string)");
       std::string s = v.get<std::string>();
       if (std::string why = shaderNameProblem(s); !why.empty()) return fail(DiagCode::param_range, pointer, why);
-      return ParamValue{std::move(s)};
+      return std::optional<ParamValue>(std::in_place, std::in_place_type<std::string>, std::move(s));
     }
     case ParamType::enumeration: {
       if (!v.is_string()) return wrongType("one of " + quotedList(decl.choices));
