@@ -50,6 +50,13 @@ case $case in
     run 1 "error: .*s.txt:1: screenshot '.*s.txt' is --script '.*s.txt'" view "$out/p.json" --script "$out/s.txt"
     unchanged "view screenshot p.json"
     ;;
+  shader_file)  # a shader the pipeline compiled (known once it rendered): refused before the write
+    here=$(dirname "$0")
+    cp -r "$here/shaders" "$out/shaders" && cp "$out/shaders/cli_teal.frag" "$out/teal.orig"
+    run 1 "error: --out '.*cli_teal.frag' is the pipeline's file '.*cli_teal.frag'" render "$here/configs/shader-custom.json" \
+      --shader-path "$out/shaders" --out "$out/shaders/cli_teal.frag" "${small[@]}"
+    cmp -s "$out/shaders/cli_teal.frag" "$out/teal.orig" || fail "--out replaced the shader"
+    ;;
   folder)  # an output folder that does not exist or is not writable: refused before rendering
     run 1 "error: --out '.*no-such/a.png': cannot be written: no such folder '.*no-such'" \
       render "$out/p.json" --out "$out/no-such/a.png" "${small[@]}"
