@@ -33,8 +33,7 @@ struct Options {
 // An empty value names nothing: refused rather than read as "not given" (an
 // empty --scene once rendered the default scene).
 const CLI::Validator kNotEmpty(
-    [](const std::string& value) { return value.empty() ? std::string("an empty value names nothing") : std::string(); },
-    "");
+    [](const std::string& value) { return value.empty() ? "an empty value names nothing" : std::string(); }, "");
 
 void addPluginPath(CLI::App* cmd, Options& o) {
   cmd->add_option("--plugin-path", o.pluginPaths,

@@ -27,7 +27,8 @@ case $case in
     run 1 "error: --out '.*p.json' is the pipeline '.*p.json': an output never replaces an input" \
       render "$out/p.json" --out "$out/p.json" "${small[@]}"
     unchanged "--out p.json"
-    run 1 "error: --stats '.*p.json' is the pipeline" render "$out/p.json" --out "$out/a.png" --stats "$out/p.json" "${small[@]}"
+    run 1 "error: --stats '.*p.json' is the pipeline" \
+      render "$out/p.json" --out "$out/a.png" --stats "$out/p.json" "${small[@]}"
     unchanged "--stats p.json"
     [[ ! -e "$out/a.png" ]] || fail "a refused render wrote its --out"
     ln -s p.json "$out/link.png" && ln "$out/p.json" "$out/hard.png"
@@ -60,10 +61,12 @@ case $case in
   folder)  # an output folder that does not exist or is not writable: refused before rendering
     run 1 "error: --out '.*no-such/a.png': cannot be written: no such folder '.*no-such'" \
       render "$out/p.json" --out "$out/no-such/a.png" "${small[@]}"
-    run 1 "error: --stats '$out': cannot be written: is a folder" render "$out/p.json" --out "$out/a.png" --stats "$out" "${small[@]}"
+    run 1 "error: --stats '$out': cannot be written: is a folder" \
+      render "$out/p.json" --out "$out/a.png" --stats "$out" "${small[@]}"
     if [[ $(id -u) -ne 0 ]]; then
       mkdir "$out/ro" && chmod a-w "$out/ro"
-      run 1 "error: --out '.*ro/a.png': cannot be written: Permission denied" render "$out/p.json" --out "$out/ro/a.png" "${small[@]}"
+      run 1 "error: --out '.*ro/a.png': cannot be written: Permission denied" \
+        render "$out/p.json" --out "$out/ro/a.png" "${small[@]}"
     fi
     ;;
   dev_full)  # write failures: exit 1 with the OS's reason, never "wrote"
