@@ -7,12 +7,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <optional>
 
 #include "rgraph/error.h"
 #include "rgraph/image.h"
+#include "rgraph/output_file.h"
 
 namespace rgraph::cli::chart {
 namespace {
@@ -323,8 +323,7 @@ std::vector<uint8_t> toRgba(const Chart& chart) {
 
 void writeChart(const Chart& chart, const std::string& dir, const std::string& name) {
   const std::string base = (std::filesystem::path(dir) / name).string();
-  std::ofstream f(base + ".svg", std::ios::binary);
-  if (!(f << toSvg(chart)) || !f.flush()) throw RuntimeError("cannot write '" + base + ".svg'");
+  writeOutputFile(base + ".svg", toSvg(chart));
   writePng(base + ".png", static_cast<uint32_t>(chart.width), static_cast<uint32_t>(chart.height), toRgba(chart));
 }
 

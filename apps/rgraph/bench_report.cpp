@@ -3,11 +3,12 @@
 // test regenerates them and compares, so the docs cannot drift from the code).
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <functional>
 
 #include "bench.h"
 #include "rgraph/error.h"
+#include "rgraph/output_file.h"
 
 namespace rgraph::cli::bench {
 
@@ -37,8 +38,7 @@ std::string joined(const std::vector<std::string>& v, const char* sep) {
 }  // namespace
 
 void writeCsv(const std::string& path, const std::vector<Point>& points, const std::vector<AaRow>& aa) {
-  std::ofstream f(path);
-  if (!f) throw RuntimeError("cannot write '" + path + "'");
+  std::ostringstream f;
   f << "axes,method,layout,threshold,lights,width,height,frames,median_ms,min_"
        "ms,max_ms,psnr_db,max_abs_error,"
        "share_over_1,gbuffer_bytes_per_pixel,gbuffer_bytes_per_pixel_adapted,"
@@ -70,7 +70,7 @@ void writeCsv(const std::string& path, const std::vector<Point>& points, const s
       << csvEscape(r.ok() ? "ok" : "error: " + r.error) << "," << csvEscape(r.scene) << "," << r.aa << ","
       << n(r.edgePsnr, "%.3f") << "," << r.edgePixels << ",,\n";
   }
-  if (!f) throw RuntimeError("cannot write '" + path + "'");
+  writeOutputFile(path, f.str());
 }
 
 json pointJson(const Point& p) {

@@ -36,16 +36,22 @@ std::optional<PipelineConfig> loadPipeline(const std::string& path, Diagnostics&
   return loadPipelineFile(path, {}, diags);
 }
 
-bool addShaderPaths(const std::vector<std::string>& dirs) {
+bool checkFolders(const std::string& option, const std::vector<std::string>& dirs) {
   for (const auto& dir : dirs) {
     std::error_code ec;
-    if (!std::filesystem::is_directory(dir, ec)) {
-      std::cerr << "error: --shader-path '" << dir << "': no such folder\n";
-      return false;
-    }
-    addShaderSearchDirectory(std::filesystem::absolute(dir, ec).lexically_normal().string());
+    if (std::filesystem::is_directory(dir, ec)) continue;
+    const bool exists = std::filesystem::exists(dir, ec);
+    std::cerr << "error: " << option << " '" << dir << "': " << (exists ? "not a folder" : "no such folder") << "\n";
+    return false;
   }
   return true;
+}
+
+void addShaderPaths(const std::vector<std::string>& dirs) {
+  for (const auto& dir : dirs) {
+    std::error_code ec;
+    addShaderSearchDirectory(std::filesystem::absolute(dir, ec).lexically_normal().string());
+  }
 }
 
 CompileOptions compileOptions(uint32_t width, uint32_t height, uint32_t maxTextureSize) {

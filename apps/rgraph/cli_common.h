@@ -32,9 +32,13 @@ void addPluginSearchDirectory(const std::string& dir);
 // false when any failed.
 bool loadPlugins(const std::vector<std::string>& namesOrPaths);
 
-// --shader-path folders: each must be an existing folder (else `error:` and
-// false); they are searched before the built-in shaders by validate and render.
-bool addShaderPaths(const std::vector<std::string>& dirs);
+// --plugin-path and --shader-path: each must be an existing folder, else
+// `error: OPTION 'DIR': no such folder` (or "not a folder") and false.
+bool checkFolders(const std::string& option, const std::vector<std::string>& dirs);
+
+// --shader-path folders (checkFolders first): searched before the built-in
+// shaders by validate and render.
+void addShaderPaths(const std::vector<std::string>& dirs);
 
 // Prints diagnostics to stderr, one `FILE:LINE:COL: error: PATH: message` line each.
 void printDiagnostics(const Diagnostics& diags);

@@ -26,8 +26,10 @@
 #include "bench_aa_metrics.h"
 #include "bench_post.h"
 #include "cli_common.h"
+#include "cli_outputs.h"
 #include "commands.h"
 #include "rgraph/error.h"
+#include "rgraph/output_file.h"
 #include "rgraph/gl/context.h"
 #include "rgraph/gl/shader_library.h"
 
@@ -98,12 +100,7 @@ class Progress {
   size_t index_ = 0, count_ = 0;
 };
 
-void writeText(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream f(path);
-  if (!f) throw RuntimeError("cannot write '" + path.string() + "'");
-  f << text;
-  if (!f) throw RuntimeError("cannot write '" + path.string() + "'");
-}
+void writeText(const std::filesystem::path& path, const std::string& text) { writeOutputFile(path.string(), text); }
 
 // figures.md: every table between the markers docs/performance.md uses, so a
 // block can be pasted (scripts/update-bench-figures.py) and checked
@@ -128,9 +125,21 @@ std::string machineText(const json& m) {
          std::to_string(m.at("hardware_threads").get<unsigned>()) + " hardware threads";
 }
 
+// Before any work: the fixed-name files a run writes under --out are
+// writable and are not its --scene or --replot file (cli_outputs.h).
+bool checkBenchOutputs(const BenchOptions& options, const std::vector<std::string>& names) {
+  std::vector<NamedPath> outputs;
+  for (const auto& name : names)
+    outputs.push_back({"--out " + name, (std::filesystem::path(options.out) / name).string()});
+  return checkOutputs({{"--scene", options.scene}, {"--replot", options.replot}}, outputs);
+}
+
 // Redraws the charts and the figure tables of a previous run from its
 // results.json (no rendering).
 int replot(const BenchOptions& options) {
+  std::error_code ec;
+  std::filesystem::create_directories(options.out, ec);
+  if (!checkBenchOutputs(options, {"figures.md"})) return kExitFailure;
   std::ifstream f(options.replot);
   if (!f) {
     std::cerr << "error: cannot read '" << options.replot << "'\n";
@@ -346,6 +355,7 @@ int runBench(const BenchOptions& options) {
     std::cerr << "error: cannot create output folder '" << options.out << "': " << e.what() << "\n";
     return kExitFailure;
   }
+  if (!checkBenchOutputs(options, {"results.csv", "results.json", "figures.md"})) return kExitFailure;
   try {
     Scenes scenes(options.smoke && options.scene.empty() ? "many-lights:4" : options.scene);
     auto context = GlContext::create(ContextOptions{});

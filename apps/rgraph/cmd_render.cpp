@@ -4,7 +4,6 @@
 #include <cmath>
 #include <optional>
 #include <sstream>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <set>
@@ -12,11 +11,15 @@
 #include <spdlog/spdlog.h>
 
 #include "cli_common.h"
+#include "cli_outputs.h"
 #include "commands.h"
 #include "median.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/context.h"
 #include "rgraph/image.h"
+#include "rgraph/output_file.h"
+#include "rgraph/pipeline_load.h"
+#include "rgraph/plugin.h"
 #include "rgraph/renderer.h"
 #include "rgraph/scene.h"
 
@@ -35,14 +38,16 @@ void writeStats(const std::string& path, const std::vector<double>& frameMs,
                           {"frames", frameMs.size()},
                           {"passes", passes},
                           {"memory", memoryJson(plan)}};
-  std::ofstream f(path);
-  if (!f) throw RuntimeError("cannot write stats file '" + path + "'");
-  f << stats.dump(2) << "\n";
+  writeOutputFile(path, stats.dump(2) + "\n", "stats file");
 }
 
 // "px,py,pz,tx,ty,tz[,fovDeg]": the camera at (px,py,pz) looking at (tx,ty,tz).
 std::optional<Camera> parseCamera(const std::string& text, Camera camera, std::string& error) {
   std::vector<float> v;
+  if (text.empty() || text.back() == ',') {  // getline drops an empty last item
+    error = "--camera '" + text + "': a number is missing (expected px,py,pz,tx,ty,tz[,fovDeg])";
+    return std::nullopt;
+  }
   std::stringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {
@@ -80,16 +85,17 @@ std::optional<std::set<uint32_t>> parseCuts(const std::string& text, uint32_t fr
   const std::string expected =
       " (expected K[,K...]: 0-based frame numbers below --frames " + std::to_string(frames) + ")";
   while (std::getline(in, item, ',')) {
-    const bool digits = !item.empty() && item.size() <= 9 &&
-                        std::all_of(item.begin(), item.end(), [](char c) { return c >= '0' && c <= '9'; });
+    const bool digits =
+        !item.empty() && std::all_of(item.begin(), item.end(), [](char c) { return c >= '0' && c <= '9'; });
     if (!digits) {
       error = "--cut '" + text + "': '" + item + "' is not a frame number" + expected;
       return std::nullopt;
     }
-    const auto k = static_cast<uint32_t>(std::stoul(item));
+    // A number of any length is a frame number; past 9 digits it is beyond every --frames.
+    const uint32_t k = item.size() <= 9 ? static_cast<uint32_t>(std::stoul(item)) : frames;
     if (k >= frames) {
-      error = "--cut '" + text + "': frame " + item + " is out of range: the frames are 0 to " +
-              std::to_string(frames - 1) + " (--frames " + std::to_string(frames) + ")";
+      error = "--cut '" + text + "': frame " + item + " is beyond --frames " + std::to_string(frames) +
+              " (the frames are 0 to " + std::to_string(frames - 1) + ")";
       return std::nullopt;
     }
     cuts.insert(k);
@@ -130,6 +136,10 @@ int runRender(const RenderOptions& options) {
   }
 
   const std::string pipelinePath = options.pipeline.empty() ? defaultPipelinePath() : options.pipeline;
+  // Before any work: no output replaces an input or another output, and each can be written.
+  std::vector<NamedPath> inputs = {{"the pipeline", pipelinePath}, {"--scene", options.scene}};
+  const std::vector<NamedPath> outputs = {{"--out", options.out}, {"--stats", options.stats}};
+  if (!checkOutputs(inputs, outputs)) return kExitFailure;
   RendererOptions rendererOptions;
   rendererOptions.size = Extent{options.size.width, options.size.height};
   rendererOptions.maxTextureSize = options.size.maxTextureSize;
@@ -199,6 +209,10 @@ int runRender(const RenderOptions& options) {
     if (context->debugErrorCount() > 0)
       spdlog::warn("{} OpenGL errors were reported while rendering", context->debugErrorCount());
 
+    // Again with what the pipeline turned out to read: its shader files and plugins.
+    for (const auto& file : renderer->watchedFiles()) inputs.push_back({"the pipeline's file", file});
+    for (const auto& plugin : processPluginLoader().loaded()) inputs.push_back({"the plugin", plugin.path});
+    if (!checkOutputs(inputs, outputs)) return kExitFailure;
     const Extent extent = renderer->outputExtent();
     writePng(options.out, extent.width, extent.height, renderer->readOutputRGBA8());
     std::cout << "wrote " << options.out << " (" << extent.width << "x" << extent.height << ", " << frames

@@ -30,10 +30,16 @@ struct Options {
 
 // ------------------------------------------------------------ shared options
 
+// An empty value names nothing: refused rather than read as "not given" (an
+// empty --scene once rendered the default scene).
+const CLI::Validator kNotEmpty(
+    [](const std::string& value) { return value.empty() ? "an empty value names nothing" : std::string(); }, "");
+
 void addPluginPath(CLI::App* cmd, Options& o) {
   cmd->add_option("--plugin-path", o.pluginPaths,
                   "folder searched for plugins named by the config (repeatable; before $RGRAPH_PLUGIN_PATH)")
       ->type_name("DIR")
+      ->check(kNotEmpty)
       ->allow_extra_args(false);
 }
 
@@ -56,6 +62,7 @@ void addShaderPath(CLI::App* cmd, Options& o) {
                   "folder of shaders, searched before the built-in ones (repeatable); shader names in a config "
                   "are read only from inside shader folders")
       ->type_name("DIR")
+      ->check(kNotEmpty)
       ->allow_extra_args(false);
 }
 
@@ -63,7 +70,7 @@ void addShaderPath(CLI::App* cmd, Options& o) {
 
 CLI::App* addValidate(CLI::App& app, Options& o) {
   auto* cmd = app.add_subcommand("validate", "check a pipeline config; exit 1 with diagnostics if invalid");
-  cmd->add_option("pipeline", o.pipeline, "pipeline config (JSON)")->required();
+  cmd->add_option("pipeline", o.pipeline, "pipeline config (JSON)")->required()->check(kNotEmpty);
   cmd->add_flag("--json", o.json, "print diagnostics as a JSON array");
   cmd->add_flag("--no-shaders", o.noShaders, "skip the glslang shader checks");
   addSize(cmd, o.size, kGlMinimum);
@@ -74,11 +81,12 @@ CLI::App* addValidate(CLI::App& app, Options& o) {
 
 CLI::App* addPlan(CLI::App& app, Options& o) {
   auto* cmd = app.add_subcommand("plan", "print the compiled plan: order, culled passes, lifetimes, memory");
-  cmd->add_option("pipeline", o.pipeline, "pipeline config (JSON)")->required();
+  cmd->add_option("pipeline", o.pipeline, "pipeline config (JSON)")->required()->check(kNotEmpty);
   cmd->add_flag("--json", o.json, "print the plan as JSON");
   cmd->add_option(
       "--scene", o.planScene,
-      "adapt the pipeline to this scene first (drops what it does not need): file, glTF or procedural name");
+      "adapt the pipeline to this scene first (drops what it does not need): file, glTF or procedural name")
+      ->check(kNotEmpty);
   addSize(cmd, o.size, kGlMinimum);
   addPluginPath(cmd, o);
   return cmd;
@@ -86,7 +94,7 @@ CLI::App* addPlan(CLI::App& app, Options& o) {
 
 CLI::App* addDot(CLI::App& app, Options& o) {
   auto* cmd = app.add_subcommand("dot", "print the compiled graph as graphviz DOT");
-  cmd->add_option("pipeline", o.pipeline, "pipeline config (JSON)")->required();
+  cmd->add_option("pipeline", o.pipeline, "pipeline config (JSON)")->required()->check(kNotEmpty);
   addSize(cmd, o.size, kGlMinimum);
   addPluginPath(cmd, o);
   return cmd;
@@ -109,11 +117,12 @@ CLI::App* addPasses(CLI::App& app, Options& o) {
 CLI::App* addRender(CLI::App& app, Options& o) {
   RenderOptions& r = o.render;
   auto* cmd = app.add_subcommand("render", "run a pipeline headless and write the output image");
-  cmd->add_option("pipeline", r.pipeline, "pipeline config (default: pipelines/default.json)");
-  cmd->add_option("--out,-o", r.out, "output PNG")->required();
+  cmd->add_option("pipeline", r.pipeline, "pipeline config (default: pipelines/default.json)")->check(kNotEmpty);
+  cmd->add_option("--out,-o", r.out, "output PNG")->required()->check(kNotEmpty);
   cmd->add_option(
       "--scene", r.scene,
-      "scene file (.json), glTF (.gltf/.glb), learnopengl, learnopengl:overview (default), thin (thin edges that alias) or many-lights:N[:seed][:pillars]");
+      "scene file (.json), glTF (.gltf/.glb), learnopengl, learnopengl:overview (default), thin (thin edges that alias) or many-lights:N[:seed][:pillars]")
+      ->check(kNotEmpty);
   cmd->add_option("--frames", r.frames, "frames to render (timings are medians)")->check(CLI::Range(1u, 100000u));
   cmd->add_option_function<std::string>(
          "--cut", [&r](const std::string& v) { r.cuts = v; },
@@ -125,11 +134,12 @@ CLI::App* addRender(CLI::App& app, Options& o) {
          "turn the camera this many degrees per frame about its up axis through its target "
          "(frame i: i times that; negative: the other way, as --orbit=-D)")
       ->type_name("DEGREES");
-  cmd->add_option("--stats", r.stats, "write frame and pass timings and memory as JSON");
+  cmd->add_option("--stats", r.stats, "write frame and pass timings and memory as JSON")->check(kNotEmpty);
   cmd->add_option("--camera", r.camera,
                   "camera at px,py,pz looking at tx,ty,tz, optionally with a vertical field of view in degrees "
                   "(default: the scene's camera; near, far and up stay the scene's)")
-      ->type_name("px,py,pz,tx,ty,tz[,fov]");
+      ->type_name("px,py,pz,tx,ty,tz[,fov]")
+      ->check(kNotEmpty);
   cmd->add_flag("--window", r.window, "render in a GLFW window instead of headless EGL");
   cmd->add_flag("!--no-checks", r.checks,
                 "skip what validate checks before rendering (graph, pass checks, glslang shader checks; "
@@ -146,11 +156,12 @@ CLI::App* addBench(CLI::App& app, Options& o) {
                                  "sweep lighting methods, light counts, G-buffer layouts, cut-offs, "
                                  "resolutions and anti-aliasing methods; write results.csv, results.json, "
                                  "figures.md and charts");
-  cmd->add_option("--out,-o", b.out, "output folder")->required();
+  cmd->add_option("--out,-o", b.out, "output folder")->required()->check(kNotEmpty);
   cmd->add_flag("--quick", b.quick, "fewer points and frames (light counts up to 1,024, 640x360 mostly)");
   cmd->add_option("--scene", b.scene,
                   "scene of the lighting axes (default: many-lights, N swept); a file's first N lights. The aa "
-                  "axis always uses learnopengl:overview and thin");
+                  "axis always uses learnopengl:overview and thin")
+      ->check(kNotEmpty);
   cmd->add_option("--only", b.only,
                   "run one axis only: lights (with lights_exact), lights_exact (the exact loop at each light count), "
                   "layout, layout_exact, threshold, resolution or aa (anti-aliasing against a 16-sample reference)")
@@ -160,7 +171,8 @@ CLI::App* addBench(CLI::App& app, Options& o) {
   cmd->add_flag("--smoke", b.smoke, "tiny sweep for tests (2 points, 64x64, 1 frame)")->group("");
   cmd->add_option("--replot", b.replot,
                   "redraw the charts and figures.md of a previous run's results.json (no rendering)")
-      ->type_name("JSON");
+      ->type_name("JSON")
+      ->check(kNotEmpty);
   return cmd;
 }
 
@@ -168,12 +180,15 @@ CLI::App* addView(CLI::App& app, Options& o) {
   ViewOptions& v = o.view;
   auto* cmd =
       app.add_subcommand("view", "an interactive window: camera controls, panels, live reload (docs/viewer.md)");
-  cmd->add_option("pipeline", v.pipeline, "pipeline config (default: pipelines/default.json)");
-  cmd->add_option("--scene", v.scene, "as render's --scene; a scene file is reloaded when it changes");
+  cmd->add_option("pipeline", v.pipeline, "pipeline config (default: pipelines/default.json)")->check(kNotEmpty);
+  cmd->add_option("--scene", v.scene, "as render's --scene; a scene file is reloaded when it changes")
+      ->check(kNotEmpty);
   cmd->add_option("--script", v.script,
-                  "run these commands (camera, wait, waitfile, screenshot, ui, param, resize, quit)");
-  cmd->add_option("--status", v.status, "append one JSON line per load or reload to this file");
-  cmd->add_option("--stats", v.stats, "write median frame times with the UI on and off (JSON) at exit");
+                  "run these commands (camera, wait, waitfile, screenshot, ui, param, resize, quit)")
+      ->check(kNotEmpty);
+  cmd->add_option("--status", v.status, "append one JSON line per load or reload to this file")->check(kNotEmpty);
+  cmd->add_option("--stats", v.stats, "write median frame times with the UI on and off (JSON) at exit")
+      ->check(kNotEmpty);
   addSize(cmd, v.size, "the device's GL_MAX_TEXTURE_SIZE");
   addPluginPath(cmd, o);
   addShaderPath(cmd, o);
@@ -197,12 +212,22 @@ int main(int argc, char** argv) {
   CLI::App* bench = addBench(app, o);
   CLI::App* view = addView(app, o);
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version end parsing with exit code 0: CLI11 prints them.
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    // Every usage error exits 1 like any other error (not CLI11's 105, 106...).
+    std::cerr << "error: " << e.what() << " (rgraph --help, or rgraph COMMAND --help, lists the options)\n";
+    return kExitFailure;
+  }
   spdlog::set_level(spdlog::level::from_str(o.logLevel));
   spdlog::set_default_logger(spdlog::default_logger());
 
+  if (!checkFolders("--plugin-path", o.pluginPaths) || !checkFolders("--shader-path", o.shaderPaths))
+    return kExitFailure;
   for (const auto& dir : o.pluginPaths) addPluginSearchDirectory(dir);
-  if (!addShaderPaths(o.shaderPaths)) return kExitFailure;
+  addShaderPaths(o.shaderPaths);
 
   try {
     if (*validate) return runValidate(o.pipeline, o.size, o.json, !o.noShaders);

@@ -18,11 +18,13 @@
 #include <optional>
 
 #include "../cli_common.h"
+#include "../cli_outputs.h"
 #include "../commands.h"
 #include "../median.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/objects.h"
 #include "rgraph/image.h"
+#include "rgraph/output_file.h"
 #include "view_app.h"
 #include "view_panels.h"
 #include "view_reload.h"
@@ -295,9 +297,7 @@ void Viewer::writeStats() const {
                           {"ui_on_frames", uiOnMs_.size()},
                           {"ui_off_frames", uiOffMs_.size()},
                           {"ui_share", on > 0 ? (on - off) / on : 0.0}};
-  std::ofstream f(options_.stats);
-  if (!f) throw RuntimeError("cannot write stats file '" + options_.stats + "'");
-  f << stats.dump(2) << "\n";
+  writeOutputFile(options_.stats, stats.dump(2) + "\n", "stats file");
 }
 
 void Viewer::run() {
@@ -361,6 +361,15 @@ int runView(const ViewOptions& options) {
     }
   }
   const std::string pipelinePath = options.pipeline.empty() ? defaultPipelinePath() : options.pipeline;
+  // Before any work: no output replaces an input (a --status file that is the
+  // pipeline reloaded it at every line) or another output (cli_outputs.h).
+  std::vector<NamedPath> outputs = {{"--status", options.status}, {"--stats", options.stats}};
+  for (const auto& c : script)
+    if (c.kind == view::ScriptCommand::Kind::Screenshot)
+      outputs.push_back({options.script + ":" + std::to_string(c.line) + ": screenshot", c.words.at(0), true});
+  if (!checkOutputs({{"the pipeline", pipelinePath}, {"--scene", options.scene}, {"--script", options.script}},
+                    outputs))
+    return kExitFailure;
   RendererOptions rendererOptions;
   rendererOptions.size = Extent{options.size.width, options.size.height};
   rendererOptions.maxTextureSize = options.size.maxTextureSize;

@@ -1,11 +1,11 @@
 // File watching and the status file (view_reload.h).
 #include "view_reload.h"
 
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "rgraph/error.h"
 #include "rgraph/gl/objects.h"
+#include "rgraph/output_file.h"
 
 namespace rgraph::view {
 
@@ -41,10 +41,9 @@ void StatusFile::write(const std::string& event, bool ok, const std::vector<std:
   nlohmann::json line = {{"event", event}, {"result", ok ? "ok" : "error"}};
   if (!ok) line["diagnostics"] = diagnostics;
   line["gl_objects"] = gl::liveObjectsTotal();
-  std::ofstream f(path_, std::ios::app);
-  if (!f) throw RuntimeError("cannot write the status file '" + path_ + "'");
-  f << line.dump() << "\n";
-  f.flush();
+  // Every line checked (a full disk once went unnoticed); the first failure
+  // ends the viewer with the reason, once.
+  appendToFile(path_, line.dump() + "\n", "the status file");
 }
 
 }  // namespace rgraph::view

@@ -29,7 +29,7 @@ class FileWatcher {
 class StatusFile {
  public:
   explicit StatusFile(std::string path) : path_(std::move(path)) {}
-  // Throws RuntimeError naming the file when it cannot be written.
+  // Throws RuntimeError naming the file and the OS's reason when it cannot be written.
   void write(const std::string& event, bool ok, const std::vector<std::string>& diagnostics) const;
 
  private:

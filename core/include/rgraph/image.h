@@ -7,8 +7,10 @@
 
 namespace rgraph {
 
-// Writes a PNG. Throws rgraph::RuntimeError naming the path when the size of
-// `rgba` is not w*h*4 or the file cannot be written.
+// Writes a PNG through writeOutputFile (rgraph/output_file.h: a temporary file
+// renamed into place, every write checked). Throws rgraph::RuntimeError naming
+// the path when the size of `rgba` is not w*h*4 or the file cannot be written
+// ("cannot write PNG file PATH: REASON", the OS's reason).
 void writePng(const std::string& path, uint32_t w, uint32_t h, const std::vector<uint8_t>& rgba);
 
 // How two RGBA8 images of the same size differ over RGB (alpha ignored): the

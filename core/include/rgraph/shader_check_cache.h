@@ -9,9 +9,14 @@
 // shader paths relative to it), and the identity (path, size, modification
 // time) of the running executable and of every plugin file whose pass types
 // the pipeline uses (their code decides the programs and the checks).
-// Entries are written to a temporary file and renamed into place, so
-// concurrent runs never see a partial entry; an entry that does not parse or
-// whose second hash differs is ignored (and rewritten). No GL.
+// An entry is a verdict, not a result to replay: only checks that found
+// nothing are remembered (a hit returns no diagnostics), so a crafted entry
+// can make rgraph print nothing; a check that found something runs again
+// every time. Entries are written to a temporary file and renamed into place,
+// so concurrent runs never see a partial entry; an entry that is not exactly
+// what rgraph writes for this key (damaged, foreign, another hash, not a
+// regular file: a FIFO is never opened for blocking reads) is a miss, and is
+// rewritten when the checks pass. No GL.
 #pragma once
 
 #include <string>
@@ -30,8 +35,8 @@ class ShaderChecker;
 std::string defaultShaderCheckCacheDir();
 
 struct CachedShaderCheck {
-  Diagnostics diagnostics;
-  bool hit = false;  // read from the cache, glslang not run
+  Diagnostics diagnostics;  // always empty on a hit
+  bool hit = false;  // the cache says these checks found nothing; glslang not run
 };
 
 // ShaderChecker::checkPipeline through the cache in `cacheDir` ("" : no cache,

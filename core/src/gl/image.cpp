@@ -4,8 +4,11 @@
 #include <climits>
 #include <cmath>
 #include <cstdlib>
+#include <memory>
+#include <string_view>
 
 #include "rgraph/error.h"
+#include "rgraph/output_file.h"
 
 // Private copy of the writer: static functions, so no clash with another stb user.
 #define STB_IMAGE_WRITE_STATIC
@@ -29,8 +32,14 @@ void writePng(const std::string& path, uint32_t w, uint32_t h, const std::vector
   if (rgba.size() != static_cast<size_t>(w) * h * 4)
     throw RuntimeError("cannot write " + path + ": expected " + std::to_string(static_cast<size_t>(w) * h * 4) +
                        " bytes of RGBA8 pixels, got " + std::to_string(rgba.size()));
-  if (!stbi_write_png(path.c_str(), static_cast<int>(w), static_cast<int>(h), 4, rgba.data(), static_cast<int>(w * 4)))
-    throw RuntimeError("cannot write PNG file " + path);
+  // Encoded in memory, then written by writeOutputFile: stb's own file writer
+  // ignores failed writes (a full disk gave a truncated PNG and no error).
+  int size = 0;
+  unsigned char* png =
+      stbi_write_png_to_mem(rgba.data(), static_cast<int>(w * 4), static_cast<int>(w), static_cast<int>(h), 4, &size);
+  if (!png) throw RuntimeError("cannot write PNG file " + path + ": out of memory encoding it");
+  const std::unique_ptr<unsigned char, void (*)(void*)> owned(png, std::free);
+  writeOutputFile(path, std::string_view(reinterpret_cast<const char*>(png), static_cast<size_t>(size)), "PNG file");
 }
 
 size_t ImageDifference::pixelsOver(int tolerance) const {

@@ -1,8 +1,12 @@
 #include "rgraph/shader_check_cache.h"
 
+#include <fcntl.h>
+#include <spdlog/spdlog.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -22,7 +26,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bumped when the entry format or the key's contents change.
-constexpr const char* kCacheVersion = "rgraph-shadercheck-cache-1";
+constexpr const char* kCacheVersion = "rgraph-shadercheck-cache-2";
 
 // Two unrelated 64-bit hashes of the key text: the first names the entry, the
 // second is stored in it and checked, so a collision of one is not enough.
@@ -148,47 +152,57 @@ std::string cacheKey(const ShaderChecker& checker, const PipelineConfig& pipelin
   return k.str();
 }
 
-nlohmann::json toJson(const Diagnostics& diags) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const auto& d : diags)
-    out.push_back({static_cast<int>(d.code), static_cast<int>(d.severity), d.message, d.pass, d.slot, d.resource,
-                   d.where.file, d.where.line, d.where.column, d.where.path});
-  return out;
-}
+// An entry holds a verdict, never messages: {"check": SECOND_HASH, "clean": true},
+// written only for checks that found nothing. Diagnostics are not stored, so
+// nothing read from the cache is ever printed (a crafted entry once replayed
+// "error:" lines while render exited 0); a check that found something runs
+// again next time, which is what its author is about to fix anyway.
+constexpr size_t kMaxEntryBytes = 4096;
 
-Diagnostics fromJson(const nlohmann::json& j) {
-  Diagnostics out;
-  for (const auto& e : j) {
-    Diagnostic d;
-    d.code = static_cast<DiagCode>(e.at(0).get<int>());
-    d.severity = static_cast<Severity>(e.at(1).get<int>());
-    d.message = e.at(2).get<std::string>();
-    d.pass = e.at(3).get<std::string>();
-    d.slot = e.at(4).get<std::string>();
-    d.resource = e.at(5).get<std::string>();
-    d.where.file = e.at(6).get<std::string>();
-    d.where.line = e.at(7).get<int>();
-    d.where.column = e.at(8).get<int>();
-    d.where.path = e.at(9).get<std::string>();
-    out.push_back(std::move(d));
+// The entry's text, read only from a regular file: opened non-blocking (a FIFO
+// at the entry's path would block open() forever) and checked with fstat on
+// the opened file (no race with a swap after a stat of the path).
+std::optional<std::string> readEntryText(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) return std::nullopt;
+  std::optional<std::string> text;
+  struct stat st {};
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size >= 0 &&
+      static_cast<uint64_t>(st.st_size) <= kMaxEntryBytes) {
+    std::string buf(kMaxEntryBytes + 1, '\0');
+    size_t got = 0;
+    for (;;) {
+      const ssize_t n = ::read(fd, buf.data() + got, buf.size() - got);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        if (n == 0 && got <= kMaxEntryBytes) text = buf.substr(0, got);
+        break;
+      }
+      got += static_cast<size_t>(n);
+      if (got > kMaxEntryBytes) break;  // grew since fstat: not an entry rgraph wrote
+    }
   }
-  return out;
+  ::close(fd);
+  return text;
 }
 
-std::optional<Diagnostics> readEntry(const fs::path& path, const std::string& check) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  try {
-    const nlohmann::json j = nlohmann::json::parse(in);
-    if (j.at("check").get<std::string>() != check) return std::nullopt;
-    return fromJson(j.at("diagnostics"));
-  } catch (const std::exception&) {
-    return std::nullopt;  // damaged or foreign: treated as absent, rewritten below
-  }
+// true only for an entry exactly as writeEntry writes it for this key; any
+// other content (damaged, foreign, crafted) is a miss, recomputed and rewritten.
+bool entrySaysClean(const fs::path& path, const std::string& check) {
+  const std::optional<std::string> text = readEntryText(path);
+  if (!text) return false;
+  const nlohmann::json j = nlohmann::json::parse(*text, nullptr, /*allow_exceptions=*/false);
+  const bool ok = j.is_object() && j.size() == 2 && j.contains("check") && j["check"] == check &&
+                  j.contains("clean") && j["clean"] == true;
+  if (!ok) spdlog::debug("shader-check cache: {} is not an entry for this pipeline: a miss", path.string());
+  return ok;
 }
 
-// A temporary file renamed into place: readers see the old entry or the whole new one.
-void writeEntry(const fs::path& dir, const fs::path& path, const std::string& check, const Diagnostics& diags) {
+// A temporary file renamed into place: readers see the old entry or the whole
+// new one, and whatever was at the path (a FIFO, a symbolic link) is replaced,
+// never written through (so not writeOutputFile, which follows links and
+// writes devices in place). A cache that cannot be written is skipped.
+void writeEntry(const fs::path& dir, const fs::path& path, const std::string& check) {
   static std::atomic<unsigned> counter{0};
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -197,9 +211,9 @@ void writeEntry(const fs::path& dir, const fs::path& path, const std::string& ch
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) return;
-    out << nlohmann::json{{"check", check}, {"diagnostics", toJson(diags)}}.dump();
-    if (!out.flush()) {
-      out.close();
+    out << nlohmann::json{{"check", check}, {"clean", true}}.dump();
+    out.close();
+    if (!out) {
       fs::remove(tmp, ec);
       return;
     }
@@ -232,13 +246,12 @@ CachedShaderCheck checkPipelineCached(ShaderChecker& checker, const PipelineConf
   const fs::path dir(cacheDir);
   const fs::path path = dir / (hex(fnv1a(key)) + ".json");
   const std::string check = hex(mixHash(key));
-  if (auto cached = readEntry(path, check)) {
-    result.diagnostics = std::move(*cached);
+  if (entrySaysClean(path, check)) {
     result.hit = true;
     return result;
   }
   result.diagnostics = checker.checkPipeline(pipeline, plan, registry);
-  writeEntry(dir, path, check, result.diagnostics);
+  if (result.diagnostics.empty()) writeEntry(dir, path, check);
   return result;
 }
 
