@@ -198,12 +198,28 @@ resize_budget)
   run_x "$rgraph" view --width 160 --height 120 --max-memory 64MB --script "$out/script.txt" \
     --status "$out/status.jsonl" >"$out/view.log" 2>&1 || fail "rgraph view exited $?"
   [[ $(grep -c '"result":"error"' "$out/status.jsonl") -eq 1 ]] || fail "expected exactly one error line"
-  grep -qE '"event":"render".*16384x16384 needs [0-9]+ bytes.*more than the 67108864 bytes.*--max-memory' \
+  grep -qE '16384x16384 needs [0-9]+ bytes.*more than the 67108864 bytes.*--max-memory.*"event":"render"' \
     "$out/status.jsonl" || fail "no render error with both figures"
   [[ "$(png_size "$out/shot.png")" == "160 120" ]] || fail "screenshot size $(png_size "$out/shot.png"), expected 160 120"
   "$rgraph" render --width 160 --height 120 --out "$out/render.png" || fail "rgraph render: exit $?"
   "$compare" "$out/shot.png" "$out/render.png" 1 || fail "the screenshot is not the last good frame"
   echo "ok: a size over --max-memory refused once, the last good size and frame kept" ;;
+render_refused)
+  # hdr fixed at 128x128: at any other size its passes' attachments differ, a graph the executor refuses.
+  p="$out/fixed.json"
+  sed 's/"hdr":          { "format": "rgba16f", "size": "output"/"hdr":          { "format": "rgba16f", "size": [128, 128]/' \
+    "$src/pipelines/default.json" >"$p"
+  grep -q '"size": \[128, 128\]' "$p" || fail "the fixed-size pipeline was not made"
+  printf 'wait 2\nresize 64 64\nwait 5\nscreenshot %s\nquit\n' "$out/shot.png" >"$out/script.txt"
+  run_x "$rgraph" view "$p" --width 128 --height 128 --script "$out/script.txt" --status "$out/status.jsonl" \
+    >"$out/view.log" 2>&1 || fail "rgraph view exited $?"
+  [[ $(grep -c '"result":"error"' "$out/status.jsonl") -eq 1 ]] || fail "expected one error line, not one a frame"
+  expect_line 2 'all attachments of a pass must have the same size.*"event":"render".*"result":"error"'
+  expect_line 3 '"event":"render".*"result":"ok"'
+  [[ "$(png_size "$out/shot.png")" == "128 128" ]] || fail "screenshot size $(png_size "$out/shot.png"), expected 128 128"
+  "$rgraph" render "$p" --width 128 --height 128 --out "$out/render.png" || fail "rgraph render: exit $?"
+  "$compare" "$out/shot.png" "$out/render.png" 1 || fail "the window does not show the last good frame"
+  echo "ok: a refused frame reported once, the last good frame and size kept" ;;
 shader_override)
   mkdir -p "$out/shaders"; f="$out/shaders/tonemap.frag"
   cp "$src/shaders/tonemap.frag" "$f"

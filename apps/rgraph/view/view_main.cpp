@@ -151,6 +151,7 @@ class Viewer {
   std::vector<std::string> errors_;  // the last failed reload's diagnostics, shown in red until one succeeds
   std::string renderError_;           // the refusal reported for the frames failing now ("" while they render)
   Extent refusedSize_;                // a window size the renderer refused: not tried again every frame
+  Extent goodSize_;                   // the size of the last frame drawn
   std::vector<double> uiOnMs_, uiOffMs_;
   bool ui_ = true;
 };
@@ -232,6 +233,7 @@ void Viewer::applyPanelEdit(const std::string& text) {
 void Viewer::renderFrame(Extent fb) {
   try {
     renderer_->render(0, Viewport{0, 0, fb.width, fb.height});
+    goodSize_ = fb;
     if (!renderError_.empty()) {
       renderError_.clear();
       report("render", true, {});
@@ -242,6 +244,9 @@ void Viewer::renderFrame(Extent fb) {
     if (line != renderError_) report("render", false, {line});
     renderError_ = line;
   }
+  // The renderer goes back to the last good size by itself when the size is what it refused; whatever
+  // else failed at a new size (the device running out of memory), the viewer goes back too.
+  if (goodSize_.width > 0 && renderer_->size() != goodSize_) renderer_->setSize(goodSize_);
   const Extent good = renderer_->size();
   if (good != fb) {
     refusedSize_ = fb;

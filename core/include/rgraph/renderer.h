@@ -183,10 +183,12 @@ class Renderer {
   void cameraCut();
 
   // Output size. Textures are re-created at the next frame when it changes.
-  // When that build fails (the device, or the memory budget, refuses the
-  // size: RuntimeError from render()), the last good pipeline keeps its
+  // When that build refuses the size itself (RuntimeError from render(): the
+  // graph has errors at it, a fixed-size resource beside "output" ones, or
+  // its textures exceed the memory budget), the last good pipeline keeps its
   // textures and its size, and size() is that size again: the next render()
-  // draws the last good frame instead of retrying the refused size.
+  // draws the last good frame instead of retrying the refused size. Other
+  // failures (an import of the old size, below) keep the size asked for.
   void setSize(Extent size);
   Extent size() const;
 

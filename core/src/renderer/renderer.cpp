@@ -65,6 +65,7 @@ struct Renderer::Impl {
   std::shared_ptr<RenderScene> executorScene;  // what `executor` draws: alive as long as it is
   std::unique_ptr<Executor> executor;
   bool rebuild = true;  // the executor must be made again before the next frame
+  bool sizeRefused = false;  // the last build failed on the size itself: the graph there, or its memory
   uint64_t builds = 0;
   mutable std::optional<Plan> planBeforeFrame;
   gl::Framebuffer readFramebuffer;  // the output, for blits into the caller's framebuffer
@@ -80,9 +81,9 @@ struct Renderer::Impl {
   bool replace(PipelineConfig next, Diagnostics& diags);
   void adapt();
   CompileOptions compileOptions() const;
-  // Refuses (RuntimeError, both figures) a plan whose textures exceed options.maxMemoryBytes or what the
-  // device says it has free, before anything is allocated.
-  void checkMemory(const Plan& plan) const;
+  // Why a plan's textures may not be allocated (both figures: over options.maxMemoryBytes, or over what
+  // the device says it has free); "" when they fit.
+  std::string memoryRefusal(const Plan& plan) const;
   // A new executor for the current pipeline, scene, size and imports; the old
   // one is kept until the new one is built.
   void buildExecutor();
@@ -165,22 +166,23 @@ CompileOptions Renderer::Impl::compileOptions() const {
   return compile;
 }
 
-void Renderer::Impl::checkMemory(const Plan& plan) const {
+std::string Renderer::Impl::memoryRefusal(const Plan& plan) const {
   const uint64_t need = plan.allocatedBytes;
   const std::string needs = "the pipeline at " + std::to_string(size.width) + "x" + std::to_string(size.height) +
                             " needs " + std::to_string(need) + " bytes of textures (" + mib(need) + ", Plan::allocatedBytes)";
   if (options.maxMemoryBytes > 0 && need > options.maxMemoryBytes) {
     const std::string origin = options.maxMemoryOrigin.empty() ? "RendererOptions::maxMemoryBytes" : options.maxMemoryOrigin;
-    throw RuntimeError(needs + ", more than the " + std::to_string(options.maxMemoryBytes) + " bytes (" +
-                       mib(options.maxMemoryBytes) + ") " + origin + " allows");
+    return needs + ", more than the " + std::to_string(options.maxMemoryBytes) + " bytes (" +
+           mib(options.maxMemoryBytes) + ") " + origin + " allows";
   }
   if (const std::optional<gl::DeviceMemory> device = gl::freeDeviceMemory()) {
     // The running executor's textures are given back (or reused) once the new one is built.
     const uint64_t held = executor ? executor->plan().allocatedBytes : 0;
     if (need > device->freeBytes + held)
-      throw RuntimeError(needs + ", more than the device has free: " + std::to_string(device->freeBytes + held) +
-                         " bytes (" + mib(device->freeBytes + held) + ", " + device->source + ")");
+      return needs + ", more than the device has free: " + std::to_string(device->freeBytes + held) + " bytes (" +
+             mib(device->freeBytes + held) + ", " + device->source + ")";
   }
+  return {};
 }
 
 void Renderer::Impl::prepareFrame() {
@@ -199,8 +201,9 @@ void Renderer::Impl::prepareFrame() {
     try {
       buildExecutor();
     } catch (const RuntimeError&) {
-      // The last good executor keeps running at its size, and size() says so (renderer.h, setSize).
-      if (executor && executor->plan().output != size) {
+      // A size refused: the last good executor keeps running at its size, and size() says so (renderer.h,
+      // setSize). Other failures (an import of the old size) keep the size asked for, to be fixed at it.
+      if (sizeRefused && executor && executor->plan().output != size) {
         size = executor->plan().output;
         planBeforeFrame.reset();
       }
@@ -213,7 +216,10 @@ void Renderer::Impl::prepareFrame() {
 void Renderer::Impl::buildExecutor() {
   adapt();
   for (const auto& note : notes) spdlog::debug("{}", note);
-  if (const Plan plan = rgraph::compile(adapted.graph, compileOptions()); plan.ok()) checkMemory(plan);
+  const Plan plan = rgraph::compile(adapted.graph, compileOptions());
+  const std::string overBudget = plan.ok() ? memoryRefusal(plan) : std::string();
+  sizeRefused = !plan.ok() || !overBudget.empty();  // a graph with errors: the executor throws, with its messages
+  if (!overBudget.empty()) throw RuntimeError(overBudget);
   auto next = scene ? std::make_unique<Executor>(adapted, PassRegistry::builtins(), shaders, scene->gpu())
                     : std::make_unique<Executor>(adapted, PassRegistry::builtins(), shaders);
   for (const auto& [name, texture] : imports) next->importTexture(name, texture);
