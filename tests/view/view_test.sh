@@ -28,7 +28,8 @@ viewer=
 fail() {
   echo "FAIL: $*" >&2
   # A viewer left running would write into the next run's files: its script quits once "done" exists.
-  [[ -n "$viewer" ]] && { touch "$out/done"; wait "$viewer"; }
+  # (param_then_file's waits for "shoot" first.)
+  [[ -n "$viewer" ]] && { touch "$out/shoot" "$out/done"; wait "$viewer"; }
   for f in "$out/xvfb-errors.log" "$out/view.log" "$out/status.jsonl"; do
     [[ -s "$f" ]] && { echo "--- $f:" >&2; cat "$f" >&2; }
   done
