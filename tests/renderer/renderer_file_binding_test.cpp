@@ -100,6 +100,21 @@ TEST_F(RendererFileBinding, AfterReloadJsonTheFileIsStillWatchedAndReloadReadsIt
   EXPECT_EQ(diags.front().where.file, p.string());
 }
 
+// reloadJson takes text from an editor: the file's nesting bound applies (no stack overflow), the last good
+// pipeline keeps rendering.
+TEST_F(RendererFileBinding, ReloadJsonRefusesTextNestedDeeperThanAFileMayBe) {
+  auto r = make(kDefault);
+  ASSERT_TRUE(r);
+  const std::vector<uint8_t> good = frame(*r);
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  Diagnostics diags;
+  EXPECT_FALSE(r->reloadJson(replaced(slurp(kDefault), "\"gamma\": 1.0", "\"gamma\": " + deep), diags));
+  ASSERT_FALSE(diags.empty());
+  EXPECT_NE(diags.front().message.find("nested deeper than"), std::string::npos) << diags.front().message;
+  EXPECT_EQ(diags.front().where.file, kDefault);
+  EXPECT_TRUE(frame(*r) == good);
+}
+
 // An override deleted (the built-in shader takes over), then created again: the override is used again.
 TEST_F(RendererFileBinding, AShaderOverrideThatComesBackIsPickedUpAtTheNextReload) {
   const fs::path override = dir_ / "tonemap.frag";
