@@ -368,6 +368,7 @@ void Viewer::run() {
     glfwGetFramebufferSize(win, &fw, &fh);
     if (fw <= 0 || fh <= 0) continue;  // minimised
     const Extent fb{uint32_t(fw), uint32_t(fh)};
+    if (fb != refusedSize_) refusedSize_ = {};  // the window left the refused size: another size may be tried
     if (fb != renderer_->size() && fb != refusedSize_) renderer_->setSize(fb);
     renderer_->setCamera(camera_.camera());
     const auto t0 = Clock::now();

@@ -19,7 +19,7 @@ struct JsonValueError {
 };
 
 // Parses `text` into `value`. `enclosingDepth`: how many levels the value
-// will sit under once put into a document (a pass parameter: 5), counted
+// will sit under once put into a document (a pass parameter: 4), counted
 // against the nesting bound config files have, so the document stays loadable.
 std::optional<JsonValueError> parseJsonValue(const std::string& text, nlohmann::ordered_json& value,
                                              size_t enclosingDepth = 0);
