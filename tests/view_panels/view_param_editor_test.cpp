@@ -136,6 +136,10 @@ TEST(ViewParamEditor, ValuesAreParsedWithTheLimitsAndMessagesOfPipelineFiles) {
   EXPECT_FALSE(editor.withParam("tonemap", "gamma", "1e999", error));
   EXPECT_NE(error.find("number overflow"), std::string::npos) << error;
   EXPECT_NE(error.find("param tonemap gamma"), std::string::npos) << error;
+  // Invalid UTF-8 in a string would make the document's dump() throw later: refused here.
+  error.clear();
+  EXPECT_FALSE(editor.withParam("tonemap", "operator", "\"\xff\"", error));
+  EXPECT_NE(error.find("not JSON"), std::string::npos) << error;
 
   // A file nested too deep is refused with the file's located message, as the renderer refuses it.
   const std::string path = tempCopy(kDefault, "deep.json");
