@@ -47,9 +47,8 @@ class RendererFileBinding : public ::testing::Test {
  protected:
   void SetUp() override {
     testsupport::sharedGlContext();
-    dir_ = fs::temp_directory_path() /
-           ("rgraph-file-binding-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() / ("rgraph-file-binding-" + std::to_string(::getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

@@ -93,7 +93,7 @@ std::vector<std::string> errorLines(const Diagnostics& diags) {
   return lines;
 }
 
-// formatDiagnostic without its "error: ", to follow a script line's own (`s.txt:3: error: param ...: p.json:20:18: ...`).
+// formatDiagnostic without its "error: ", after a script line's own: `s.txt:3: error: param ...: p.json:20:18: ...`.
 std::string afterScriptLine(const Diagnostic& d) {
   std::string f = formatDiagnostic(d);
   const size_t at = f.find("error: ");
@@ -149,9 +149,9 @@ class Viewer {
   view::InputState input_;
   std::string sceneFile_;
   std::vector<std::string> errors_;  // the last failed reload's diagnostics, shown in red until one succeeds
-  std::string renderError_;           // the refusal reported for the frames failing now ("" while they render)
-  Extent refusedSize_;                // a window size the renderer refused: not tried again every frame
-  Extent goodSize_;                   // the size of the last frame drawn
+  std::string renderError_;          // the refusal reported for the frames failing now ("" while they render)
+  Extent refusedSize_;               // a window size the renderer refused: not tried again every frame
+  Extent goodSize_;                  // the size of the last frame drawn
   std::vector<double> uiOnMs_, uiOffMs_;
   bool ui_ = true;
 };

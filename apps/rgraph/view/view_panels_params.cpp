@@ -229,8 +229,7 @@ std::optional<std::string> ParamEditor::draw(const Renderer& renderer) {
   (void)renderer;  // the pass types come from the registry the renderer loaded its plugins into
   std::optional<std::string> result;
   ImGui::TextUnformatted(path_.c_str());
-  if (modified_)
-    ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "%s", modifiedNote().c_str());
+  if (modified_) ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "%s", modifiedNote().c_str());
   if (ImGui::Button("Save")) {
     try {
       save();

@@ -123,10 +123,10 @@ std::vector<ScriptCommand> loadScript(const std::string& path, std::string& erro
   std::error_code ec;
   const auto type = std::filesystem::status(path, ec).type();
   if (type != std::filesystem::file_type::regular) {
-    const std::string why = type == std::filesystem::file_type::not_found ? "no such file"
+    const std::string why = type == std::filesystem::file_type::not_found   ? "no such file"
                             : type == std::filesystem::file_type::directory ? "it is a folder"
-                            : ec ? ec.message()
-                                 : "not a regular file";
+                            : ec                                            ? ec.message()
+                                                                            : "not a regular file";
     error = path + ": error: cannot read the script file (" + why + ")";
     return {};
   }

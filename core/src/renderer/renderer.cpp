@@ -61,10 +61,10 @@ struct Renderer::Impl {
   std::function<void(size_t)> afterPass;
   bool cpuPassTiming = true;
 
-  ShaderLibrary shaders;  // kept across rebuilds: unchanged programs are reused
+  ShaderLibrary shaders;                       // kept across rebuilds: unchanged programs are reused
   std::shared_ptr<RenderScene> executorScene;  // what `executor` draws: alive as long as it is
   std::unique_ptr<Executor> executor;
-  bool rebuild = true;  // the executor must be made again before the next frame
+  bool rebuild = true;       // the executor must be made again before the next frame
   bool sizeRefused = false;  // the last build failed on the size itself: the graph there, or its memory
   uint64_t builds = 0;
   mutable std::optional<Plan> planBeforeFrame;
@@ -91,8 +91,7 @@ struct Renderer::Impl {
   void blitOutput(uint32_t framebuffer, const Viewport& viewport);
 };
 
-std::optional<PipelineConfig> Renderer::Impl::load(const std::optional<std::string>& text,
-                                                   Diagnostics& diags) const {
+std::optional<PipelineConfig> Renderer::Impl::load(const std::optional<std::string>& text, Diagnostics& diags) const {
   PipelineLoadOptions loadOptions;
   loadOptions.pluginDirectories = options.pluginDirectories;
   std::optional<PipelineConfig> loaded = text ? loadPipelineText(*text, nameForMessages, baseDir, loadOptions, diags)
@@ -169,9 +168,11 @@ CompileOptions Renderer::Impl::compileOptions() const {
 std::string Renderer::Impl::memoryRefusal(const Plan& plan) const {
   const uint64_t need = plan.allocatedBytes;
   const std::string needs = "the pipeline at " + std::to_string(size.width) + "x" + std::to_string(size.height) +
-                            " needs " + std::to_string(need) + " bytes of textures (" + mib(need) + ", Plan::allocatedBytes)";
+                            " needs " + std::to_string(need) + " bytes of textures (" + mib(need) +
+                            ", Plan::allocatedBytes)";
   if (options.maxMemoryBytes > 0 && need > options.maxMemoryBytes) {
-    const std::string origin = options.maxMemoryOrigin.empty() ? "RendererOptions::maxMemoryBytes" : options.maxMemoryOrigin;
+    const std::string origin =
+        options.maxMemoryOrigin.empty() ? "RendererOptions::maxMemoryBytes" : options.maxMemoryOrigin;
     return needs + ", more than the " + std::to_string(options.maxMemoryBytes) + " bytes (" +
            mib(options.maxMemoryBytes) + ") " + origin + " allows";
   }
@@ -186,8 +187,7 @@ std::string Renderer::Impl::memoryRefusal(const Plan& plan) const {
 }
 
 void Renderer::Impl::prepareFrame() {
-  if (size.width == 0 || size.height == 0)
-    throw RuntimeError("Renderer::render: no output size (call setSize first)");
+  if (size.width == 0 || size.height == 0) throw RuntimeError("Renderer::render: no output size (call setSize first)");
   // Light edits change the pipeline only when they change what the scene needs
   // (its first point light, or its last one removed).
   if (scene && scene->lightsVersion() != sceneVersionSeen) {
