@@ -144,6 +144,8 @@ int runRender(const RenderOptions& options) {
   rendererOptions.size = Extent{options.size.width, options.size.height};
   rendererOptions.maxTextureSize = options.size.maxTextureSize;
   rendererOptions.maxTextureSizeOrigin = compileOptions(0, 0, options.size.maxTextureSize).maxTextureSizeOrigin;
+  rendererOptions.maxMemoryBytes = options.size.maxMemoryBytes;
+  rendererOptions.maxMemoryOrigin = "--max-memory";
   rendererOptions.runChecks = options.checks;
   Diagnostics diags;
   std::unique_ptr<Renderer> renderer = Renderer::fromFile(pipelinePath, rendererOptions, diags);

@@ -12,6 +12,7 @@ struct SizeOptions {
   uint32_t width = 1280;
   uint32_t height = 720;
   uint32_t maxTextureSize = 0;  // --max-texture-size; 0: not given (16384, or render: the device's)
+  uint64_t maxMemoryBytes = 0;  // --max-memory (render, view): RendererOptions::maxMemoryBytes; 0: none
 };
 
 // checkShaders: after the graph compiles, compile and reflect every enabled

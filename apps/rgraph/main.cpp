@@ -55,6 +55,14 @@ void addSize(CLI::App* cmd, SizeOptions& size, const char* maxTextureDefault) {
   cmd->add_option("--height", size.height, "output height in pixels")->check(CLI::Range(1u, 16384u));
   addMaxTextureSize(cmd, size.maxTextureSize, maxTextureDefault);
 }
+// render and view: the textures' budget (RendererOptions::maxMemoryBytes).
+void addMaxMemory(CLI::App* cmd, SizeOptions& size) {
+  cmd->add_option("--max-memory", size.maxMemoryBytes,
+                  "refuse to build the pipeline at a size whose textures need more than this many bytes "
+                  "(suffixes KB, MB, GB: powers of 1024; default: no budget but what the device says it has free)")
+      ->type_name("BYTES")
+      ->transform(CLI::AsSizeValue(false));
+}
 constexpr const char* kGlMinimum = "16384, what every OpenGL 4.5 device supports";
 
 void addShaderPath(CLI::App* cmd, Options& o) {
@@ -146,6 +154,7 @@ CLI::App* addRender(CLI::App& app, Options& o) {
                 "their results are cached under $XDG_CACHE_HOME/rgraph)");
   addPluginPath(cmd, o);
   addSize(cmd, r.size, "the device's GL_MAX_TEXTURE_SIZE");
+  addMaxMemory(cmd, r.size);
   addShaderPath(cmd, o);
   return cmd;
 }
@@ -190,6 +199,7 @@ CLI::App* addView(CLI::App& app, Options& o) {
   cmd->add_option("--stats", v.stats, "write median frame times with the UI on and off (JSON) at exit")
       ->check(kNotEmpty);
   addSize(cmd, v.size, "the device's GL_MAX_TEXTURE_SIZE");
+  addMaxMemory(cmd, v.size);
   addPluginPath(cmd, o);
   addShaderPath(cmd, o);
   return cmd;

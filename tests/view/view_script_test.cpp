@@ -64,7 +64,17 @@ TEST(ViewScript, ErrorsNameFileAndLine) {
 TEST(ViewScript, MissingFileIsAnError) {
   std::string error;
   EXPECT_TRUE(loadScript("/nonexistent/script.txt", error).empty());
-  EXPECT_EQ(error, "/nonexistent/script.txt: error: cannot read the script file");
+  EXPECT_EQ(error, "/nonexistent/script.txt: error: cannot read the script file (no such file)");
+}
+
+// A folder opens and reads as an empty script (which never quits): refused, as anything but a regular file.
+TEST(ViewScript, AFolderOrADeviceIsNotAScript) {
+  std::string error;
+  EXPECT_TRUE(loadScript("/tmp", error).empty());
+  EXPECT_EQ(error, "/tmp: error: cannot read the script file (it is a folder)");
+  error.clear();
+  EXPECT_TRUE(loadScript("/dev/null", error).empty());
+  EXPECT_EQ(error, "/dev/null: error: cannot read the script file (not a regular file)");
 }
 
 Camera start() {

@@ -9,7 +9,17 @@
 #   reload_shader   a copy of tonemap.frag (--shader-path) broken then fixed: error naming it with its line, then ok
 #   reload_leak     50 reloads (valid and broken alternating): the last ok line's gl_objects equals the first's
 #   resize          `resize 200 150` then a screenshot: the PNG is 200x150
-#   script_errors   an unknown command, a bad number, a missing script: FILE:LINE error, exit 1, no window
+#   param_then_file a script `param`, then edits of the file: still watched (reload ok, then error), and the
+#                   file's change replaces the in-memory edit (the frame equals rgraph render of the file)
+#   param_errors    a value out of range, 1e999, a value nested 100,000 deep: status errors naming the script
+#                   line and (for the renderer's) the param's line in the pipeline file; no crash, exit 0
+#   resize_budget   `resize 16384 16384` over --max-memory: one error line with both figures, the screenshot
+#                   after it has the last good size, the script goes on to quit (exit 0)
+#   render_refused  a fixed-size pipeline the device refuses at the window's size: reported once, the last
+#                   good frame (not black) stays in the window
+#   shader_override a --shader-path override of tonemap.frag deleted (built-in used), then created broken and
+#                   fixed: error naming the override, then ok
+#   script_errors   an unknown command, a bad number, a missing script, a folder: FILE:LINE error, exit 1, no window
 set -uo pipefail
 case_=$1; rgraph=$2; compare=$3; xvfb=$4; src=$5; out=$6/view-$1
 unset RGRAPH_PLUGIN_PATH RGRAPH_SHADER_DIR RGRAPH_PIPELINE_DIR
@@ -18,7 +28,8 @@ viewer=
 fail() {
   echo "FAIL: $*" >&2
   # A viewer left running would write into the next run's files: its script quits once "done" exists.
-  [[ -n "$viewer" ]] && { touch "$out/done"; wait "$viewer"; }
+  # (param_then_file's waits for "shoot" first.)
+  [[ -n "$viewer" ]] && { touch "$out/shoot" "$out/done"; wait "$viewer"; }
   for f in "$out/xvfb-errors.log" "$out/view.log" "$out/status.jsonl"; do
     [[ -s "$f" ]] && { echo "--- $f:" >&2; cat "$f" >&2; }
   done
@@ -98,7 +109,7 @@ reload_scene)
     put "$sc"; wait_lines 2
   expect_line 2 '"event":"reload".*"result":"ok"'
   { cat "$src/scenes/learnopengl.json"; echo '}'; } | put "$sc"; wait_lines 3
-  expect_line 3 '"diagnostics":\[".*scene\.json:[0-9]+:[0-9]+: invalid JSON'
+  expect_line 3 '"diagnostics":\["[^"]*scene\.json:[0-9]+:[0-9]+: error: invalid JSON'
   expect_line 3 '"result":"error"'
   cp "$src/scenes/learnopengl.json" "$sc.tmp" && mv "$sc.tmp" "$sc"; wait_lines 4
   expect_line 4 '"event":"reload".*"result":"ok"'
@@ -150,6 +161,78 @@ reload_leak)
   first=$(sed -n 2p <<<"$oks"); last=$(tail -n 1 <<<"$oks")  # line 1 is the load; 2 the first reload
   [[ -n "$first" && "$first" == "$last" ]] || fail "gl_objects went from $first to $last over 50 reloads"
   echo "ok: gl_objects $first after the first reload and $last after the last" ;;
+param_then_file)
+  p="$out/pipeline.json"; cp "$src/pipelines/default.json" "$p"
+  printf 'param tonemap gamma 2.2\nwaitfile %s\nscreenshot %s\nwaitfile %s\nquit\n' "$out/shoot" "$out/view.png" \
+    "$out/done" >"$out/script.txt"
+  run_x "$rgraph" view "$p" --width 160 --height 120 --script "$out/script.txt" --status "$out/status.jsonl" \
+    >"$out/view.log" 2>&1 &
+  viewer=$!
+  wait_lines 2
+  expect_line 1 '"event":"param".*"result":"ok"'
+  expect_line 2 '"event":"load".*"result":"ok"'
+  sed 's/"gamma": 1.0/"gamma": 1.2/' "$src/pipelines/default.json" | put "$p"; wait_lines 3
+  expect_line 3 '"event":"reload".*"result":"ok"'
+  touch "$out/shoot"
+  for _ in $(seq 600); do [[ -f "$out/view.png" ]] && break; sleep 0.1; done
+  { cat "$src/pipelines/default.json"; echo '}'; } | put "$p"; wait_lines 4
+  expect_line 4 '"diagnostics":\[".*pipeline\.json:[0-9]+:[0-9]+: error'
+  stop_viewer
+  sed 's/"gamma": 1.0/"gamma": 1.2/' "$src/pipelines/default.json" >"$out/file.json"
+  "$rgraph" render "$out/file.json" --width 160 --height 120 --out "$out/render.png" || fail "rgraph render: exit $?"
+  "$compare" "$out/view.png" "$out/render.png" 1 || fail "the frame after the file's edit is not the file's pipeline"
+  echo "ok: after a param edit the file is still watched: ok, error; its edit replaced the param's" ;;
+param_errors)
+  p="$out/pipeline.json"; cp "$src/pipelines/default.json" "$p"
+  { echo 'param tonemap gamma 9.0'; echo 'param tonemap gamma 1e999'
+    python3 -c "print('param tonemap gamma ' + '[' * 100000 + ']' * 100000)"; echo 'wait 1'; echo quit; } >"$out/script.txt"
+  run_x "$rgraph" view "$p" --width 160 --height 120 --script "$out/script.txt" --status "$out/status.jsonl" \
+    >"$out/view.log" 2>&1 || fail "rgraph view exited $?"
+  gamma=$(grep -n '"gamma": 1.0' "$p" | cut -d: -f1)  # the line the param is on in the file
+  expect_line 1 "script\.txt:1: error: param tonemap gamma: [^\"]*pipeline\.json:$gamma:[0-9]+: /passes/[0-9]+/params/gamma: "
+  expect_line 2 "script\.txt:2: error: param tonemap gamma: the value '1e999' is not JSON.*number overflow"
+  expect_line 3 'script\.txt:3: error: param tonemap gamma: .*nested deeper than'
+  expect_line 4 '"event":"load".*"result":"ok"'
+  echo "ok: param errors name the script line and the param's line ($gamma) in the file" ;;
+resize_budget)
+  printf 'wait 1\nresize 16384 16384\nwait 2\nscreenshot %s\nquit\n' "$out/shot.png" >"$out/script.txt"
+  run_x "$rgraph" view --width 160 --height 120 --max-memory 64MB --script "$out/script.txt" \
+    --status "$out/status.jsonl" >"$out/view.log" 2>&1 || fail "rgraph view exited $?"
+  [[ $(grep -c '"result":"error"' "$out/status.jsonl") -eq 1 ]] || fail "expected exactly one error line"
+  grep -qE '16384x16384 needs [0-9]+ bytes.*more than the 67108864 bytes.*--max-memory.*"event":"render"' \
+    "$out/status.jsonl" || fail "no render error with both figures"
+  [[ "$(png_size "$out/shot.png")" == "160 120" ]] || fail "screenshot size $(png_size "$out/shot.png"), expected 160 120"
+  "$rgraph" render --width 160 --height 120 --out "$out/render.png" || fail "rgraph render: exit $?"
+  "$compare" "$out/shot.png" "$out/render.png" 1 || fail "the screenshot is not the last good frame"
+  echo "ok: a size over --max-memory refused once, the last good size and frame kept" ;;
+render_refused)
+  # hdr fixed at 128x128: at any other size its passes' attachments differ, a graph the executor refuses.
+  p="$out/fixed.json"
+  sed 's/"hdr":          { "format": "rgba16f", "size": "output"/"hdr":          { "format": "rgba16f", "size": [128, 128]/' \
+    "$src/pipelines/default.json" >"$p"
+  grep -q '"size": \[128, 128\]' "$p" || fail "the fixed-size pipeline was not made"
+  printf 'wait 2\nresize 64 64\nwait 5\nscreenshot %s\nquit\n' "$out/shot.png" >"$out/script.txt"
+  run_x "$rgraph" view "$p" --width 128 --height 128 --script "$out/script.txt" --status "$out/status.jsonl" \
+    >"$out/view.log" 2>&1 || fail "rgraph view exited $?"
+  [[ $(grep -c '"result":"error"' "$out/status.jsonl") -eq 1 ]] || fail "expected one error line, not one a frame"
+  expect_line 2 'all attachments of a pass must have the same size.*"event":"render".*"result":"error"'
+  expect_line 3 '"event":"render".*"result":"ok"'
+  [[ "$(png_size "$out/shot.png")" == "128 128" ]] || fail "screenshot size $(png_size "$out/shot.png"), expected 128 128"
+  "$rgraph" render "$p" --width 128 --height 128 --out "$out/render.png" || fail "rgraph render: exit $?"
+  "$compare" "$out/shot.png" "$out/render.png" 1 || fail "the window does not show the last good frame"
+  echo "ok: a refused frame reported once, the last good frame and size kept" ;;
+shader_override)
+  mkdir -p "$out/shaders"; f="$out/shaders/tonemap.frag"
+  cp "$src/shaders/tonemap.frag" "$f"
+  start_viewer --shader-path "$out/shaders"
+  rm "$f"; wait_lines 2
+  expect_line 2 '"event":"reload".*"result":"ok"'
+  { cat "$src/shaders/tonemap.frag"; echo 'this is not glsl;'; } | put "$f"; wait_lines 3
+  expect_line 3 '"diagnostics":\[".*shaders/tonemap\.frag:[0-9]+: error: '
+  cp "$src/shaders/tonemap.frag" "$f.tmp" && mv "$f.tmp" "$f"; wait_lines 4
+  expect_line 4 '"event":"reload".*"result":"ok"'
+  stop_viewer
+  echo "ok: an override deleted, recreated broken, then fixed: ok, error, ok" ;;
 resize)
   printf 'wait 1\nresize 200 150\nwait 3\nscreenshot %s\nquit\n' "$out/small.png" >"$out/script.txt"
   run_x "$rgraph" view --width 320 --height 240 --script "$out/script.txt" >"$out/view.log" 2>&1 ||
@@ -172,6 +255,11 @@ script_errors)
   check 'resize 100\n' "bad\.txt:1: error: 'resize' expects W H"
   env -u DISPLAY "$rgraph" view --script "$out/missing.txt" >"$out/view.log" 2>&1; rc=$?
   [[ $rc -eq 1 ]] && grep -q "missing.txt: error: cannot read" "$out/view.log" || fail "a missing script: exit $rc"
+  # A folder read as an empty script would never quit: refused before any window, with the reason.
+  mkdir -p "$out/folder"
+  env -u DISPLAY "$rgraph" view --script "$out/folder" >"$out/view.log" 2>&1; rc=$?
+  [[ $rc -eq 1 ]] && grep -q "folder: error: cannot read the script file (it is a folder)" "$out/view.log" ||
+    fail "a folder as the script: exit $rc: $(cat "$out/view.log")"
   echo "ok: script errors exit 1 with FILE:LINE" ;;
 *) fail "unknown case $case_" ;;
 esac

@@ -177,4 +177,29 @@ TEST_F(ViewPanelsImgui, TheInspectorPrintsTheValueUnderTheCursor) {
   EXPECT_LT(seen[1].second, seen[0].second) << "the mouse moved up";
 }
 
+// After an accepted edit the pipeline running is not the file's: the panel says so until the file is read again.
+TEST_F(ViewPanelsImgui, TheParametersPanelSaysWhenThePipelineIsEditedInMemory) {
+  auto r = viewtest::defaultRenderer({48, 32});
+  ASSERT_TRUE(r);
+  view::ParamEditor editor(kDefault);
+  ImGui::GetIO().SetClipboardTextFn = captureClipboard;
+  auto panelText = [&] {
+    frame([&] {
+      ImGui::LogToClipboard();
+      editor.draw(*r);
+      ImGui::LogFinish();
+    });
+    return loggedText;
+  };
+  EXPECT_EQ(panelText().find("edited in memory"), std::string::npos) << loggedText;
+  std::string error;
+  const auto text = editor.withParam("tonemap", "gamma", "2.2", error);
+  ASSERT_TRUE(text) << error;
+  editor.accept(*text);
+  EXPECT_NE(panelText().find("edited in memory: differs from " + kDefault + " until saved"), std::string::npos)
+      << loggedText;
+  ASSERT_TRUE(editor.reread());
+  EXPECT_EQ(panelText().find("edited in memory"), std::string::npos) << loggedText;
+}
+
 }  // namespace

@@ -117,6 +117,76 @@ TEST(ViewParamEditor, APipelineWithWrongMemberTypesIsRefusedWithAMessageNotAnExc
       << "params replaced by an object";
 }
 
+// A script's value goes through the loader's parser and nesting bound: 100,000 levels used to overflow
+// the stack copying the document (ParamEditor::edited), 1e999 to end the viewer with a bare
+// [json.exception.out_of_range.406].
+TEST(ViewParamEditor, ValuesAreParsedWithTheLimitsAndMessagesOfPipelineFiles) {
+  view::ParamEditor editor(kDefault);
+  std::string error;
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  EXPECT_FALSE(editor.withParam("tonemap", "gamma", deep, error));
+  EXPECT_NE(error.find("nested deeper than"), std::string::npos) << error.substr(0, 300);
+  EXPECT_LT(error.size(), 400u) << "the value is not repeated whole";
+  // The bound counts the levels above the value: what fits a file's bound with them is taken.
+  error.clear();
+  EXPECT_TRUE(editor.withParam("tonemap", "gamma", std::string(200, '[') + std::string(200, ']'), error)) << error;
+  EXPECT_FALSE(editor.withParam("tonemap", "gamma", std::string(300, '[') + std::string(300, ']'), error));
+
+  error.clear();
+  EXPECT_FALSE(editor.withParam("tonemap", "gamma", "1e999", error));
+  EXPECT_NE(error.find("number overflow"), std::string::npos) << error;
+  EXPECT_NE(error.find("param tonemap gamma"), std::string::npos) << error;
+  // Invalid UTF-8 in a string would make the document's dump() throw later: refused here.
+  error.clear();
+  EXPECT_FALSE(editor.withParam("tonemap", "operator", "\"\xff\"", error));
+  EXPECT_NE(error.find("not JSON"), std::string::npos) << error;
+
+  // A file nested too deep is refused with the file's located message, as the renderer refuses it.
+  const std::string path = tempCopy(kDefault, "deep.json");
+  std::ofstream(path) << "{ \"version\": 1, \"x\": " << deep << " }";
+  try {
+    view::ParamEditor bad(path);
+    ADD_FAILURE() << "a file nested 100,000 deep was taken";
+  } catch (const RuntimeError& e) {
+    EXPECT_NE(std::string(e.what()).find("deep.json:1:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("nested deeper than"), std::string::npos) << e.what();
+  }
+}
+
+// The line and column of `needle`'s first character in `text` (1-based).
+std::pair<int, int> lineColumnOf(const std::string& text, const std::string& needle) {
+  const size_t at = text.find(needle);
+  EXPECT_NE(at, std::string::npos) << needle;
+  const size_t lineStart = text.rfind('\n', at) + 1;  // npos + 1 == 0 on the first line
+  return {int(std::count(text.begin(), text.begin() + std::ptrdiff_t(at), '\n')) + 1, int(at - lineStart) + 1};
+}
+
+// Diagnostics about the editor's text are pointed at the same JSON path in the file the user has open,
+// not at the re-serialised text (p.json:122:18 for a 33-line file).
+TEST(ViewParamEditor, DiagnosticsPointIntoThePipelineFileItself) {
+  view::ParamEditor editor(kDefault);
+  const std::string file = slurp(kDefault);
+  const size_t pass = tonemapIndex(Json::parse(file));
+  Diagnostic d;
+  d.code = DiagCode::param_range;
+  d.message = "9 is above the maximum";
+  d.where = {kDefault, 122, 18, "/passes/" + std::to_string(pass) + "/params/gamma"};
+  Diagnostic added = d;  // a parameter the file does not write: its params object
+  added.where.path = "/passes/" + std::to_string(pass) + "/params/exposure";
+  Diagnostic shader;  // another file's diagnostic is left alone
+  shader.where = {"shaders/tonemap.frag", 7, 0, ""};
+  const Diagnostics moved = editor.inFile({d, added, shader});
+  ASSERT_EQ(moved.size(), 3u);
+  const auto [line, column] = lineColumnOf(file, "\"gamma\": 1.0");
+  EXPECT_EQ(moved[0].where.line, line) << formatDiagnostic(moved[0]);
+  EXPECT_EQ(moved[0].where.column, column + 9) << "at the value: " << formatDiagnostic(moved[0]);
+  EXPECT_EQ(moved[0].where.path, d.where.path);
+  const auto [paramsLine, paramsColumn] = lineColumnOf(file, "{ \"operator\": \"none\"");
+  EXPECT_EQ(moved[1].where.line, paramsLine) << formatDiagnostic(moved[1]);
+  EXPECT_EQ(moved[1].where.column, paramsColumn) << formatDiagnostic(moved[1]);
+  EXPECT_EQ(moved[2].where.line, 7);
+}
+
 TEST(ViewParamEditor, SaveWritesTheAcceptedTextAndSaveAsLeavesTheFileAlone) {
   const std::string path = tempCopy(kDefault, "save.json");
   view::ParamEditor editor(path);

@@ -95,6 +95,14 @@ std::vector<std::string> errorLines(const Diagnostics& diags) {
   return lines;
 }
 
+// formatDiagnostic without its "error: ", after a script line's own: `s.txt:3: error: param ...: p.json:20:18: ...`.
+std::string afterScriptLine(const Diagnostic& d) {
+  std::string f = formatDiagnostic(d);
+  const size_t at = f.find("error: ");
+  if (at != std::string::npos && (at == 0 || f.compare(at - 2, 2, ": ") == 0)) f.erase(at, 7);
+  return f;
+}
+
 // Everything one session holds; members are destroyed before the window (declared in runView first).
 class Viewer {
  public:
@@ -121,6 +129,8 @@ class Viewer {
   void reloadPipeline();
   void reloadScene();
   void applyParam(const view::ScriptCommand& c);
+  void applyPanelEdit(const std::string& text);
+  void renderFrame(Extent fb);
   void drawUi();
   void report(const std::string& event, bool ok, const std::vector<std::string>& errors);
   void writeStats() const;
@@ -141,6 +151,9 @@ class Viewer {
   view::InputState input_;
   std::string sceneFile_;
   std::vector<std::string> errors_;  // the last failed reload's diagnostics, shown in red until one succeeds
+  std::string renderError_;          // the refusal reported for the frames failing now ("" while they render)
+  Extent refusedSize_;               // a window size the renderer refused: not tried again every frame
+  Extent goodSize_;                  // the size of the last frame drawn
   std::vector<double> uiOnMs_, uiOffMs_;
   bool ui_ = true;
 };
@@ -173,7 +186,7 @@ void Viewer::reloadScene() {
     scene_ = scene;
     report("reload", true, {});
   } catch (const std::exception& e) {  // the old scene keeps rendering
-    report("reload", false, {std::string("error: ") + e.what()});
+    report("reload", false, {view::errorLine(e.what())});
   }
 }
 
@@ -186,6 +199,8 @@ void Viewer::pollFiles() {
   }
 }
 
+// Every message names the script line; the renderer's also name the param's place in the pipeline file
+// (ParamEditor::inFile), not one in the text the editor made.
 void Viewer::applyParam(const view::ScriptCommand& c) {
   const std::string where = options_.script + ":" + std::to_string(c.line) + ": error: ";
   std::string error;
@@ -196,11 +211,50 @@ void Viewer::applyParam(const view::ScriptCommand& c) {
     editor_.accept(*text);
     return report("param", true, {});
   }
-  const std::vector<std::string> lines = errorLines(diags);
+  std::vector<std::string> lines;
   std::string joined;
-  for (const auto& l : lines) joined += l + "\n";
+  for (const auto& d : editor_.inFile(diags)) {
+    if (d.severity != Severity::error) continue;
+    lines.push_back(where + "param " + c.words[0] + " " + c.words[1] + ": " + afterScriptLine(d));
+    joined += formatDiagnostic(d) + "\n";
+  }
   editor_.reject(joined);
   report("param", false, lines);
+}
+
+void Viewer::applyPanelEdit(const std::string& text) {
+  Diagnostics diags;
+  if (renderer_->reloadJson(text, diags)) return editor_.accept(text);
+  std::string joined;
+  for (const auto& l : errorLines(editor_.inFile(diags))) joined += l + "\n";
+  editor_.reject(joined);
+}
+
+// A frame the device (or --max-memory) refuses is reported once, not every frame, and the last good frame
+// stays on screen; a size refused goes back to the last good one (Renderer::setSize), the window too.
+void Viewer::renderFrame(Extent fb) {
+  try {
+    renderer_->render(0, Viewport{0, 0, fb.width, fb.height});
+    goodSize_ = fb;
+    if (!renderError_.empty()) {
+      renderError_.clear();
+      report("render", true, {});
+    }
+    return;
+  } catch (const RuntimeError& e) {
+    const std::string line = view::errorLine(e.what());
+    if (line != renderError_) report("render", false, {line});
+    renderError_ = line;
+  }
+  // The renderer goes back to the last good size by itself when the size is what it refused; whatever
+  // else failed at a new size (the device running out of memory), the viewer goes back too.
+  if (goodSize_.width > 0 && renderer_->size() != goodSize_) renderer_->setSize(goodSize_);
+  const Extent good = renderer_->size();
+  if (good != fb) {
+    refusedSize_ = fb;
+    glfwSetWindowSize(window_.handle, int(good.width), int(good.height));
+  }
+  renderer_->present(0, Viewport{0, 0, good.width, good.height});
 }
 
 // Runs commands up to the next wait or screenshot; a screenshot is taken once this frame is drawn.
@@ -274,16 +328,7 @@ void Viewer::drawUi() {
     ImGui::End();
   }
   view::drawPlanPanel(*renderer_);
-  if (std::optional<std::string> text = editor_.draw(*renderer_)) {
-    Diagnostics diags;
-    if (renderer_->reloadJson(*text, diags)) {
-      editor_.accept(*text);
-    } else {
-      std::string joined;
-      for (const auto& l : errorLines(diags)) joined += l + "\n";
-      editor_.reject(joined);
-    }
-  }
+  if (std::optional<std::string> text = editor_.draw(*renderer_)) applyPanelEdit(*text);
   inspector_.draw(*renderer_);
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -323,14 +368,11 @@ void Viewer::run() {
     glfwGetFramebufferSize(win, &fw, &fh);
     if (fw <= 0 || fh <= 0) continue;  // minimised
     const Extent fb{uint32_t(fw), uint32_t(fh)};
-    if (fb.width != renderer_->size().width || fb.height != renderer_->size().height) renderer_->setSize(fb);
+    if (fb != refusedSize_) refusedSize_ = {};  // the window left the refused size: another size may be tried
+    if (fb != renderer_->size() && fb != refusedSize_) renderer_->setSize(fb);
     renderer_->setCamera(camera_.camera());
     const auto t0 = Clock::now();
-    try {
-      renderer_->render(0, Viewport{0, 0, fb.width, fb.height});
-    } catch (const RuntimeError& e) {  // what only the device refuses: say so, keep the window alive
-      report("render", false, {std::string("error: ") + e.what()});
-    }
+    renderFrame(fb);
     if (first) {  // the baseline before anyone reads the load line (and may then edit a file)
       pipelineWatch_.watch(renderer_->watchedFiles());
       if (!sceneFile_.empty()) sceneWatch_.watch({sceneFile_});
@@ -342,7 +384,10 @@ void Viewer::run() {
       glFinish();
       (ui_ ? uiOnMs_ : uiOffMs_).push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
     }
-    if (!shot.empty()) screenshot(shot, fw, fh);
+    if (!shot.empty()) {  // the frame as drawn: the last good one, at its size, when this one was refused
+      glfwGetFramebufferSize(win, &fw, &fh);
+      screenshot(shot, std::min(fw, int(renderer_->size().width)), std::min(fh, int(renderer_->size().height)));
+    }
     glfwSwapBuffers(win);
   }
   writeStats();
@@ -374,6 +419,8 @@ int runView(const ViewOptions& options) {
   rendererOptions.size = Extent{options.size.width, options.size.height};
   rendererOptions.maxTextureSize = options.size.maxTextureSize;
   rendererOptions.maxTextureSizeOrigin = compileOptions(0, 0, options.size.maxTextureSize).maxTextureSizeOrigin;
+  rendererOptions.maxMemoryBytes = options.size.maxMemoryBytes;
+  rendererOptions.maxMemoryOrigin = "--max-memory";
   Window window;  // first: destroyed last, after everything that holds GL objects
   Diagnostics diags;
   std::unique_ptr<Renderer> renderer = Renderer::fromFile(pipelinePath, rendererOptions, diags);

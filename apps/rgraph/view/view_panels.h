@@ -48,6 +48,13 @@ class ParamEditor {
   void reject(const std::string& message);
   // true after an accepted edit, until the text is saved to the pipeline file or reread.
   bool modified() const { return modified_; }
+  // What the panel says while modified(): the pipeline running is not the file's, and what replaces it.
+  std::string modifiedNote() const {
+    return "edited in memory: differs from " + path_ + " until saved (a change of the file replaces these edits)";
+  }
+  // The renderer's diagnostics about an edit (text from withParam or draw) pointed at the same place
+  // (the JSON path) in the pipeline file's own text, which is what the user has in front of them.
+  Diagnostics inFile(const Diagnostics& diags) const;
   // Writes the current text (key order kept) to the pipeline file, or to
   // `path` ("Save as": the pipeline file stays as it was). Throws
   // RuntimeError naming the file when it cannot be written.
@@ -60,6 +67,7 @@ class ParamEditor {
   std::string edited(size_t passIndex, const std::string& name, const nlohmann::ordered_json& value) const;
 
   std::string path_;
+  ConfigDocument file_;  // the file's text as last read, for locating places in it
   nlohmann::ordered_json doc_;
   std::string text_;
   bool modified_ = false;

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "rgraph/error.h"
+#include "rgraph/json_value.h"
 #include "rgraph/registry.h"
 #include "view_panels.h"
 
@@ -26,12 +27,17 @@ std::string readFile(const std::string& path) {
   return s.str();
 }
 
-Json parseOrThrow(const std::string& text, const std::string& path) {
-  try {
-    return Json::parse(text);
-  } catch (const Json::parse_error& e) {
-    throw RuntimeError(path + ": not valid JSON: " + e.what());
-  }
+// A parameter's value sits under the document, "passes", the pass and its "params".
+constexpr size_t kParamDepth = 4;
+
+// The file's text with the loader's limits (rgraph/json_value.h) and its located message.
+Json parseOrThrow(const std::string& text, const std::string& path, ConfigDocument& located) {
+  Diagnostics diags;
+  located = ConfigDocument::parseText(text, path, diags);
+  Json doc;
+  if (!located.ok() || parseJsonValue(text, doc))
+    throw RuntimeError(diags.empty() ? path + ": error: not valid JSON" : formatDiagnostic(diags.front()));
+  return doc;
 }
 
 // A string member, or `fallback` (the file may not be a valid pipeline:
@@ -129,13 +135,15 @@ bool paramWidget(const ParamDecl& d, Json& value) {
 
 ParamEditor::ParamEditor(std::string pipelinePath) : path_(std::move(pipelinePath)) {
   text_ = readFile(path_);
-  doc_ = parseOrThrow(text_, path_);
+  doc_ = parseOrThrow(text_, path_, file_);
 }
 
 bool ParamEditor::reread() {
   try {
     std::string text = readFile(path_);
-    doc_ = parseOrThrow(text, path_);
+    ConfigDocument located;
+    doc_ = parseOrThrow(text, path_, located);
+    file_ = std::move(located);
     text_ = std::move(text);
     modified_ = false;
     error_.clear();
@@ -148,7 +156,9 @@ bool ParamEditor::reread() {
 const std::string& ParamEditor::text() const { return text_; }
 
 void ParamEditor::accept(const std::string& text) {
-  doc_ = Json::parse(text);
+  Json doc;
+  if (parseJsonValue(text, doc)) return;  // not text this editor made (the renderer would have refused it)
+  doc_ = std::move(doc);
   text_ = text;
   modified_ = true;
   error_.clear();
@@ -162,7 +172,24 @@ void ParamEditor::save(const std::string& path) {
   out << text_;
   out.close();
   if (!out) throw RuntimeError(to + ": cannot write the pipeline file");
-  if (path.empty()) modified_ = false;
+  if (path.empty()) modified_ = false;  // the watcher sees the write: the reload that follows rereads it
+}
+
+Diagnostics ParamEditor::inFile(const Diagnostics& diags) const {
+  Diagnostics out;
+  for (Diagnostic d : diags) {
+    // The renderer names the pipeline file; places in the edited text are found again in the file's own text
+    // (the same structure: an edit changes one value or adds it), the nearest parent when the file lacks it.
+    if (d.where.file == path_ && !d.where.path.empty()) {
+      const SourceLocation at = file_.locate(d.where.path);
+      d.where.line = at.line;
+      d.where.column = at.column;
+    } else if (d.where.file == path_) {
+      d.where.line = d.where.column = 0;  // a place in text the file does not have
+    }
+    out.push_back(std::move(d));
+  }
+  return out;
 }
 
 std::string ParamEditor::edited(size_t passIndex, const std::string& name, const Json& value) const {
@@ -189,10 +216,10 @@ std::optional<std::string> ParamEditor::withParam(const std::string& pass, const
     return std::nullopt;
   }
   Json value;
-  try {
-    value = Json::parse(jsonValue);
-  } catch (const Json::parse_error& e) {
-    error = "param " + pass + " " + name + ": the value '" + jsonValue + "' is not JSON (" + e.what() + ")";
+  if (const std::optional<JsonValueError> bad = parseJsonValue(jsonValue, value, kParamDepth)) {
+    error = "param " + pass + " " + name + ": the value '" + jsonValue.substr(0, 80) +
+            (jsonValue.size() > 80 ? "...'" : "'") + " is not JSON the pipeline file can hold (column " +
+            std::to_string(bad->offset + 1) + ": " + bad->message + ")";
     return std::nullopt;
   }
   return edited(size_t(index), name, value);
@@ -202,6 +229,7 @@ std::optional<std::string> ParamEditor::draw(const Renderer& renderer) {
   (void)renderer;  // the pass types come from the registry the renderer loaded its plugins into
   std::optional<std::string> result;
   ImGui::TextUnformatted(path_.c_str());
+  if (modified_) ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "%s", modifiedNote().c_str());
   if (ImGui::Button("Save")) {
     try {
       save();

@@ -1,8 +1,11 @@
 // The --script parser (view_script.h).
 #include "view_script.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -116,9 +119,20 @@ std::vector<ScriptCommand> parseScript(std::string_view text, const std::string&
 }
 
 std::vector<ScriptCommand> loadScript(const std::string& path, std::string& error) {
+  // Only a regular file: a folder opens and reads as empty text (a script that never quits), a FIFO blocks.
+  std::error_code ec;
+  const auto type = std::filesystem::status(path, ec).type();
+  if (type != std::filesystem::file_type::regular) {
+    const std::string why = type == std::filesystem::file_type::not_found   ? "no such file"
+                            : type == std::filesystem::file_type::directory ? "it is a folder"
+                            : ec                                            ? ec.message()
+                                                                            : "not a regular file";
+    error = path + ": error: cannot read the script file (" + why + ")";
+    return {};
+  }
   std::ifstream f(path);
   if (!f) {
-    error = path + ": error: cannot read the script file";
+    error = path + ": error: cannot read the script file (" + std::strerror(errno) + ")";
     return {};
   }
   std::stringstream ss;

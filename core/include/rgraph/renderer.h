@@ -159,6 +159,13 @@ struct RendererOptions {
   uint32_t maxTextureSize = 0;
   // How messages name that limit (default "RendererOptions::maxTextureSize").
   std::string maxTextureSizeOrigin;
+  // A budget for the pipeline's textures (Plan::allocatedBytes at the size being built), in bytes; 0: none.
+  // Whatever the budget, a build is also refused when the device says it has less free memory than the plan
+  // needs (GL_NVX_gpu_memory_info, GL_ATI_meminfo; Mesa llvmpipe says nothing). Either refusal is a
+  // RuntimeError from render() giving both figures, before any texture is allocated (see setSize).
+  uint64_t maxMemoryBytes = 0;
+  // How messages name that budget (default "RendererOptions::maxMemoryBytes").
+  std::string maxMemoryOrigin;
   // "Model no more than a scene needs": adapt the pipeline to the scene (no
   // point lights: no light volumes, ...). Notes go to adaptNotes().
   bool adaptToScene = true;
@@ -202,6 +209,12 @@ class Renderer {
   void cameraCut();
 
   // Output size. Textures are re-created at the next frame when it changes.
+  // When that build refuses the size itself (RuntimeError from render(): the
+  // graph has errors at it, a fixed-size resource beside "output" ones, or
+  // its textures exceed the memory budget), the last good pipeline keeps its
+  // textures and its size, and size() is that size again: the next render()
+  // draws the last good frame instead of retrying the refused size. Other
+  // failures (an import of the old size, below) keep the size asked for.
   void setSize(Extent size);
   Extent size() const;
 
@@ -230,6 +243,10 @@ class Renderer {
   // (0 = the window's), scaled with linear filtering when the sizes differ.
   // Stored values are copied (an sRGB output's encoded bytes, as a PNG holds).
   void render(uint32_t framebuffer, const Viewport& viewport = {});
+  // Copies the output as it stands into `viewport` of `framebuffer` again, as
+  // render(framebuffer) does, without rendering: after a render() that threw,
+  // the last good frame stays on screen. Does nothing before the first frame.
+  void present(uint32_t framebuffer, const Viewport& viewport = {});
 
   // Re-reads the pipeline file (or takes new JSON text: its messages name the
   // file the renderer came from, and plugin paths stay relative to its
@@ -239,11 +256,20 @@ class Renderer {
   // the device refuses (a device_error diagnostic) leaves the last good
   // pipeline running. Programs whose shader files did not change are reused.
   // On errors returns false, diags says why, and nothing changed.
+  // A renderer made from a file stays bound to it after reloadJson: the file
+  // is still in watchedFiles(), and reload() reads the file again (replacing
+  // what reloadJson gave: an editor's unsaved edits give way to the file's
+  // next change). A renderer made from text: reload() takes the last text
+  // (fromJson's, or the last reloadJson accepted) again.
   bool reload(Diagnostics& diags);
   bool reloadJson(std::string_view json, Diagnostics& diags);
   // The files whose changes reload() picks up: the pipeline file (when the
   // renderer came from one) and every shader file its programs were compiled
-  // from, includes too (known once a frame was drawn). For live reload.
+  // from, includes too (known once a frame was drawn), and, for a shader
+  // name found in a later shader folder, where it would be in each earlier
+  // one (an override that appears there, or comes back after being deleted,
+  // takes its place at the next reload). For live reload: a missing file is
+  // listed as the path that would be read.
   std::vector<std::string> watchedFiles() const;
 
   // The pipeline as adapted to the scene, and the notes the adaptation made.

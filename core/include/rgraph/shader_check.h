@@ -136,6 +136,9 @@ struct ShaderSource {
   std::string text;                        // after #include expansion and defines
   std::vector<std::string> files;          // display paths (shaderOrigin): 0 the shader, then included files
   std::vector<std::string> resolvedFiles;  // the same files as found on disk (for watching them)
+  // Where the shader would be found first if a file were there: its name in each folder searched before the one
+  // it came from (missing now; an override created there, or restored after being deleted, would win). Watched too.
+  std::vector<std::string> shadowPaths;
   std::vector<std::pair<int, int>> lines;  // expanded line - 1 -> (file index, line in that file)
   std::vector<std::string> notes;          // per file: ShaderOrigin::note ("" for most); last, for older plugins
 };

@@ -106,14 +106,15 @@ std::optional<JsonSyntaxError> parseBounded(const std::string& text, nlohmann::o
 
 }  // namespace
 
-std::optional<JsonSyntaxError> parseJsonText(const std::string& text, nlohmann::ordered_json& root) {
+std::optional<JsonSyntaxError> parseJsonText(const std::string& text, nlohmann::ordered_json& root,
+                                             size_t maxDepth) {
   // Nesting is bounded before the document is built: an object member added
   // after a deep one makes its member vector grow, which copies the deep value
   // recursively (std::pair<const std::string, Json> is copied, not moved), so
   // 100,000 nested arrays followed by another key overflow the stack. Past the
   // bound only the prefix before it is parsed, so that a syntax error earlier
   // in the text is still the one reported.
-  if (size_t deep = findNestingTooDeep(text); deep != SourceMap::npos) {
+  if (size_t deep = findNestingTooDeep(text, maxDepth); deep != SourceMap::npos) {
     nlohmann::ordered_json prefix;
     std::optional<JsonSyntaxError> error = parseBounded(text.substr(0, deep), prefix);
     root = nlohmann::ordered_json();

@@ -27,7 +27,9 @@ struct JsonSyntaxError {
 // SourceMap::kMaxDepth is an error at the bracket that opens the level too
 // many, found before the document is built (building one copies deep values
 // recursively); a syntax error earlier in the text is reported instead.
-std::optional<JsonSyntaxError> parseJsonText(const std::string& text, nlohmann::ordered_json& root);
+// `maxDepth` below the bound: a value that will be put that deep into a document (rgraph/json_value.h).
+std::optional<JsonSyntaxError> parseJsonText(const std::string& text, nlohmann::ordered_json& root,
+                                             size_t maxDepth = SourceMap::kMaxDepth);
 
 // Offset of the first '{' or '[' that opens a level deeper than maxDepth, or
 // SourceMap::npos. A byte walk that skips string literals and needs nothing

@@ -84,10 +84,8 @@ gl::Shader ShaderLibrary::compileStage(unsigned stage, const std::string& file, 
   } catch (const ShaderSourceError& e) {
     throw LocatedError(e.what());  // already FILE:LINE: error: ...
   }
-  for (const auto& path : src.resolvedFiles) {
-    std::error_code ec;
-    read.push_back({path, std::filesystem::last_write_time(path, ec)});
-  }
+  for (const auto& path : src.resolvedFiles) read.push_back(WatchedFile::now(path));
+  for (const auto& path : src.shadowPaths) read.push_back(WatchedFile::now(path));
   gl::Shader shader = gl::createShader(stage);
   const char* text = src.text.c_str();
   glShaderSource(shader.id(), 1, &text, nullptr);
@@ -159,13 +157,22 @@ uint32_t ShaderLibrary::computeProgram(const std::string& comp, const std::vecto
 
 void ShaderLibrary::clear() { programs_.clear(); }
 
+ShaderLibrary::WatchedFile ShaderLibrary::WatchedFile::now(const std::string& path) {
+  std::error_code ec;
+  const auto written = std::filesystem::last_write_time(path, ec);
+  return {path, written, !ec};
+}
+
+bool ShaderLibrary::WatchedFile::changed() const {
+  const WatchedFile current = now(path);
+  return current.present != present || (present && current.written != written);
+}
+
 size_t ShaderLibrary::retireChanged() {
   size_t retired = 0;
   for (auto it = programs_.begin(); it != programs_.end();) {
-    const bool changed = std::any_of(it->second.files.begin(), it->second.files.end(), [](const WatchedFile& f) {
-      std::error_code ec;
-      return std::filesystem::last_write_time(f.path, ec) != f.written || ec;
-    });
+    const bool changed =
+        std::any_of(it->second.files.begin(), it->second.files.end(), [](const WatchedFile& f) { return f.changed(); });
     if (changed) {
       retired_.push_back(std::move(*it));
       it = programs_.erase(it);

@@ -12,6 +12,7 @@
 #include <map>
 #include <optional>
 
+#include "../gl/device_memory.h"
 #include "../gl/imported_texture.h"
 #include "rgraph/adapt.h"
 #include "rgraph/error.h"
@@ -30,6 +31,8 @@ namespace rgraph {
 
 namespace {
 
+std::string mib(uint64_t bytes) { return std::to_string((bytes + (1u << 19)) >> 20) + " MiB"; }
+
 bool sameFeatures(const SceneFeatures& a, const SceneFeatures& b) {
   return a.pointLights == b.pointLights && a.blendMaterials == b.blendMaterials && a.normalMaps == b.normalMaps &&
          a.metallicRoughnessVariation == b.metallicRoughnessVariation && a.metallic == b.metallic &&
@@ -40,7 +43,8 @@ bool sameFeatures(const SceneFeatures& a, const SceneFeatures& b) {
 
 struct Renderer::Impl {
   RendererOptions options;
-  // Where the pipeline came from, for reload().
+  // Where the pipeline came from: reload() re-reads the file (reloadJson does not forget it), or takes
+  // `json` again (a renderer made from text, or the last text reloadJson took).
   std::string path;  // empty: JSON text
   std::string json, nameForMessages, baseDir;
 
@@ -57,10 +61,11 @@ struct Renderer::Impl {
   std::function<void(size_t)> afterPass;
   bool cpuPassTiming = true;
 
-  ShaderLibrary shaders;  // kept across rebuilds: unchanged programs are reused
+  ShaderLibrary shaders;                       // kept across rebuilds: unchanged programs are reused
   std::shared_ptr<RenderScene> executorScene;  // what `executor` draws: alive as long as it is
   std::unique_ptr<Executor> executor;
-  bool rebuild = true;  // the executor must be made again before the next frame
+  bool rebuild = true;       // the executor must be made again before the next frame
+  bool sizeRefused = false;  // the last build failed on the size itself: the graph there, or its memory
   uint64_t builds = 0;
   mutable std::optional<Plan> planBeforeFrame;
   gl::Framebuffer readFramebuffer;  // the output, for blits into the caller's framebuffer
@@ -81,6 +86,10 @@ struct Renderer::Impl {
   // else at the first frame. false, with a device_error in diags, on failure.
   bool replace(PipelineConfig next, Diagnostics& diags);
   void adapt();
+  CompileOptions compileOptions() const;
+  // Why a plan's textures may not be allocated (both figures: over options.maxMemoryBytes, or over what
+  // the device says it has free); "" when they fit.
+  std::string memoryRefusal(const Plan& plan) const;
   // A new executor for the current pipeline, scene, size and imports; the old
   // one is kept until the new one is built.
   void buildExecutor();
@@ -112,8 +121,7 @@ class Renderer::Impl::FrameScope {
   Impl& im_;
 };
 
-std::optional<PipelineConfig> Renderer::Impl::load(const std::optional<std::string>& text,
-                                                   Diagnostics& diags) const {
+std::optional<PipelineConfig> Renderer::Impl::load(const std::optional<std::string>& text, Diagnostics& diags) const {
   PipelineLoadOptions loadOptions;
   loadOptions.pluginDirectories = options.pluginDirectories;
   std::optional<PipelineConfig> loaded = text ? loadPipelineText(*text, nameForMessages, baseDir, loadOptions, diags)
@@ -183,9 +191,36 @@ void Renderer::Impl::adapt() {
   }
 }
 
+CompileOptions Renderer::Impl::compileOptions() const {
+  CompileOptions compile;
+  compile.output = size;
+  compile.maxTextureSize = options.maxTextureSize;
+  return compile;
+}
+
+std::string Renderer::Impl::memoryRefusal(const Plan& plan) const {
+  const uint64_t need = plan.allocatedBytes;
+  const std::string needs = "the pipeline at " + std::to_string(size.width) + "x" + std::to_string(size.height) +
+                            " needs " + std::to_string(need) + " bytes of textures (" + mib(need) +
+                            ", Plan::allocatedBytes)";
+  if (options.maxMemoryBytes > 0 && need > options.maxMemoryBytes) {
+    const std::string origin =
+        options.maxMemoryOrigin.empty() ? "RendererOptions::maxMemoryBytes" : options.maxMemoryOrigin;
+    return needs + ", more than the " + std::to_string(options.maxMemoryBytes) + " bytes (" +
+           mib(options.maxMemoryBytes) + ") " + origin + " allows";
+  }
+  if (const std::optional<gl::DeviceMemory> device = gl::freeDeviceMemory()) {
+    // The running executor's textures are given back (or reused) once the new one is built.
+    const uint64_t held = executor ? executor->plan().allocatedBytes : 0;
+    if (need > device->freeBytes + held)
+      return needs + ", more than the device has free: " + std::to_string(device->freeBytes + held) + " bytes (" +
+             mib(device->freeBytes + held) + ", " + device->source + ")";
+  }
+  return {};
+}
+
 void Renderer::Impl::prepareFrame() {
-  if (size.width == 0 || size.height == 0)
-    throw RuntimeError("Renderer::render: no output size (call setSize first)");
+  if (size.width == 0 || size.height == 0) throw RuntimeError("Renderer::render: no output size (call setSize first)");
   // Light edits change the pipeline only when they change what the scene needs
   // (its first point light, or its last one removed).
   if (scene && scene->lightsVersion() != sceneVersionSeen) {
@@ -195,13 +230,29 @@ void Renderer::Impl::prepareFrame() {
       rebuild = true;
     }
   }
-  if (rebuild || !executor) buildExecutor();
+  if (rebuild || !executor) {
+    try {
+      buildExecutor();
+    } catch (const RuntimeError&) {
+      // A size refused: the last good executor keeps running at its size, and size() says so (renderer.h,
+      // setSize). Other failures (an import of the old size) keep the size asked for, to be fixed at it.
+      if (sizeRefused && executor && executor->plan().output != size) {
+        size = executor->plan().output;
+        planBeforeFrame.reset();
+      }
+      throw;
+    }
+  }
   executor->setCamera(camera);
 }
 
 void Renderer::Impl::buildExecutor() {
   adapt();
   for (const auto& note : notes) spdlog::debug("{}", note);
+  const Plan plan = rgraph::compile(adapted.graph, compileOptions());
+  const std::string overBudget = plan.ok() ? memoryRefusal(plan) : std::string();
+  sizeRefused = !plan.ok() || !overBudget.empty();  // a graph with errors: the executor throws, with its messages
+  if (!overBudget.empty()) throw RuntimeError(overBudget);
   auto next = scene ? std::make_unique<Executor>(adapted, PassRegistry::builtins(), shaders, scene->gpu())
                     : std::make_unique<Executor>(adapted, PassRegistry::builtins(), shaders);
   for (const auto& [name, texture] : imports) next->importTexture(name, texture);
@@ -378,6 +429,12 @@ void Renderer::render(uint32_t framebuffer, const Viewport& viewport) {
   impl_->blitOutput(framebuffer, viewport);
 }
 
+void Renderer::present(uint32_t framebuffer, const Viewport& viewport) {
+  if (!impl_->executor || !impl_->executor->outputTexture()) return;
+  Impl::CallerState state(impl_->options.restoreGlState);
+  impl_->blitOutput(framebuffer, viewport);
+}
+
 bool Renderer::reload(Diagnostics& diags) {
   impl_->refuseInFrame("reload");
   std::optional<PipelineConfig> loaded =
@@ -390,8 +447,7 @@ bool Renderer::reloadJson(std::string_view json, Diagnostics& diags) {
   const std::string text(json);
   std::optional<PipelineConfig> loaded = impl_->load(text, diags);
   if (!loaded || !impl_->replace(std::move(*loaded), diags)) return false;
-  impl_->json = text;
-  impl_->path.clear();
+  impl_->json = text;  // a renderer made from a file keeps its path: watched, named in messages, re-read by reload()
   return true;
 }
 
@@ -413,11 +469,8 @@ const Plan& Renderer::plan() const {
   if (impl_->executor && !impl_->rebuild && impl_->executor->plan().output == impl_->size)
     return impl_->executor->plan();
   if (!impl_->planBeforeFrame) {
-    CompileOptions compile;
-    compile.output = impl_->size;
-    compile.maxTextureSize = impl_->options.maxTextureSize;
     const PipelineConfig& p = impl_->executor && !impl_->rebuild ? impl_->adapted : impl_->source;
-    impl_->planBeforeFrame = rgraph::compile(p.graph, compile);
+    impl_->planBeforeFrame = rgraph::compile(p.graph, impl_->compileOptions());
   }
   return *impl_->planBeforeFrame;
 }

@@ -269,6 +269,12 @@ ShaderSource loadShaderSource(const std::string& file, const std::vector<std::st
     src.notes.push_back(std::move(origin.note));
   }
   src.resolvedFiles.push_back(path);
+  if (!fs::path(file).is_absolute())
+    for (const auto& dir : dirs) {
+      std::string candidate = (fs::path(dir) / file).lexically_normal().string();
+      if (candidate == path) break;
+      src.shadowPaths.push_back(std::move(candidate));
+    }
   std::vector<std::string> lines = splitLines(mainText);
 
   std::string out;

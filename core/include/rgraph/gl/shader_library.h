@@ -63,7 +63,8 @@ class ShaderLibrary {
   void clear();
   // Reloading edited shaders, keeping what did not change: retireChanged()
   // takes the cached programs whose files (the shaders and what they include)
-  // changed on disk since they were compiled, or are gone, out of the cache
+  // changed on disk since they were compiled, or are gone, or whose shader
+  // now has an override in an earlier folder, out of the cache
   // (the next program() call compiles them again) but keeps them alive, since
   // passes still draw with them; releaseRetired() deletes them once nothing
   // uses them, restoreRetired() puts them back (the reload failed). Returns
@@ -71,7 +72,9 @@ class ShaderLibrary {
   size_t retireChanged();
   void releaseRetired();
   void restoreRetired();
-  // Every file the cached programs were compiled from (resolved paths, once each).
+  // Every file the cached programs were compiled from (resolved paths, once each), and where an
+  // override of each shader would be (ShaderSource::shadowPaths; retireChanged() takes a program whose
+  // override appeared there).
   std::vector<std::string> files() const;
   size_t cachedPrograms() const { return programs_.size(); }
 
@@ -84,6 +87,9 @@ class ShaderLibrary {
   struct WatchedFile {
     std::string path;
     std::filesystem::file_time_type written;
+    bool present = true;  // false: a shadow path (ShaderSource::shadowPaths), missing when compiled
+    static WatchedFile now(const std::string& path);
+    bool changed() const;  // appeared, disappeared or rewritten since
   };
   struct Cached {
     gl::Program program;
