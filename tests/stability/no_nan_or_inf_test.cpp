@@ -389,15 +389,15 @@ TEST_F(Stability, NoNanOrInfWithGltfZeroAreaTrianglesAndBadNormals) {
 }
 
 TEST_F(Stability, NoNanOrInfWithOverbrightLights) {
-  // Lights bright enough to overflow half floats: one with no falloff at all
-  // (constant = linear = quadratic = 0: the shaders' 1e-6 floor makes its
-  // attenuation 1e6) and one of intensity 1e6. rgba16f holds at most 65504.
+  // Lights bright enough to overflow half floats: one with almost no falloff
+  // (constant = 1e-6, linear = quadratic = 0: attenuation 1e6; all three 0 is
+  // refused by Scene::validate, as in scene files) and one of intensity 1e6. rgba16f holds at most 65504.
   // Measured on llvmpipe: float -> half conversions saturate at 65504 (the
   // rgba16f targets read back 65504, never Inf) and the rgba32f reference
   // holds ~1e6. A driver that rounds overflow to +Inf instead would fail here
   // (and the tone mapper would then turn those pixels black).
   Scene scene = smallStillLife();
-  scene.pointLights.push_back(pointLight({0.6f, 1.4f, 1.3f}, {1.0f, 1.0f, 1.0f}, 1.0f, 0.0f, 0.0f, 0.0f));
+  scene.pointLights.push_back(pointLight({0.6f, 1.4f, 1.3f}, {1.0f, 1.0f, 1.0f}, 1.0f, 1e-6f, 0.0f, 0.0f));
   scene.pointLights.push_back(pointLight({-0.8f, 1.0f, 0.9f}, {1.0f, 0.8f, 0.6f}, 1e6f));
   EXPECT_EQ(expectFiniteHdr("overbright-lights", scene, all(), {Expect::saturated, 0.5}), 0);
 }
