@@ -70,7 +70,7 @@ int runView(const ViewOptions& options);
 struct BenchOptions {
   std::string out;     // output folder (created)
   std::string scene;   // empty: many-lights (the light-count axis varies N)
-  bool quick = false;  // fewer points and frames: within 5 minutes on 2 cores with llvmpipe
+  bool quick = false;  // fewer points and frames: under 3 minutes of CPU on 2 cores with llvmpipe
   bool smoke = false;  // hidden: 2 points at 64x64, 1 frame each (tests)
   bool figuresOnly = false;  // one untimed frame per point: the deterministic figures only, no charts
   std::string replot;  // a previous run's results.json: redraw its charts under `out`, render nothing
