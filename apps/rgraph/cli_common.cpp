@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <regex>
 #include <nlohmann/json.hpp>
 
 #include "rgraph/pipeline_load.h"
@@ -123,6 +124,14 @@ nlohmann::json memoryJson(const Plan& plan) {
   return {{"naive_bytes", plan.naiveBytes},
           {"allocated_bytes", plan.allocatedBytes},
           {"peak_live_bytes", plan.peakLiveBytes}};
+}
+
+std::string errorLine(const std::string& what) {
+  static const std::regex located(R"(^([^:\s][^:\n]*:[0-9]+(:[0-9]+)?): )");
+  std::smatch m;
+  if (!std::regex_search(what, m, located)) return "error: " + what;
+  const std::string rest = what.substr(size_t(m.length(0)));
+  return rest.rfind("error: ", 0) == 0 ? what : m[1].str() + ": error: " + rest;
 }
 
 }  // namespace rgraph::cli

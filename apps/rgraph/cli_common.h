@@ -40,6 +40,10 @@ bool checkFolders(const std::string& option, const std::vector<std::string>& dir
 // shaders by validate and render.
 void addShaderPaths(const std::vector<std::string>& dirs);
 
+// A RuntimeError's text as one message line: `FILE:LINE[:COL]: error: rest` when the text starts with a
+// location (a scene file's `scene.json:2:1: invalid JSON ...`), else `error: text`.
+std::string errorLine(const std::string& what);
+
 // Prints diagnostics to stderr, one `FILE:LINE:COL: error: PATH: message` line each.
 void printDiagnostics(const Diagnostics& diags);
 // Diagnostics as the JSON array `rgraph validate --json` prints.

@@ -154,7 +154,7 @@ int runPlan(const std::string& path, const SizeOptions& size, bool json, const s
   try {
     scene = loadSceneAny(sceneSpec);
   } catch (const RuntimeError& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << errorLine(e.what()) << "\n";
     return kExitFailure;
   }
   PipelineConfig adapted = result->first;

@@ -224,7 +224,7 @@ int runRender(const RenderOptions& options) {
     std::cerr << e.what() << "\n";  // `FILE:LINE: error: ...` already
     return kExitFailure;
   } catch (const RuntimeError& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << errorLine(e.what()) << "\n";  // a scene file's `FILE:L:C: ...` reads `FILE:L:C: error: ...`
     return kExitFailure;
   }
   return kExitOk;

@@ -50,15 +50,7 @@ std::unique_ptr<Renderer> fromFile(const std::string& path, Extent size) {
   return r;
 }
 
-// The message of the RuntimeError `fn` throws; "(no error)" when it throws none.
-std::string errorOf(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const RuntimeError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using testsupport::errorOf;  // the message of the RuntimeError a call throws
 
 #define EXPECT_HAS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << (text)
 

@@ -62,15 +62,7 @@ size_t differing(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
   return n + (a.size() != b.size() ? 1 : 0);
 }
 
-// The message of the RuntimeError `fn` throws; "(no error)" when it throws none.
-std::string errorOf(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const RuntimeError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using testsupport::errorOf;  // the message of the RuntimeError a call throws
 
 class RendererApi : public ::testing::Test {
  protected:

@@ -60,4 +60,13 @@ PipelineConfig buildPipelineOrThrow(const std::string& text, const std::string& 
   return withContext([&] { return loadPipelineTextOrThrow(text, "pipeline " + name); }, context);
 }
 
+std::string errorOf(const std::function<void()>& fn) {
+  try {
+    fn();
+  } catch (const RuntimeError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
 }  // namespace rgraph::testsupport

@@ -23,4 +23,7 @@ void destroyBeforeContext(std::function<void()> fn);
 PipelineConfig loadPipelineOrThrow(const std::string& path);
 PipelineConfig buildPipelineOrThrow(const std::string& text, const std::string& name, const std::string& context = {});
 
+// The message of the RuntimeError `fn` throws; "(no error)" when it throws none.
+std::string errorOf(const std::function<void()>& fn);
+
 }  // namespace rgraph::testsupport

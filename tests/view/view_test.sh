@@ -8,6 +8,7 @@
 #                   runs: status lines ok, error (FILE:LINE:COL), error, ok; the viewer exits 0 at `quit`
 #   reload_shader   a copy of tonemap.frag (--shader-path) broken then fixed: error naming it with its line, then ok
 #   reload_leak     50 reloads (valid and broken alternating): the last ok line's gl_objects equals the first's
+#   threshold_leak  100 distinct light_volumes thresholds (script params): gl_objects stays at its steady count
 #   resize          `resize 200 150` then a screenshot: the PNG is 200x150
 #   param_then_file a script `param`, then edits of the file: still watched (reload ok, then error), and the
 #                   file's change replaces the in-memory edit (the frame equals rgraph render of the file)
@@ -161,6 +162,19 @@ reload_leak)
   first=$(sed -n 2p <<<"$oks"); last=$(tail -n 1 <<<"$oks")  # line 1 is the load; 2 the first reload
   [[ -n "$first" && "$first" == "$last" ]] || fail "gl_objects went from $first to $last over 50 reloads"
   echo "ok: gl_objects $first after the first reload and $last after the last" ;;
+threshold_leak)
+  # 100 distinct light_volumes thresholds from a script, a frame each (a slider drag): the per-threshold light
+  # buffers are bounded, so gl_objects after the 10th edit equals gl_objects after the 100th.
+  p="$out/pipeline.json"; cp "$src/pipelines/default.json" "$p"
+  for i in $(seq 1 100); do printf 'param light_volumes threshold 0.%04d\nwait 1\n' $((100 + i)); done >"$out/script.txt"
+  echo quit >>"$out/script.txt"
+  run_x "$rgraph" view "$p" --width 96 --height 64 --script "$out/script.txt" --status "$out/status.jsonl" \
+    >"$out/view.log" 2>&1 || fail "rgraph view exited $?"
+  counts=$(grep '"event":"param".*"result":"ok"' "$out/status.jsonl" | grep -o '"gl_objects":[0-9]*' | cut -d: -f2)
+  [[ $(wc -l <<<"$counts") -eq 100 ]] || fail "expected 100 param ok lines"
+  tenth=$(sed -n 10p <<<"$counts"); last=$(tail -n 1 <<<"$counts")
+  [[ -n "$tenth" && "$tenth" == "$last" ]] || fail "gl_objects went from $tenth to $last over 90 threshold edits"
+  echo "ok: gl_objects $tenth after the 10th threshold and $last after the 100th" ;;
 param_then_file)
   p="$out/pipeline.json"; cp "$src/pipelines/default.json" "$p"
   printf 'param tonemap gamma 2.2\nwaitfile %s\nscreenshot %s\nwaitfile %s\nquit\n' "$out/shoot" "$out/view.png" \

@@ -186,7 +186,7 @@ void Viewer::reloadScene() {
     scene_ = scene;
     report("reload", true, {});
   } catch (const std::exception& e) {  // the old scene keeps rendering
-    report("reload", false, {view::errorLine(e.what())});
+    report("reload", false, {cli::errorLine(e.what())});
   }
 }
 
@@ -242,7 +242,7 @@ void Viewer::renderFrame(Extent fb) {
     }
     return;
   } catch (const RuntimeError& e) {
-    const std::string line = view::errorLine(e.what());
+    const std::string line = cli::errorLine(e.what());
     if (line != renderError_) report("render", false, {line});
     renderError_ = line;
   }

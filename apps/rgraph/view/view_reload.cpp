@@ -2,7 +2,6 @@
 #include "view_reload.h"
 
 #include <nlohmann/json.hpp>
-#include <regex>
 
 #include "rgraph/error.h"
 #include "rgraph/gl/objects.h"
@@ -35,14 +34,6 @@ bool FileWatcher::changed() {
     }
   }
   return any;
-}
-
-std::string errorLine(const std::string& what) {
-  static const std::regex located(R"(^([^:\s][^:\n]*:[0-9]+(:[0-9]+)?): )");
-  std::smatch m;
-  if (!std::regex_search(what, m, located)) return "error: " + what;
-  const std::string rest = what.substr(size_t(m.length(0)));
-  return rest.rfind("error: ", 0) == 0 ? what : m[1].str() + ": error: " + rest;
 }
 
 void StatusFile::write(const std::string& event, bool ok, const std::vector<std::string>& diagnostics) const {

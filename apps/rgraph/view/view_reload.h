@@ -25,10 +25,6 @@ class FileWatcher {
   std::map<std::string, Time> times_;
 };
 
-// A RuntimeError's text as one message line: `FILE:LINE[:COL]: error: rest` when the text starts with a
-// location (a scene file's `scene.json:2:1: invalid JSON ...`), else `error: text`.
-std::string errorLine(const std::string& what);
-
 // `{"event": EVENT, "result": "ok"|"error", "diagnostics": [...], "gl_objects": N}` lines, appended and flushed.
 class StatusFile {
  public:
