@@ -209,6 +209,13 @@ TEST(ViewParamEditor, SaveWritesTheAcceptedTextAndSaveAsLeavesTheFileAlone) {
   EXPECT_EQ(reread.text(), *text);
   EXPECT_EQ(Json::parse(reread.text())["passes"][tonemapIndex(Json::parse(*text))]["params"]["operator"], "reinhard");
   EXPECT_THROW(editor.save("/no/such/dir/x.json"), RuntimeError);
+  // A failed write says why (the OS's reason); the file is written through a temporary (OutputFile tests).
+  try {
+    editor.save("/dev/full");
+    ADD_FAILURE() << "saving to /dev/full did not throw";
+  } catch (const RuntimeError& e) {
+    EXPECT_NE(std::string(e.what()).find("No space left on device"), std::string::npos) << e.what();
+  }
 }
 
 class ViewParamEditorGl : public ::testing::Test {

@@ -10,6 +10,7 @@
 
 #include "rgraph/error.h"
 #include "rgraph/json_value.h"
+#include "rgraph/output_file.h"
 #include "rgraph/registry.h"
 #include "view_panels.h"
 
@@ -168,10 +169,8 @@ void ParamEditor::reject(const std::string& message) { error_ = message; }
 
 void ParamEditor::save(const std::string& path) {
   const std::string& to = path.empty() ? path_ : path;
-  std::ofstream out(to, std::ios::binary | std::ios::trunc);
-  out << text_;
-  out.close();
-  if (!out) throw RuntimeError(to + ": cannot write the pipeline file");
+  // Through a temporary file and a rename: a full disk leaves the user's file as it was, and says why.
+  writeOutputFile(to, text_, "the pipeline file");
   if (path.empty()) modified_ = false;  // the watcher sees the write: the reload that follows rereads it
 }
 
