@@ -227,6 +227,13 @@ fs::path onlyEntry(const TempDir& dir) {
   return entries.empty() ? fs::path() : entries[0];
 }
 
+// The entry a first check of `l` writes into `dir` (empty, with a failure, when not exactly one).
+fs::path firstEntry(const TempDir& dir, const Loaded& l) {
+  ShaderChecker c;
+  checkPipelineCached(c, l.pipeline, l.plan, PassRegistry::builtins(), dir.str());
+  return onlyEntry(dir);
+}
+
 TEST(ShaderCheckCache, DamagedEntriesAreIgnoredAndRewritten) {
   TempDir dir;
   Loaded l = load(kPipelines + "/deferred-pbr.json");
@@ -260,9 +267,7 @@ TEST(ShaderCheckCache, DamagedEntriesAreIgnoredAndRewritten) {
 TEST(ShaderCheckCache, AnEntryWithMessagesIsAMissAndNothingIsReplayed) {
   TempDir dir;
   Loaded l = load(kPipelines + "/deferred-pbr.json");
-  ShaderChecker c;
-  checkPipelineCached(c, l.pipeline, l.plan, PassRegistry::builtins(), dir.str());
-  const fs::path entry = onlyEntry(dir);
+  const fs::path entry = firstEntry(dir, l);
   ASSERT_FALSE(entry.empty());
   const std::string text = [&] {
     std::ifstream in(entry);
@@ -285,9 +290,7 @@ TEST(ShaderCheckCache, AnEntryWithMessagesIsAMissAndNothingIsReplayed) {
 TEST(ShaderCheckCache, AFifoEntryIsAMissNotAHang) {
   TempDir dir;
   Loaded l = load(kPipelines + "/deferred-pbr.json");
-  ShaderChecker c;
-  checkPipelineCached(c, l.pipeline, l.plan, PassRegistry::builtins(), dir.str());
-  const fs::path entry = onlyEntry(dir);
+  const fs::path entry = firstEntry(dir, l);
   ASSERT_FALSE(entry.empty());
   fs::remove(entry);
   ASSERT_EQ(::mkfifo(entry.c_str(), 0600), 0);
