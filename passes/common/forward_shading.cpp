@@ -2,6 +2,7 @@
 
 #include <GL/glcorearb.h>
 
+#include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/passes/cluster_lists.h"
@@ -31,7 +32,7 @@ void SurfaceDrawer::draw(PassContext& ctx, bool blended) const {
   scene.bindFrame();
   scene.bindPointLights(lighting::threshold(ctx.params()));
   const uint32_t prog = program_;
-  glUseProgram(prog);
+  gl::useProgram(ctx, prog);
   pointLightCount_.set(static_cast<int>(scene.pointLightCount()));
   blendPass_.set(blended);
   const bool clustered = ctx.bound(clusters::kSlot);

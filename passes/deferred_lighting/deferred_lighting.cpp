@@ -24,6 +24,7 @@ class DeferredLightingPass final : public gl::FullscreenPass {
     scene.bindFrame();
     scene.bindPointLights(lighting::threshold(ctx.params()));
   }
+  uint32_t changedState() const override { return 0; }  // uniforms and the scene's buffers only
   ProgramUniform pointLightCount_{this, "u_pointLightCount"}, ambientAndSun_{this, "u_ambientAndSun"};
   ProgramUniform hasAo_{this, "u_hasAo"};
 };

@@ -34,13 +34,10 @@ class ForwardPass final : public PassInstance {
     GpuScene& scene = *ctx.gpuScene();
     gl::bindPassFramebuffer(ctx);
     if (markers_ && scene.pointLightCount() > 0) {
-      scene.bindFrame();
-      scene.bindPointLights(lighting::threshold(ctx.params()));
-      glUseProgram(markerProgram_);
+      scene.bindPointLights(lighting::threshold(ctx.params()));  // (the executor bound the Frame block)
+      gl::useProgram(ctx, markerProgram_);
       markerSize_.set(static_cast<float>(ctx.params().getNumber("marker_size", 0.125)));
-      glEnable(GL_DEPTH_TEST);
-      glDepthFunc(GL_LESS);
-      glDepthMask(GL_TRUE);
+      glEnable(GL_DEPTH_TEST);  // function GL_LESS and writes on, as every pass starts (rgraph/pass.h)
       glEnable(GL_CULL_FACE);
       glCullFace(GL_BACK);
       scene.drawCube(scene.pointLightCount());
@@ -49,6 +46,8 @@ class ForwardPass final : public PassInstance {
     }
     if (blend_) surfaces_.draw(ctx, /*blended=*/true);
   }
+  // Markers and SurfaceDrawer put back what they set and bind through ctx.bindings() (the scene's draws too).
+  uint32_t changedState() const override { return 0; }
 
  private:
   bool markers_ = true, blend_ = true;

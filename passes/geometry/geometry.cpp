@@ -36,16 +36,16 @@ class GeometryPass final : public PassInstance {
       if (ctx.bound(slot)) glClearNamedFramebufferfv(fbo, GL_COLOR, drawBuffers++, zero);
     // Background pixels keep velocity 0 (no camera-only motion for them yet).
     if (velocity_) glClearNamedFramebufferfv(fbo, GL_COLOR, drawBuffers++, zero);
+    // Depth function GL_LESS, writes on, no blending: what every pass starts with (rgraph/pass.h).
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
     glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
-    glDisable(GL_BLEND);
     GpuScene::DrawOptions options;
     options.filter = GpuScene::Filter::opaque;
     ctx.gpuScene()->drawPrimitives(program_, options);
     glDisable(GL_DEPTH_TEST);
   }
+  // Depth testing put back; the scene's draws bind through ctx.bindings().
+  uint32_t changedState() const override { return 0; }
 
  private:
   uint32_t program_ = 0;

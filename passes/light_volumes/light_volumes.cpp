@@ -28,9 +28,8 @@ class LightVolumesPass final : public PassInstance {
   void execute(PassContext& ctx) override {
     GpuScene& scene = *ctx.gpuScene();
     gl::bindPassFramebuffer(ctx);
-    glUseProgram(program_);
-    scene.bindFrame();
-    scene.bindPointLights(lighting::threshold(ctx.params()));
+    gl::useProgram(ctx, program_);
+    scene.bindPointLights(lighting::threshold(ctx.params()));  // (the executor bound the Frame block)
 
     const std::string cull = ctx.params().getString("cull", "front");
     glEnable(GL_CULL_FACE);
@@ -40,8 +39,6 @@ class LightVolumesPass final : public PassInstance {
       // Front culled: the far side of the sphere must lie behind (or at) the
       // surface. Back culled: the near side must lie in front of it.
       glDepthFunc(cull == "back" ? GL_LEQUAL : GL_GEQUAL);
-    } else {
-      glDisable(GL_DEPTH_TEST);
     }
     glDepthMask(GL_FALSE);
     // A volume reaching past the far plane would be clipped away and lose
@@ -56,16 +53,21 @@ class LightVolumesPass final : public PassInstance {
     firstLight_.set(0);
     spotVolumes_.set(0);
     scene.drawIcosphere(points);
-    volumeScale_.set(scene.spotVolumeScale());
-    firstLight_.set(static_cast<int>(points));
-    spotVolumes_.set(1);
-    scene.drawSpotVolume(spots);
+    if (spots > 0) {
+      volumeScale_.set(scene.spotVolumeScale());
+      firstLight_.set(static_cast<int>(points));
+      spotVolumes_.set(1);
+      scene.drawSpotVolume(spots);
+    }
     glDisable(GL_BLEND);
     glDisable(GL_DEPTH_CLAMP);
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
   }
+  // Every group put back as it started; binds through ctx.bindings() (the scene's draws too).
+  uint32_t changedState() const override { return 0; }
 
  private:
   uint32_t program_ = 0;

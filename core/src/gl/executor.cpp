@@ -375,7 +375,10 @@ void Executor::Impl::resetState(const PassRun& run) {
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
+  } else if (depthMaskOff) {
+    glDepthMask(GL_TRUE);  // only the mask a read-only depth pass had
   }
+  depthMaskOff = false;
   if (d & kGlStateStencil) {
     glDisable(GL_STENCIL_TEST);
     glStencilMask(0xFFu);
@@ -384,11 +387,14 @@ void Executor::Impl::resetState(const PassRun& run) {
   if (d & kGlStateScissor) glDisable(GL_SCISSOR_TEST);
   if (d & kGlStateColorMask) glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   if (d & kGlStateSrgb) glEnable(GL_FRAMEBUFFER_SRGB);
-  if (d & kGlStateBindings) bound.forget();
+  if (d & kGlStateBindings) {
+    bound.forget();
+    if (gpuScene) gpuScene->forgetBindings();
+  }
   dirtyState = 0;
   if (run.readOnlyDepth) {
     glDepthMask(GL_FALSE);
-    dirtyState |= kGlStateDepth;
+    depthMaskOff = true;
   }
 }
 
@@ -494,6 +500,15 @@ void Executor::renderFrame() {
   // (setCpuPassTiming): each finish stalls the pipeline the driver keeps.
   const bool cpuTiming = im.software && im.cpuPassTiming;
   im.dirtyState = kGlStateAll;  // whatever the caller left
+  // The scene's draws keep the passes' binding record up to date (no
+  // kGlStateBindings for a pass that draws the scene), this frame only.
+  struct RecordScope {
+    GpuScene* scene;
+    ~RecordScope() {
+      if (scene) scene->useBindingRecord(nullptr);
+    }
+  } recordScope{im.gpuScene};
+  if (im.gpuScene) im.gpuScene->useBindingRecord(&im.bound);
   if (cpuTiming) glFinish();
   for (size_t i = 0; i < im.runs.size(); ++i) {
     PassRun& run = *im.runs[i];
@@ -501,8 +516,8 @@ void Executor::renderFrame() {
     const Clock::time_point t0 = cpuTiming ? Clock::now() : Clock::time_point{};
     if (run.query) glBeginQuery(GL_TIME_ELAPSED, run.query.id());
     if (run.memoryBarrier) glMemoryBarrier(run.memoryBarrier);
-    if (im.gpuScene) im.gpuScene->selectJitter(run.jitter);
     im.resetState(run);
+    if (im.gpuScene) im.gpuScene->selectJitter(run.jitter);
     // The pass's framebuffer before its inputs: a pass usually reads what the
     // one before drew into, and binding that texture while its framebuffer is
     // still bound costs the driver a flush more.

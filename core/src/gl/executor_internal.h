@@ -161,6 +161,7 @@ struct Executor::Impl {
   bool cpuPassTiming = true;              // Executor::setCpuPassTiming
   bool stateChecks = false;               // Executor::setStateChecks
   uint32_t dirtyState = kGlStateAll;      // GlStateGroup bits resetState() puts back
+  bool depthMaskOff = false;              // the last pass read depth only: its mask alone to put back
   GlBindings bound;                       // PassContext::bindings: forgotten with kGlStateBindings
   std::map<std::string, uint32_t, std::less<>> imports;  // resource name -> caller's texture
   bool software = false;

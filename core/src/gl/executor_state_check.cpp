@@ -10,7 +10,7 @@
 namespace rgraph {
 
 void Executor::Impl::checkState(const exec_detail::PassRun& run) const {
-  const uint32_t declared = run.instance->changedState() | (run.readOnlyDepth ? kGlStateDepth : 0u);
+  const uint32_t declared = run.instance->changedState();
   auto integer = [](GLenum pname) {
     GLint v = 0;
     glGetIntegerv(pname, &v);
@@ -27,7 +27,8 @@ void Executor::Impl::checkState(const exec_detail::PassRun& run) const {
       {kGlStateBlend, "GL_BLEND is on", !glIsEnabled(GL_BLEND)},
       {kGlStateDepth, "GL_DEPTH_TEST is on", !glIsEnabled(GL_DEPTH_TEST)},
       {kGlStateDepth, "the depth function is not GL_LESS", integer(GL_DEPTH_FUNC) == GL_LESS},
-      {kGlStateDepth, "depth writes are off", integer(GL_DEPTH_WRITEMASK) == GL_TRUE},
+      // A read-only depth pass runs with writes off (the executor turned them off and puts them back).
+      {kGlStateDepth, "depth writes are off", run.readOnlyDepth || integer(GL_DEPTH_WRITEMASK) == GL_TRUE},
       {kGlStateStencil, "GL_STENCIL_TEST is on", !glIsEnabled(GL_STENCIL_TEST)},
       {kGlStateStencil, "the stencil write mask is not 0xFF", (integer(GL_STENCIL_WRITEMASK) & 0xFF) == 0xFF},
       {kGlStateCull, "GL_CULL_FACE is on", !glIsEnabled(GL_CULL_FACE)},

@@ -1,4 +1,5 @@
 #include "rgraph/gl/gpu_scene.h"
+#include "rgraph/pass.h"
 
 #include <GL/glcorearb.h>
 
@@ -276,6 +277,7 @@ glm::mat4 GpuScene::writeFrame(Extent viewport, const Camera& cam, const FrameMo
     f.invProj = glm::inverse(f.proj);
   }
   glNamedBufferSubData(frame_.id(), 0, sizeof(FrameBlock), &f);
+  forgetBindings();  // a new frame: whatever the caller bound since the last one
   bindFrame();
   return unjittered;
 }
@@ -286,7 +288,10 @@ void GpuScene::selectJitter(bool jittered) {
 }
 
 void GpuScene::bindFrame() const {
-  glBindBufferBase(GL_UNIFORM_BUFFER, 0, jittered_ ? frame_.id() : frameUnjittered_.id());
+  const uint32_t block = jittered_ ? frame_.id() : frameUnjittered_.id();
+  if (boundFrame_ == block) return;
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, block);
+  boundFrame_ = block;
 }
 
 std::vector<float> GpuScene::pointLightRadii(float threshold) const {
@@ -315,6 +320,7 @@ uint32_t GpuScene::pointLightBuffer(float threshold) {
     auto oldest = std::min_element(lightBuffers_.begin(), lightBuffers_.end(),
                                    [](const auto& a, const auto& b) { return a.second.lastUse < b.second.lastUse; });
     lightBuffers_.erase(oldest);
+    boundLights_ = 0;  // a deleted buffer's name may come back for a new one
   }
   LightBuffer& slot = lightBuffers_[threshold];
   slot.lastUse = ++lightBufferUses_;
@@ -333,7 +339,8 @@ uint32_t GpuScene::pointLightBuffer(float threshold) {
     // Room for growth, so that adding a light now and then reuses the buffer.
     size_t capacity = 16;
     while (capacity <= lights.size()) capacity *= 2;  // always room for one more
-    slot.buffer = gl::createBuffer();
+    slot.buffer = gl::createBuffer();  // (the one it replaces is deleted: its name may come back)
+    boundLights_ = 0;
     slot.capacity = capacity;
     glNamedBufferStorage(slot.buffer.id(), static_cast<GLsizeiptr>(capacity * sizeof(GpuPointLight)), nullptr,
                          GL_DYNAMIC_STORAGE_BIT);
@@ -345,7 +352,10 @@ uint32_t GpuScene::pointLightBuffer(float threshold) {
 }
 
 void GpuScene::bindPointLights(float threshold) {
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pointLightBuffer(threshold));
+  const uint32_t buffer = pointLightBuffer(threshold);
+  if (boundLights_ == buffer) return;
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer);
+  boundLights_ = buffer;
 }
 
 uint32_t GpuScene::pointLightCount() const { return static_cast<uint32_t>(scene_.pointLights.size()); }
@@ -425,7 +435,7 @@ void GpuScene::drawPrimitives(uint32_t program, const DrawOptions& options) cons
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return dist(a) > dist(b); });
   }
   const Locations& loc = locations(program);
-  glUseProgram(program);
+  bindProgram(program);
   for (size_t i : order) {
     const Primitive& p = scene_.primitives[i];
     const Material& m = scene_.materials[p.material];
@@ -447,37 +457,47 @@ void GpuScene::drawPrimitives(uint32_t program, const DrawOptions& options) cons
       glDisable(GL_CULL_FACE);
     }
     glFrontFace(p.mirrored() ? GL_CW : GL_CCW);
-    glBindVertexArray(mesh.vao.id());
+    bindVertexArray(mesh.vao.id());
     glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.indexCount), GL_UNSIGNED_INT, nullptr);
   }
   glFrontFace(GL_CCW);
   glDisable(GL_CULL_FACE);
   for (GLuint unit = 0; unit < 5; ++unit) glBindSampler(unit, 0);
-  glBindVertexArray(0);
+  bindVertexArray(0);
 }
 
 void GpuScene::drawIcosphere(uint32_t instances) const {
   if (instances == 0) return;
-  glBindVertexArray(icosphere_.vao.id());
+  bindVertexArray(icosphere_.vao.id());
   glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(icosphere_.indexCount), GL_UNSIGNED_INT, nullptr,
                           static_cast<GLsizei>(instances));
-  glBindVertexArray(0);
+  bindVertexArray(0);
 }
 
 void GpuScene::drawSpotVolume(uint32_t instances) const {
   if (instances == 0) return;
-  glBindVertexArray(spotVolume_.vao.id());
+  bindVertexArray(spotVolume_.vao.id());
   glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(spotVolume_.indexCount), GL_UNSIGNED_INT, nullptr,
                           static_cast<GLsizei>(instances));
-  glBindVertexArray(0);
+  bindVertexArray(0);
 }
 
 void GpuScene::drawCube(uint32_t instances) const {
   if (instances == 0) return;
-  glBindVertexArray(cube_.vao.id());
+  bindVertexArray(cube_.vao.id());
   glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(cube_.indexCount), GL_UNSIGNED_INT, nullptr,
                           static_cast<GLsizei>(instances));
-  glBindVertexArray(0);
+  bindVertexArray(0);
+}
+
+void GpuScene::bindProgram(uint32_t program) const {
+  glUseProgram(program);
+  if (record_) record_->program = program;
+}
+
+void GpuScene::bindVertexArray(uint32_t vertexArray) const {
+  glBindVertexArray(vertexArray);
+  if (record_) record_->vertexArray = vertexArray;
 }
 
 }  // namespace rgraph

@@ -31,6 +31,8 @@
 
 namespace rgraph {
 
+struct GlBindings;  // rgraph/pass.h
+
 struct Scene;
 struct Camera;
 
@@ -80,9 +82,22 @@ class GpuScene {
   // Binds the Frame block at 0: the frame's jittered camera, or the same
   // camera without jitter while the executor runs a pass whose
   // PassDecl::jitter is false (selectJitter).
+  // Skipped when that block is already bound there by this scene (see
+  // forgetBindings), as are bindPointLights of the buffer bound there.
   void bindFrame() const;
   // The executor, before each pass: which block bindFrame() binds (and binds it).
   void selectJitter(bool jittered);
+  // Uniform buffer 0 and storage buffer 0 may hold something else now (a
+  // pass bound them with raw GL calls, the caller ran between frames): the
+  // next bindFrame / bindPointLights binds again. updateFrame forgets too; the
+  // executor calls it after a pass whose changedState() has kGlStateBindings.
+  void forgetBindings() const { boundFrame_ = boundLights_ = 0; }
+  // The executor, for the length of a frame: the record its passes bind
+  // through (PassContext::bindings). The draws below bind their program and
+  // vertex arrays with the same calls as without one and write them into it,
+  // so that a pass drawing the scene need not declare kGlStateBindings.
+  // nullptr (the default): no record.
+  void useBindingRecord(GlBindings* record) const { record_ = record; }
 
   // Point and spot lights with radii solved for `threshold` (LearnOpenGL: 5/256 of the
   // brightest channel) and capped at the distance beyond which the scene has
@@ -150,6 +165,13 @@ class GpuScene {
   gl::Buffer frame_;            // the Frame block with jitter (what passes see by default)
   gl::Buffer frameUnjittered_;  // the same frame without jitter (passes with jitter: false)
   bool jittered_ = true;        // which of the two bindFrame() binds (selectJitter)
+  // What this scene last bound at uniform buffer 0 and storage buffer 0 (0:
+  // unknown): passes ask for both and the executor for the Frame block before
+  // each pass, so a frame binds each once, as hand-written GL would.
+  mutable uint32_t boundFrame_ = 0, boundLights_ = 0;
+  mutable GlBindings* record_ = nullptr;  // useBindingRecord
+  void bindProgram(uint32_t program) const;
+  void bindVertexArray(uint32_t vertexArray) const;
   // Model matrices of the last updateFrame with motion (empty: draw with each
   // Primitive::transform, previous = current): this frame's, the previous
   // frame's, and the frame number they belong to.
