@@ -270,7 +270,8 @@ void openHeadless(GlContext::Impl& im, bool debug) {
   const char* clientExts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   auto getPlatformDisplay =
       reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-  EglDevices devices = getPlatformDisplay ? enumerateEglDevices(clientExts) : EglDevices{};
+  EglDevices devices = getPlatformDisplay ? enumerateEglDevices(clientExts)
+                                          : EglDevices{{}, {}, " (this EGL lacks eglGetPlatformDisplayEXT)"};
   const char* requested = std::getenv("RGRAPH_EGL_DEVICE");
   const gl::EglDeviceChoice choice = gl::chooseEglDevice(devices.infos, requested);
   if (!choice.error.empty()) throw RuntimeError(choice.error + devices.note);

@@ -53,9 +53,9 @@ class GlContext {
   std::string renderer() const;
   std::string version() const;
   std::string vendor() const;
-  std::string platform() const;   // "egl-device", "egl-surfaceless", "egl-default" or "glfw"
-  ContextDevice device() const;   // all of the above, and the EGL device
-  bool isSoftware() const;        // llvmpipe / softpipe / swrast
+  std::string platform() const;  // "egl-device", "egl-surfaceless", "egl-default" or "glfw"
+  ContextDevice device() const;  // all of the above, and the EGL device
+  bool isSoftware() const;       // llvmpipe / softpipe / swrast
   bool hasWindow() const;
 
   // Window only (no-ops / false / {0,0} headless).
