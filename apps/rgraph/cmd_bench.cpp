@@ -475,8 +475,8 @@ int runBench(const BenchOptions& options) {
     if (!options.figuresOnly && !aa.empty()) drawAaChart(options.out, aa, machineText(machine));
 
     std::cout << "rgraph bench: " << points.size() << " points, " << aa.size() << " aa rows in "
-              << static_cast<int>(wallS) << " s on " << describeContext(context->device()) << (options.quick ? " (--quick)" : "")
-              << (options.figuresOnly ? " (--figures-only)" : "") << "\n";
+              << static_cast<int>(wallS) << " s on " << describeContext(context->device())
+              << (options.quick ? " (--quick)" : "") << (options.figuresOnly ? " (--figures-only)" : "") << "\n";
     for (const auto& s : summary) std::cout << "  " << s << "\n";
     std::cout << "wrote " << (dir / "results.csv").string() << ", results.json, figures.md"
               << (options.figuresOnly || points.empty() ? ""

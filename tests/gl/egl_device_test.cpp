@@ -89,7 +89,8 @@ TEST(EglDevice, InvalidRequestListsTheDevices) {
   }
   EXPECT_NE(chooseEglDevice(devices, "99999999999999999999").error.find("no such EGL device"), std::string::npos)
       << "a number of any length is a number";
-  EXPECT_EQ(chooseEglDevice({}, "0").error, "RGRAPH_EGL_DEVICE=0: no such EGL device (0-based); EGL devices found: none");
+  EXPECT_EQ(chooseEglDevice({}, "0").error,
+            "RGRAPH_EGL_DEVICE=0: no such EGL device (0-based); EGL devices found: none");
 }
 
 }  // namespace
