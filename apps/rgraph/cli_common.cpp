@@ -126,6 +126,16 @@ nlohmann::json memoryJson(const Plan& plan) {
           {"peak_live_bytes", plan.peakLiveBytes}};
 }
 
+nlohmann::json contextJson(const ContextDevice& device) {
+  const bool onDevice = device.eglDevice >= 0;
+  return {{"vendor", device.vendor},
+          {"renderer", device.renderer},
+          {"version", device.version},
+          {"platform", device.platform},
+          {"egl_device", onDevice ? nlohmann::json(device.eglDevice) : nlohmann::json()},
+          {"egl_device_description", onDevice ? nlohmann::json(device.eglDeviceDescription) : nlohmann::json()}};
+}
+
 std::string errorLine(const std::string& what) {
   static const std::regex located(R"(^([^:\s][^:\n]*:[0-9]+(:[0-9]+)?): )");
   std::smatch m;

@@ -9,6 +9,7 @@
 
 #include "rgraph/config.h"
 #include "rgraph/diagnostics.h"
+#include "rgraph/gl/context.h"
 #include "rgraph/graph.h"
 #include "rgraph/pipeline_check.h"
 
@@ -52,6 +53,12 @@ std::string diagnosticsJson(const Diagnostics& diags);
 // A plan's "memory" object as `plan --json` and `render --stats` write it:
 // naive_bytes, allocated_bytes, peak_live_bytes (Plan's fields of those names).
 nlohmann::json memoryJson(const Plan& plan);
+
+// The device a context runs on, as `render --stats` ("context") and `bench`
+// (results.json's "machine") record it: vendor, renderer, version (GL_VENDOR,
+// GL_RENDERER, GL_VERSION), platform, egl_device (its index, null when not on
+// the device platform) and egl_device_description (null likewise).
+nlohmann::json contextJson(const ContextDevice& device);
 
 // Compile options for --width/--height and --max-texture-size (16384, the
 // OpenGL 4.5 minimum, when not given), with the limit's origin for messages.

@@ -102,15 +102,29 @@ class Progress {
 
 void writeText(const std::filesystem::path& path, const std::string& text) { writeOutputFile(path.string(), text); }
 
+// The GL strings and the EGL device of a run's "machine" (contextJson), one
+// line for figures.md; a run recorded before they were (an older
+// results.json) says so.
+std::string glText(const json& m) {
+  auto get = [&](const char* key) {
+    return m.contains(key) && m.at(key).is_string() ? m.at(key).get<std::string>() : std::string("not recorded");
+  };
+  std::string s = "GL_VENDOR " + get("vendor") + ", GL_RENDERER " + get("renderer") + ", GL_VERSION " +
+                  get("version") + "; EGL platform " + get("platform");
+  if (m.contains("egl_device") && m.at("egl_device").is_number_integer())
+    s += ", device " + std::to_string(m.at("egl_device").get<int>()) + ": " + get("egl_device_description");
+  return s + ".";
+}
+
 // figures.md: every table between the markers docs/performance.md uses, so a
 // block can be pasted (scripts/update-bench-figures.py) and checked
 // (tests/bench_cli).
 std::string figuresMarkdown(const std::vector<Point>& points, const Config& def,
                             const std::vector<ShippedResult>& shipped, const std::vector<AaRow>& aa,
-                            const std::string& sceneSpec) {
+                            const std::string& sceneSpec, const json& machine) {
   std::string s = "# rgraph bench: deterministic figures\n\nScene " + sceneSpec + "; default point " + describe(def) +
                   ". Error: 8-bit RGB against forward_lit with no cut-off into "
-                  "an rgba32f target.\n";
+                  "an rgba32f target.\n" + glText(machine) + "\n";
   if (!aa.empty())
     s += "aa: each method against its own pipeline rendered at 4x4 the size with no jitter, box-filtered down "
          "(8-bit values); edge pixels: luma step of " +
@@ -156,7 +170,8 @@ int replot(const BenchOptions& options) {
     for (const json& sj : j.value("shipped", json::array())) shipped.push_back(shippedFromJson(sj));
     std::vector<AaRow> aa;
     for (const json& aj : j.value("aa", json::array())) aa.push_back(aaFromJson(aj));
-    writeText(std::filesystem::path(options.out) / "figures.md", figuresMarkdown(points, def, shipped, aa, spec));
+    writeText(std::filesystem::path(options.out) / "figures.md",
+              figuresMarkdown(points, def, shipped, aa, spec, j.at("machine")));
     if (!points.empty())
       drawCharts(options.out, points, def, machineText(j.at("machine")),
                  sceneNote(spec, spec.rfind("many-lights", 0) == 0));
@@ -364,10 +379,9 @@ int runBench(const BenchOptions& options) {
   try {
     Scenes scenes(options.smoke && options.scene.empty() ? "many-lights:4" : options.scene);
     auto context = GlContext::create(ContextOptions{});
-    const json machine = {{"renderer", context->renderer()},
-                          {"version", context->version()},
-                          {"software", context->isSoftware()},
-                          {"hardware_threads", std::thread::hardware_concurrency()}};
+    json machine = contextJson(context->device());
+    machine["software"] = context->isSoftware();
+    machine["hardware_threads"] = std::thread::hardware_concurrency();
     ShaderLibrary shaders;
 
     Config def;
@@ -455,14 +469,14 @@ int runBench(const BenchOptions& options) {
     results["post"] = json::array();
     for (const auto& r : post) results["post"].push_back(postJson(r));
     writeText(dir / "results.json", results.dump(2) + "\n");
-    writeText(dir / "figures.md", figuresMarkdown(points, def, shipped, aa, scenes.spec()));
+    writeText(dir / "figures.md", figuresMarkdown(points, def, shipped, aa, scenes.spec(), machine));
     if (!options.figuresOnly && !points.empty())
       drawCharts(options.out, points, def, machineText(machine), sceneNote(scenes.spec(), scenes.procedural()));
     if (!options.figuresOnly && !aa.empty()) drawAaChart(options.out, aa, machineText(machine));
 
     std::cout << "rgraph bench: " << points.size() << " points, " << aa.size() << " aa rows in "
-              << static_cast<int>(wallS) << " s on " << context->renderer() << (options.quick ? " (--quick)" : "")
-              << (options.figuresOnly ? " (--figures-only)" : "") << "\n";
+              << static_cast<int>(wallS) << " s on " << describeContext(context->device())
+              << (options.quick ? " (--quick)" : "") << (options.figuresOnly ? " (--figures-only)" : "") << "\n";
     for (const auto& s : summary) std::cout << "  " << s << "\n";
     std::cout << "wrote " << (dir / "results.csv").string() << ", results.json, figures.md"
               << (options.figuresOnly || points.empty() ? ""

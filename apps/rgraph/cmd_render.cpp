@@ -28,7 +28,7 @@ namespace {
 
 void writeStats(const std::string& path, const std::vector<double>& frameMs,
                 const std::map<std::string, std::vector<double>>& passMs, const std::vector<std::string>& passOrder,
-                const Plan& plan) {
+                const Plan& plan, const ContextDevice& device) {
   nlohmann::json passes = nlohmann::json::array();
   for (const auto& name : passOrder) passes.push_back({{"name", name}, {"ms", median(passMs.at(name))}});
   auto [mn, mx] = std::minmax_element(frameMs.begin(), frameMs.end());
@@ -37,7 +37,8 @@ void writeStats(const std::string& path, const std::vector<double>& frameMs,
                           {"frame_ms_max", *mx},
                           {"frames", frameMs.size()},
                           {"passes", passes},
-                          {"memory", memoryJson(plan)}};
+                          {"memory", memoryJson(plan)},
+                          {"context", contextJson(device)}};
   writeOutputFile(path, stats.dump(2) + "\n", "stats file");
 }
 
@@ -173,7 +174,7 @@ int runRender(const RenderOptions& options) {
     ctxOptions.width = options.size.width;
     ctxOptions.height = options.size.height;
     auto context = GlContext::create(ctxOptions);
-    spdlog::info("OpenGL {} on {}", context->version(), context->renderer());
+    spdlog::info("GL context: {}", describeContext(context->device()));
 
     renderer->setScene(scene);
     const Camera start = camera ? *camera : scene->scene().camera;
@@ -219,7 +220,7 @@ int runRender(const RenderOptions& options) {
     writePng(options.out, extent.width, extent.height, renderer->readOutputRGBA8());
     std::cout << "wrote " << options.out << " (" << extent.width << "x" << extent.height << ", " << frames
               << (frames == 1 ? " frame" : " frames") << ", median " << median(frameMs) << " ms)\n";
-    if (!options.stats.empty()) writeStats(options.stats, frameMs, passMs, passOrder, renderer->plan());
+    if (!options.stats.empty()) writeStats(options.stats, frameMs, passMs, passOrder, renderer->plan(), context->device());
   } catch (const LocatedError& e) {
     std::cerr << e.what() << "\n";  // `FILE:LINE: error: ...` already
     return kExitFailure;

@@ -15,6 +15,7 @@
 
 #include "../../apps/rgraph/bench_chart.h"
 
+#include "bench_cli/context_json.h"
 #include "support/run_command.h"
 
 namespace {
@@ -81,7 +82,14 @@ TEST(BenchCli, SmokeSweepWritesResultsAndCharts) {
     EXPECT_GT(p.at("allocated_bytes").get<double>(), 0.0);
     EXPECT_FALSE(p.contains("error")) << p.dump();
   }
-  EXPECT_TRUE(j.at("machine").contains("renderer"));
+  // The context it ran on: GL strings and EGL device, as a context of this process sees them.
+  const rgraph::ContextDevice device = rgraph::test::thisProcessDevice();
+  rgraph::test::expectContextJson(j.at("machine"), device);
+  EXPECT_EQ(j.at("machine").at("software"), device.renderer.find("llvmpipe") != std::string::npos) << device.renderer;
+  EXPECT_NE(slurp(dir / "figures.md").find("GL_VENDOR " + device.vendor + ", GL_RENDERER " + device.renderer +
+                                           ", GL_VERSION " + device.version + "; EGL platform " + device.platform),
+            std::string::npos)
+      << slurp(dir / "figures.md");
 
   // Charts: SVG and PNG of each, at the chart's size.
   for (const char* name : {"frame_ms_vs_lights", "frame_ms_vs_error", "bytes_vs_error"}) {

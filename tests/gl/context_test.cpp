@@ -1,6 +1,7 @@
 #include <GL/glcorearb.h>
 
 #include <cstdlib>
+#include <optional>
 
 #include "gl_test_util.h"
 #include "rgraph/error.h"
@@ -113,6 +114,89 @@ TEST_F(GlTest, WindowContextRendersAGraph) {
       EXPECT_FALSE(win->shouldClose());
     }
     EXPECT_EQ(win->debugErrorCount(), 0u) << win->lastDebugError();
+  }
+  glContext().makeCurrent();
+}
+
+namespace {
+// $RGRAPH_EGL_DEVICE set (or unset: null) for one scope, as it was afterwards.
+class EglDeviceVariable {
+ public:
+  explicit EglDeviceVariable(const char* value) {
+    if (const char* old = std::getenv("RGRAPH_EGL_DEVICE")) saved_ = old;
+    if (value)
+      setenv("RGRAPH_EGL_DEVICE", value, 1);
+    else
+      unsetenv("RGRAPH_EGL_DEVICE");
+  }
+  ~EglDeviceVariable() {
+    if (saved_)
+      setenv("RGRAPH_EGL_DEVICE", saved_->c_str(), 1);
+    else
+      unsetenv("RGRAPH_EGL_DEVICE");
+  }
+
+ private:
+  std::optional<std::string> saved_;
+};
+}  // namespace
+
+// The context says where it runs: the GL strings it was made with, and the
+// EGL device exactly when it is on the device platform. A GPU is found
+// through the device platform (what a Mesa surfaceless display would hide).
+TEST_F(GlTest, ContextNamesItsDevice) {
+  std::unique_ptr<GlContext> c;
+  {
+    EglDeviceVariable unset(nullptr);
+    c = GlContext::create();
+  }
+  const ContextDevice d = c->device();
+  auto glString = [](GLenum name) { return std::string(reinterpret_cast<const char*>(glGetString(name))); };
+  EXPECT_EQ(d.vendor, glString(GL_VENDOR));
+  EXPECT_EQ(d.renderer, glString(GL_RENDERER));
+  EXPECT_EQ(d.version, glString(GL_VERSION));
+  EXPECT_EQ(d.platform, c->platform());
+  EXPECT_EQ(d.eglDevice >= 0, d.platform == "egl-device") << describeContext(d);
+  EXPECT_EQ(d.eglDeviceDescription.empty(), d.eglDevice < 0) << describeContext(d);
+  if (!c->isSoftware()) {
+    EXPECT_EQ(d.platform, "egl-device") << "a GPU, not through the device platform";
+  } else if (d.eglDevice >= 0) {
+    EXPECT_EQ(d.eglDeviceDescription, "software (EGL_MESA_device_software)");
+  }
+  EXPECT_NE(describeContext(d).find(d.renderer), std::string::npos);
+  c.reset();
+  glContext().makeCurrent();
+  EXPECT_EQ(ctx().renderer(), glString(GL_RENDERER));
+}
+
+// RGRAPH_EGL_DEVICE=0: device 0 of the enumeration, whatever it is (here
+// Mesa's software device), on the device platform.
+TEST_F(GlTest, EglDeviceVariablePicksTheDevice) {
+  std::unique_ptr<GlContext> c;
+  {
+    EglDeviceVariable zero("0");
+    c = GlContext::create();
+  }
+  EXPECT_EQ(c->platform(), "egl-device");
+  EXPECT_EQ(c->device().eglDevice, 0);
+  EXPECT_FALSE(c->device().eglDeviceDescription.empty());
+  EXPECT_NE(c->version().find("4.5"), std::string::npos) << c->version();
+  c.reset();
+  glContext().makeCurrent();
+}
+
+TEST_F(GlTest, EglDeviceVariableOutOfRangeListsTheDevices) {
+  for (const char* bad : {"999", "gpu"}) {
+    SCOPED_TRACE(bad);
+    EglDeviceVariable v(bad);
+    try {
+      auto c = GlContext::create();
+      FAIL() << "expected RuntimeError, got " << describeContext(c->device());
+    } catch (const RuntimeError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind("RGRAPH_EGL_DEVICE=", 0), 0u) << what;
+      EXPECT_NE(what.find("EGL devices found: 0: "), std::string::npos) << what;
+    }
   }
   glContext().makeCurrent();
 }

@@ -7,12 +7,14 @@
 #include <malloc.h>
 #include <spdlog/spdlog.h>
 
-#include <cstring>
+#include <algorithm>
+#include <cstdlib>
 #include <map>
 #include <mutex>
 #include <vector>
 
 #include "rgraph/error.h"
+#include "rgraph/gl/egl_device.h"
 
 namespace rgraph {
 
@@ -21,6 +23,9 @@ struct GlContext::Impl {
   EGLContext context = EGL_NO_CONTEXT;
   GLFWwindow* window = nullptr;
   std::string platform;
+  int eglDevice = -1;
+  std::string eglDeviceDescription;
+  std::string vendor, renderer, version;  // read once, when the context was made
   mutable std::mutex mutex;
   std::string lastError;
 };
@@ -48,13 +53,7 @@ std::string eglErrorName(EGLint e) {
   }
 }
 
-bool hasExtension(const char* list, const char* name) {
-  if (!list) return false;
-  size_t n = std::strlen(name);
-  for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += n)
-    if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
-  return false;
-}
+using gl::hasEglExtension;
 
 std::string glString(GLenum name) {
   const GLubyte* s = glGetString(name);
@@ -111,6 +110,10 @@ std::map<EGLDisplay, int> gDisplayUsers;
 void useDisplay(EGLDisplay d) {
   std::lock_guard<std::mutex> lock(gDisplayMutex);
   ++gDisplayUsers[d];
+}
+bool displayInUse(EGLDisplay d) {
+  std::lock_guard<std::mutex> lock(gDisplayMutex);
+  return gDisplayUsers.count(d) > 0;
 }
 bool lastDisplayUser(EGLDisplay d) {
   std::lock_guard<std::mutex> lock(gDisplayMutex);
@@ -180,51 +183,153 @@ GlContext::~GlContext() {
 
 namespace {
 
-// Returns an initialised display or EGL_NO_DISPLAY; appends what failed to `why`.
-EGLDisplay openDisplay(std::string& platform, std::string& why) {
+// EGL's devices (EGL_EXT_device_enumeration), each with its handle and what
+// eglQueryDeviceStringEXT says about it.
+struct EglDevices {
+  std::vector<EGLDeviceEXT> handles;
+  std::vector<gl::EglDeviceInfo> infos;
+  std::string note;  // why there are none, where EGL cannot enumerate
+};
+
+EglDevices enumerateEglDevices(const char* clientExts) {
+  EglDevices out;
+  auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+  auto queryString = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+  EGLint count = 0;
+  if (!hasEglExtension(clientExts, "EGL_EXT_device_enumeration") ||
+      !hasEglExtension(clientExts, "EGL_EXT_platform_device") || !queryDevices || !queryString) {
+    out.note = " (this EGL lacks EGL_EXT_device_enumeration or EGL_EXT_platform_device)";
+    return out;
+  }
+  if (!queryDevices(0, nullptr, &count) || count <= 0) return out;
+  out.handles.resize(static_cast<size_t>(count));
+  if (!queryDevices(count, out.handles.data(), &count)) count = 0;
+  out.handles.resize(static_cast<size_t>(std::max<EGLint>(count, 0)));
+  for (EGLDeviceEXT device : out.handles) {
+    const char* exts = queryString(device, EGL_EXTENSIONS);
+    gl::EglDeviceInfo info = gl::eglDeviceFromExtensions(exts ? exts : "");
+    // Only what the device's extensions promise: a query it does not know is an EGL error.
+    auto query = [&](EGLint name, const char* extension) -> std::string {
+      if (!hasEglExtension(exts, extension)) return {};
+      const char* s = queryString(device, name);
+      return s ? s : "";
+    };
+    // NVIDIA in a container often has no DRM node it can open: the device
+    // still works through EGL_PLATFORM_DEVICE_EXT, the node is only a label.
+    info.drmNode = query(EGL_DRM_RENDER_NODE_FILE_EXT, "EGL_EXT_device_drm_render_node");
+    if (info.drmNode.empty()) info.drmNode = query(EGL_DRM_DEVICE_FILE_EXT, "EGL_EXT_device_drm");
+    info.vendor = query(EGL_VENDOR, "EGL_EXT_device_query_name");
+    info.renderer = query(EGL_RENDERER_EXT, "EGL_EXT_device_query_name");
+    out.infos.push_back(std::move(info));
+  }
+  eglGetError();  // a failed string query leaves nothing for the next caller to misread
+  return out;
+}
+
+// A 4.5 core context on an initialised display; EGL_NO_CONTEXT with the
+// reason appended to `why`.
+EGLContext createOnDisplay(EGLDisplay display, const std::string& name, bool debug, std::string& why) {
+  const char* dpyExts = eglQueryString(display, EGL_EXTENSIONS);
+  if (!eglBindAPI(EGL_OPENGL_API)) {
+    why += name + ": no desktop OpenGL (" + eglErrorName(eglGetError()) + "); ";
+    return EGL_NO_CONTEXT;
+  }
+  if (!hasEglExtension(dpyExts, "EGL_KHR_surfaceless_context")) {
+    why += name + ": lacks EGL_KHR_surfaceless_context, needed for headless rendering; ";
+    return EGL_NO_CONTEXT;
+  }
+  EGLConfig config = EGL_NO_CONFIG_KHR;
+  if (!hasEglExtension(dpyExts, "EGL_KHR_no_config_context")) {
+    const EGLint attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    EGLint n = 0;
+    if (!eglChooseConfig(display, attribs, &config, 1, &n) || n < 1) {
+      why += name + ": no config supports desktop OpenGL; ";
+      return EGL_NO_CONTEXT;
+    }
+  }
+  std::vector<EGLint> attribs = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                 EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
+  if (debug) attribs.insert(attribs.end(), {EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE});
+  attribs.push_back(EGL_NONE);
+  EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, attribs.data());
+  if (context == EGL_NO_CONTEXT) {
+    why += name + ": cannot create an OpenGL 4.5 core context (" + eglErrorName(eglGetError()) + "); ";
+    return EGL_NO_CONTEXT;
+  }
+  if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+    why += name + ": eglMakeCurrent failed (" + eglErrorName(eglGetError()) + "); ";
+    eglDestroyContext(display, context);
+    return EGL_NO_CONTEXT;
+  }
+  return context;
+}
+
+// Makes im's headless context current: on the device RGRAPH_EGL_DEVICE names,
+// else on the first hardware device that gives a 4.5 context, else as before
+// devices were chosen (Mesa surfaceless, any device, the default display).
+void openHeadless(GlContext::Impl& im, bool debug) {
   const char* clientExts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   auto getPlatformDisplay =
       reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-  auto tryInit = [&](EGLDisplay d, const char* name) -> bool {
+  EglDevices devices = getPlatformDisplay ? enumerateEglDevices(clientExts)
+                                          : EglDevices{{}, {}, " (this EGL lacks eglGetPlatformDisplayEXT)"};
+  const char* requested = std::getenv("RGRAPH_EGL_DEVICE");
+  const gl::EglDeviceChoice choice = gl::chooseEglDevice(devices.infos, requested);
+  if (!choice.error.empty()) throw RuntimeError(choice.error + devices.note);
+
+  std::string why;
+  auto attempt = [&](EGLDisplay d, const std::string& name) -> bool {
     if (d == EGL_NO_DISPLAY) {
-      why += std::string(name) + ": no display (" + eglErrorName(eglGetError()) + "); ";
+      why += name + ": no display (" + eglErrorName(eglGetError()) + "); ";
       return false;
     }
+    const bool shared = displayInUse(d);  // another GlContext of this process is on it
     EGLint major = 0, minor = 0;
     if (!eglInitialize(d, &major, &minor)) {
-      why += std::string(name) + ": eglInitialize failed (" + eglErrorName(eglGetError()) + "); ";
+      why += name + ": eglInitialize failed (" + eglErrorName(eglGetError()) + "); ";
       return false;
     }
-    platform = name;
+    im.context = createOnDisplay(d, name, debug, why);
+    if (im.context == EGL_NO_CONTEXT) {
+      if (!shared) eglTerminate(d);
+      return false;
+    }
+    im.display = d;
+    useDisplay(d);
     return true;
   };
+  auto attemptDevice = [&](size_t i) -> bool {
+    im.platform = "egl-device";
+    im.eglDevice = static_cast<int>(i);
+    im.eglDeviceDescription = gl::describeEglDevice(devices.infos[i]);
+    if (attempt(getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices.handles[i], nullptr),
+                "egl-device " + std::to_string(i) + " (" + im.eglDeviceDescription + ")"))
+      return true;
+    im.eglDevice = -1;
+    im.eglDeviceDescription.clear();
+    return false;
+  };
 
-  if (getPlatformDisplay && hasExtension(clientExts, "EGL_MESA_platform_surfaceless")) {
-    EGLDisplay d = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-    if (tryInit(d, "egl-surfaceless")) return d;
+  std::vector<bool> tried(devices.handles.size(), false);
+  for (size_t i : choice.candidates) {
+    tried[i] = true;
+    if (attemptDevice(i)) return;
+  }
+  if (!choice.fallback) throw RuntimeError("RGRAPH_EGL_DEVICE=" + std::string(requested) + ": " + why);
+
+  if (getPlatformDisplay && hasEglExtension(clientExts, "EGL_MESA_platform_surfaceless")) {
+    im.platform = "egl-surfaceless";
+    if (attempt(getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr), im.platform)) return;
   } else {
     why += "egl-surfaceless: EGL_MESA_platform_surfaceless not supported; ";
   }
-
-  if (getPlatformDisplay && hasExtension(clientExts, "EGL_EXT_platform_device")) {
-    auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-    EGLDeviceEXT devices[16];
-    EGLint count = 0;
-    if (queryDevices && queryDevices(16, devices, &count) && count > 0) {
-      for (EGLint i = 0; i < count; ++i) {
-        EGLDisplay d = getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-        if (tryInit(d, "egl-device")) return d;
-      }
-    } else {
-      why += "egl-device: no EGL devices; ";
-    }
-  } else {
-    why += "egl-device: EGL_EXT_platform_device not supported; ";
-  }
-
-  EGLDisplay d = eglGetDisplay(EGL_DEFAULT_DISPLAY);
-  if (tryInit(d, "egl-default")) return d;
-  return EGL_NO_DISPLAY;
+  for (size_t i = 0; i < devices.handles.size(); ++i)
+    if (!tried[i] && attemptDevice(i)) return;
+  if (devices.handles.empty()) why += "egl-device: no EGL devices" + devices.note + "; ";
+  im.platform = "egl-default";
+  if (attempt(eglGetDisplay(EGL_DEFAULT_DISPLAY), im.platform)) return;
+  im.platform.clear();
+  throw RuntimeError("cannot create a headless OpenGL 4.5 core context: " + why);
 }
 
 }  // namespace
@@ -271,35 +376,7 @@ std::unique_ptr<GlContext> GlContext::createImpl(const ContextOptions& options) 
     glfwMakeContextCurrent(w);
     glfwSwapInterval(0);
   } else {
-    std::string why;
-    EGLDisplay display = openDisplay(im.platform, why);
-    if (display == EGL_NO_DISPLAY) throw RuntimeError("cannot open an EGL display: " + why);
-    im.display = display;
-    useDisplay(display);
-    const char* dpyExts = eglQueryString(display, EGL_EXTENSIONS);
-    if (!eglBindAPI(EGL_OPENGL_API))
-      throw RuntimeError("EGL (" + im.platform + ") does not support desktop OpenGL: " +
-                         eglErrorName(eglGetError()));
-    if (!hasExtension(dpyExts, "EGL_KHR_surfaceless_context"))
-      throw RuntimeError("EGL (" + im.platform + ") lacks EGL_KHR_surfaceless_context, needed for headless rendering");
-
-    EGLConfig config = EGL_NO_CONFIG_KHR;
-    if (!hasExtension(dpyExts, "EGL_KHR_no_config_context")) {
-      const EGLint attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
-      EGLint n = 0;
-      if (!eglChooseConfig(display, attribs, &config, 1, &n) || n < 1)
-        throw RuntimeError("EGL (" + im.platform + "): no config supports desktop OpenGL");
-    }
-    std::vector<EGLint> attribs = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                   EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
-    if (options.debug) attribs.insert(attribs.end(), {EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE});
-    attribs.push_back(EGL_NONE);
-    im.context = eglCreateContext(display, config, EGL_NO_CONTEXT, attribs.data());
-    if (im.context == EGL_NO_CONTEXT)
-      throw RuntimeError("EGL (" + im.platform + "): cannot create an OpenGL 4.5 core context: " +
-                         eglErrorName(eglGetError()));
-    if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, im.context))
-      throw RuntimeError("EGL (" + im.platform + "): eglMakeCurrent failed: " + eglErrorName(eglGetError()));
+    openHeadless(im, options.debug);
   }
 
   tCurrent = ctx.get();
@@ -310,8 +387,11 @@ std::unique_ptr<GlContext> GlContext::createImpl(const ContextOptions& options) 
   if (major < 4 || (major == 4 && minor < 5))
     throw RuntimeError("OpenGL 4.5 is required, the context reports " + glString(GL_VERSION));
 
+  im.vendor = glString(GL_VENDOR);
+  im.renderer = glString(GL_RENDERER);
+  im.version = glString(GL_VERSION);
   if (options.debug) ctx->installDebugCallback();
-  spdlog::debug("GL context ({}): {} / {}", im.platform, glString(GL_RENDERER), glString(GL_VERSION));
+  spdlog::debug("GL context: {}", describeContext(ctx->device()));
   return ctx;
 }
 
@@ -336,10 +416,21 @@ void GlContext::makeCurrent() {
   }
 }
 
-std::string GlContext::renderer() const { return glString(GL_RENDERER); }
-std::string GlContext::version() const { return glString(GL_VERSION); }
-std::string GlContext::vendor() const { return glString(GL_VENDOR); }
+std::string GlContext::renderer() const { return impl_->renderer; }
+std::string GlContext::version() const { return impl_->version; }
+std::string GlContext::vendor() const { return impl_->vendor; }
 std::string GlContext::platform() const { return impl_->platform; }
+
+ContextDevice GlContext::device() const {
+  return {impl_->platform, impl_->eglDevice, impl_->eglDeviceDescription, impl_->vendor, impl_->renderer,
+          impl_->version};
+}
+
+std::string describeContext(const ContextDevice& d) {
+  std::string s = d.renderer + ", OpenGL " + d.version + ", " + d.vendor + " (" + d.platform;
+  if (d.eglDevice >= 0) s += " " + std::to_string(d.eglDevice) + ": " + d.eglDeviceDescription;
+  return s + ")";
+}
 
 bool GlContext::isSoftware() const {
   std::string r = renderer();

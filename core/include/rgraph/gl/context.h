@@ -18,21 +18,44 @@ struct ContextOptions {
   std::string title = "rgraph";
 };
 
+// The device a context runs on: what `rgraph render --stats` and `rgraph
+// bench` record, and what the context's creation logs (debug level).
+struct ContextDevice {
+  std::string platform;              // GlContext::platform()
+  int eglDevice = -1;                // index in EGL's device enumeration (what RGRAPH_EGL_DEVICE names);
+                                     // -1 when the context is not on the device platform
+  std::string eglDeviceDescription;  // that device (rgraph/gl/egl_device.h): "software (EGL_MESA_device_software)",
+                                     // "hardware, CUDA (EGL_NV_device_cuda), /dev/dri/renderD128, ..."; empty when -1
+  std::string vendor;                // GL_VENDOR
+  std::string renderer;              // GL_RENDERER
+  std::string version;               // GL_VERSION
+};
+// One line: "RENDERER, OpenGL VERSION, VENDOR (PLATFORM[ N: DEVICE])".
+std::string describeContext(const ContextDevice& device);
+
 class GlContext {
  public:
   // Throws rgraph::RuntimeError with the reason when no 4.5 core context can be made.
-  // Headless tries, in order: EGL surfaceless (Mesa), EGL device platform (NVIDIA),
-  // eglGetDisplay(EGL_DEFAULT_DISPLAY).
+  // Headless: with $RGRAPH_EGL_DEVICE=N (0-based), EGL device N of
+  // EGL_EXT_device_enumeration through EGL_EXT_platform_device, nothing else
+  // (not a number, or no device N: the error lists the devices). Without it,
+  // the first hardware device that gives a context (a GPU: any device
+  // without EGL_MESA_device_software; NVIDIA's need no DRM node), then as
+  // when none exists: EGL surfaceless (Mesa), the other devices (llvmpipe's),
+  // eglGetDisplay(EGL_DEFAULT_DISPLAY). The variable is ignored for windows.
   static std::unique_ptr<GlContext> create(const ContextOptions& options = {});
   ~GlContext();
   GlContext(const GlContext&) = delete;
   GlContext& operator=(const GlContext&) = delete;
 
-  std::string renderer() const;   // GL_RENDERER
-  std::string version() const;    // GL_VERSION
-  std::string vendor() const;     // GL_VENDOR
-  std::string platform() const;   // "egl-surfaceless", "egl-device", "egl-default" or "glfw"
-  bool isSoftware() const;        // llvmpipe / softpipe / swrast
+  // GL_RENDERER, GL_VERSION and GL_VENDOR, read when the context was made
+  // (the same whichever context is current now).
+  std::string renderer() const;
+  std::string version() const;
+  std::string vendor() const;
+  std::string platform() const;  // "egl-device", "egl-surfaceless", "egl-default" or "glfw"
+  ContextDevice device() const;  // all of the above, and the EGL device
+  bool isSoftware() const;       // llvmpipe / softpipe / swrast
   bool hasWindow() const;
 
   // Window only (no-ops / false / {0,0} headless).
