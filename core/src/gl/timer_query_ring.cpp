@@ -3,6 +3,7 @@
 #include <GL/glcorearb.h>
 
 #include <algorithm>
+#include <array>
 
 namespace rgraph::gl {
 
@@ -35,12 +36,16 @@ bool TimerQueryRing::tryRead(Slot& slot) {
 }
 
 void TimerQueryRing::collect() {
-  // Oldest first, so that result() ends on the newest frame that is in.
-  std::vector<Slot*> waiting;
+  // Oldest first, so that result() ends on the newest frame that is in (no
+  // allocation: this runs every frame).
+  std::array<Slot*, kDepth> waiting{};
+  size_t n = 0;
   for (Slot& s : slots_)
-    if (s.state == State::inFlight || s.state == State::dropped) waiting.push_back(&s);
-  std::sort(waiting.begin(), waiting.end(), [](const Slot* a, const Slot* b) { return a->frame < b->frame; });
-  for (Slot* s : waiting) {
+    if (s.state == State::inFlight || s.state == State::dropped) waiting[n++] = &s;
+  std::sort(waiting.begin(), waiting.begin() + static_cast<std::ptrdiff_t>(n),
+            [](const Slot* a, const Slot* b) { return a->frame < b->frame; });
+  for (size_t w = 0; w < n; ++w) {
+    Slot* s = waiting[w];
     if (s->state == State::inFlight && resultFrame_ && s->frame < *resultFrame_) {
       s->state = State::dropped;  // older than a frame already reported: only freed
     }
