@@ -12,8 +12,12 @@
 #include <optional>
 #include <string>
 
+#include "gl/gl_test_util.h"  // GraphBuilder (header only)
 #include "gl_wait_log.h"
+#include "history_passes.h"
+#include "rgraph/error.h"
 #include "rgraph/gl/executor.h"
+#include "rgraph/registry.h"
 #include "rgraph/renderer.h"
 #include "test_support.h"
 
@@ -151,6 +155,64 @@ TEST(NoStall, ARebuildAttributesNoTimesAcrossIt) {
   exec.renderFrame();
   exec.collectTimings(/*wait=*/true);
   EXPECT_EQ(exec.timingsFrame(), resizedAt);
+}
+
+// A pass type that draws nothing and throws the third time it runs.
+class ThrowsOnce final : public PassInstance {
+ public:
+  void execute(PassContext&) override {
+    if (++runs_ == 3) throw RuntimeError("the third frame fails on purpose");
+  }
+
+ private:
+  int runs_ = 0;
+};
+
+// A frame that throws half-way leaves its queries begun and ended in pairs
+// (no GL error after), and the frames after it are timed.
+TEST(NoStall, AFrameThatThrowsLeavesTheQueriesBalancedAndTimesKeepComing) {
+  GlContext& context = testsupport::sharedGlContext();
+  PassRegistry reg = PassRegistry::builtins();
+  test::addHistoryTestTypes(reg);
+  if (!reg.find("stall_test_throw")) {
+    PassTypeDesc t;
+    t.name = "stall_test_throw";
+    t.description = "test: throws the third time it runs";
+    t.slots = {test::history_detail::slot("color", Access::color_attachment)};
+    t.create = [] { return std::make_unique<ThrowsOnce>(); };
+    reg.add(std::move(t));
+  }
+  test::GraphBuilder g;
+  g.texture("x", Format::rgba8).texture("y", Format::rgba8).output("out");
+  g.pass("colour", "history_test_colour", {test::writeUse("color", Access::color_attachment, "x")});
+  g.pass("throws", "stall_test_throw", {test::writeUse("color", Access::color_attachment, "y")}, {}, true);
+  g.pass("present", "present",
+         {test::readUse("src", Access::sampled, "x"), test::writeUse("dst", Access::color_attachment, "out")});
+  ShaderLibrary shaders;
+  Executor exec(g.config(), reg, shaders);
+  exec.setGpuTimerQueries(true);
+  exec.resize({16, 8});
+  const uint64_t errorsBefore = context.debugErrorCount();
+  stalltest::resetWaits();
+  std::vector<uint64_t> reported;  // the frames timings were of, each once
+  for (int call = 0; call < 9; ++call) {
+    if (call == 2)
+      EXPECT_THROW(exec.renderFrame(), RuntimeError);
+    else
+      exec.renderFrame();
+    if (exec.timingsFrame() && (reported.empty() || reported.back() != *exec.timingsFrame()))
+      reported.push_back(*exec.timingsFrame());
+  }
+  exec.collectTimings(/*wait=*/true);
+  reported.push_back(*exec.timingsFrame());
+  EXPECT_EQ(context.debugErrorCount(), errorsBefore) << "a GL error: a query left begun, or ended twice";
+  EXPECT_TRUE(stalltest::waits().unavailableReads.empty()) << listed(stalltest::waits());
+  // frameIndex counts the frames that completed (8): the one that threw is
+  // none, and the frame after it ran as frame 2. Times keep coming, in order.
+  EXPECT_EQ(exec.frameIndex(), 8u);
+  EXPECT_EQ(reported.back(), exec.frameIndex() - 1);
+  EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
+  EXPECT_GE(reported.size(), 3u);
 }
 
 // Software renderers keep the CPU clock (a glFinish after each pass, asked
