@@ -46,9 +46,7 @@ double timedFrame(Executor& exec) {
   return ms;
 }
 
-bool timedPasses(const Executor& exec) {
-  return exec.frameIndex() > 0 && exec.timingsFrame() == exec.frameIndex() - 1;
-}
+bool timedPasses(const Executor& exec) { return exec.frameIndex() > 0 && exec.timingsFrame() == exec.frameIndex() - 1; }
 
 Measured measure(PipelineConfig cfg, const Scene& scene, Extent size, ShaderLibrary& shaders, GlContext& context,
                  const FrameBudget& budget) {

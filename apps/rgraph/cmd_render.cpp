@@ -47,8 +47,8 @@ struct PassTimes {
   }
 };
 
-void writeStats(const std::string& path, const std::vector<double>& frameMs, const PassTimes& passTimes,
-                bool cpuTimed, const Plan& plan) {
+void writeStats(const std::string& path, const std::vector<double>& frameMs, const PassTimes& passTimes, bool cpuTimed,
+                const Plan& plan) {
   const auto& passMs = passTimes.ms;
   const auto& passOrder = passTimes.order;
   nlohmann::json passes = nlohmann::json::array();

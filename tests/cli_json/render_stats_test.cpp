@@ -20,10 +20,10 @@ TEST(CliRenderStats, PassTimesSayTheirClockAndHowManyFramesTheyAreOf) {
   const fs::path dir = fs::temp_directory_path() / ("rgraph-stats-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string stats = (dir / "s.json").string();
-  const auto r = rgraph::testsupport::runCommand(
-      "RGRAPH_CACHE_DIR=" + dir.string() + " " + std::string(RGRAPH_CLI) + " render " + RGRAPH_SOURCE_DIR +
-      "/pipelines/default.json --width 64 --height 48 --frames 4 --out " + (dir / "a.png").string() + " --stats " +
-      stats + " 2>&1");
+  const auto r = rgraph::testsupport::runCommand("RGRAPH_CACHE_DIR=" + dir.string() + " " + std::string(RGRAPH_CLI) +
+                                                 " render " + RGRAPH_SOURCE_DIR +
+                                                 "/pipelines/default.json --width 64 --height 48 --frames 4 --out " +
+                                                 (dir / "a.png").string() + " --stats " + stats + " 2>&1");
   ASSERT_EQ(r.exitCode, 0) << r.out;
   std::ifstream in(stats);
   const nlohmann::json s = nlohmann::json::parse(in);

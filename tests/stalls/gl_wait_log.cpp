@@ -65,11 +65,11 @@ using rgraph::stalltest::real;
 using rgraph::stalltest::resultRead;
 
 // The entry points, under their own names. Each static `fn` is looked up once.
-#define RGRAPH_FORWARD(ret, name, params, args, record)          \
+#define RGRAPH_FORWARD(ret, name, params, args, record)                        \
   extern "C" __attribute__((visibility("default"))) ret APIENTRY name params { \
-    static const auto fn = real<ret(APIENTRY*) params>(#name);    \
-    record;                                                        \
-    return fn args;                                                \
+    static const auto fn = real<ret(APIENTRY*) params>(#name);                 \
+    record;                                                                    \
+    return fn args;                                                            \
   }
 
 RGRAPH_FORWARD(void, glFinish, (void), (), blocked("glFinish"))
@@ -102,12 +102,12 @@ RGRAPH_FORWARD(void, glBeginQuery, (GLenum target, GLuint id), (target, id),
 
 // The four query getters: a result read is judged before the call; an
 // availability answer is recorded after it.
-#define RGRAPH_QUERY_GETTER(name, type)                                         \
+#define RGRAPH_QUERY_GETTER(name, type)                                                                    \
   extern "C" __attribute__((visibility("default"))) void APIENTRY name(GLuint id, GLenum pname, type* v) { \
-    static const auto fn = real<void(APIENTRY*)(GLuint, GLenum, type*)>(#name); \
-    resultRead(id, pname, #name);                                               \
-    fn(id, pname, v);                                                           \
-    availability(id, pname, *v != 0);                                           \
+    static const auto fn = real<void(APIENTRY*)(GLuint, GLenum, type*)>(#name);                            \
+    resultRead(id, pname, #name);                                                                          \
+    fn(id, pname, v);                                                                                      \
+    availability(id, pname, *v != 0);                                                                      \
   }
 RGRAPH_QUERY_GETTER(glGetQueryObjectiv, GLint)
 RGRAPH_QUERY_GETTER(glGetQueryObjectuiv, GLuint)

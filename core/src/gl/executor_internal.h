@@ -13,7 +13,6 @@
 
 #include "imported_texture.h"
 #include "pass_programs.h"
-#include "timer_query_ring.h"
 #include "rgraph/gl/context_identity.h"
 #include "rgraph/gl/executor.h"
 #include "rgraph/gl/gpu_scene.h"
@@ -21,6 +20,7 @@
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/pass.h"
 #include "rgraph/scene.h"
+#include "timer_query_ring.h"
 
 namespace rgraph {
 namespace exec_detail {
