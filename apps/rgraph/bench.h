@@ -120,8 +120,13 @@ Measured measure(PipelineConfig pipeline, const Scene& scene, Extent size, Shade
 // The executor measure() renders with: `cfg` adapted to the scene as
 // `rgraph render` does, built and sized. Throws RuntimeError.
 std::unique_ptr<Executor> makeExecutor(PipelineConfig& cfg, const Scene& scene, Extent size, ShaderLibrary& shaders);
-// One frame, wall clock around renderFrame() + glFinish(), in ms.
+// One frame, wall clock around renderFrame() + glFinish(), in ms. The
+// finish puts that frame's timer query results in: exec.timings() are then
+// its own (Executor::collectTimings) whenever timedPasses(exec) says so.
 double timedFrame(Executor& exec);
+// Whether exec.timings() are of the frame just rendered (the only pass times
+// a bench records: GPU queries are otherwise of an earlier frame).
+bool timedPasses(const Executor& exec);
 ImageError compareImages(const std::vector<uint8_t>& a, const std::vector<uint8_t>& ref);
 // A rough cost model (ms at 640x360 on llvmpipe), for the ETA only.
 double estimateFrameMs(const Config& c);

@@ -220,10 +220,11 @@ std::vector<std::vector<uint8_t>> timeGroup(const json& shipped, const std::vect
     for (size_t i = 0; i < rows.size(); ++i) {
       const double ms = timedFrame(*execs[i]);
       if (f < plan.warm) continue;
+      rows[i]->frameMs.push_back(ms);
+      if (!timedPasses(*execs[i])) continue;
       double effect = 0.0;
       for (const auto& t : execs[i]->timings())
         if (passes.count(t.name)) effect += t.ms;
-      rows[i]->frameMs.push_back(ms);
       rows[i]->effectMs.push_back(effect);
     }
   std::vector<std::vector<uint8_t>> images;

@@ -26,9 +26,31 @@
 namespace rgraph::cli {
 namespace {
 
-void writeStats(const std::string& path, const std::vector<double>& frameMs,
-                const std::map<std::string, std::vector<double>>& passMs, const std::vector<std::string>& passOrder,
+// Pass times of the frames whose timings came in (each once: with GPU timer
+// queries they arrive frames later, and a frame that found its queries busy
+// has none), medians over those frames.
+struct PassTimes {
+  std::map<std::string, std::vector<double>> ms;
+  std::vector<std::string> order;
+  std::optional<uint64_t> lastFrame;  // the last frame recorded
+  size_t frames = 0;
+
+  void take(const Renderer& renderer) {
+    const std::optional<uint64_t> frame = renderer.timingsFrame();
+    if (!frame || frame == lastFrame) return;
+    lastFrame = frame;
+    ++frames;
+    for (const auto& t : renderer.timings()) {
+      if (!ms.count(t.name)) order.push_back(t.name);
+      ms[t.name].push_back(t.ms);
+    }
+  }
+};
+
+void writeStats(const std::string& path, const std::vector<double>& frameMs, const PassTimes& passTimes, bool cpuTimed,
                 const Plan& plan, const ContextDevice& device) {
+  const auto& passMs = passTimes.ms;
+  const auto& passOrder = passTimes.order;
   nlohmann::json passes = nlohmann::json::array();
   for (const auto& name : passOrder) passes.push_back({{"name", name}, {"ms", median(passMs.at(name))}});
   auto [mn, mx] = std::minmax_element(frameMs.begin(), frameMs.end());
@@ -36,6 +58,8 @@ void writeStats(const std::string& path, const std::vector<double>& frameMs,
                           {"frame_ms_min", *mn},
                           {"frame_ms_max", *mx},
                           {"frames", frameMs.size()},
+                          {"pass_clock", cpuTimed ? "cpu_glfinish" : "gl_time_elapsed"},
+                          {"timed_frames", passTimes.frames},
                           {"passes", passes},
                           {"memory", memoryJson(plan)},
                           {"context", contextJson(device)}};
@@ -182,8 +206,7 @@ int runRender(const RenderOptions& options) {
     renderer->setSize(Extent{options.size.width, options.size.height});
 
     std::vector<double> frameMs;
-    std::map<std::string, std::vector<double>> passMs;
-    std::vector<std::string> passOrder;
+    PassTimes passTimes;
     for (uint32_t i = 0; i < frames; ++i) {
       if (cuts.count(i)) renderer->cameraCut();
       if (orbit != 0.0f) renderer->setCamera(orbitCamera(start, orbit * static_cast<float>(i)));
@@ -200,10 +223,7 @@ int runRender(const RenderOptions& options) {
       if (i == 0)  // "Model no more than the scene needs": what the adaptation changed.
         for (const auto& note : renderer->adaptNotes()) spdlog::info("{}", note);
       frameMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-      for (const auto& t : renderer->timings()) {
-        if (!passMs.count(t.name)) passOrder.push_back(t.name);
-        passMs[t.name].push_back(t.ms);
-      }
+      passTimes.take(*renderer);
       if (context->hasWindow()) {  // show it
         context->swapBuffers();
         context->pollEvents();
@@ -220,7 +240,12 @@ int runRender(const RenderOptions& options) {
     writePng(options.out, extent.width, extent.height, renderer->readOutputRGBA8());
     std::cout << "wrote " << options.out << " (" << extent.width << "x" << extent.height << ", " << frames
               << (frames == 1 ? " frame" : " frames") << ", median " << median(frameMs) << " ms)\n";
-    if (!options.stats.empty()) writeStats(options.stats, frameMs, passMs, passOrder, renderer->plan(), context->device());
+    if (!options.stats.empty()) {
+      renderer->collectTimings(/*wait=*/true);  // the last frames' queries, after the run (no-op on CPU timing)
+      passTimes.take(*renderer);
+      writeStats(options.stats, frameMs, passTimes, renderer->cpuTimed(), renderer->plan(),
+                 context->device());
+    }
   } catch (const LocatedError& e) {
     std::cerr << e.what() << "\n";  // `FILE:LINE: error: ...` already
     return kExitFailure;

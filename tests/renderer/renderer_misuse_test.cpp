@@ -125,6 +125,7 @@ TEST_F(RendererMisuse, CallsFromInsideARenderCallbackAreRefusedAndTheFrameFinish
       {"importTexture", [&] { r->importTexture("tint", tint.id()); }},
       {"releaseTexture", [&] { r->releaseTexture("tint"); }},
       {"setCpuPassTiming", [&] { r->setCpuPassTiming(false); }},
+      {"collectTimings", [&] { r->collectTimings(); }},
       {"setAfterPass", [&] { r->setAfterPass({}); }},
       {"render", [&] { r->render(); }},
       {"render", [&] { r->render(0); }},

@@ -141,6 +141,35 @@ TEST_F(ViewPanelsImgui, ThePlanPanelShowsCulledPassesAliasingMemoryAndWhatTheTim
   for (const Renderer::PassTiming& t : r->timings()) EXPECT_NE(text.find(t.name), std::string::npos) << t.name;
 }
 
+// With GPU timer queries (forced: llvmpipe times on the CPU clock) the times
+// are of an earlier frame, and the panel says which.
+TEST_F(ViewPanelsImgui, ThePlanPanelSaysWhichFrameGpuTimesAreOf) {
+  RendererOptions options;
+  options.size = {48, 32};
+  options.gpuTimerQueries = true;
+  Diagnostics diags;
+  auto r = Renderer::fromJson(viewtest::kAliasing, "aliasing.json", options, diags);
+  ASSERT_TRUE(r);
+  ImGui::GetIO().SetClipboardTextFn = captureClipboard;
+  auto panelText = [&] {
+    frame([&] {
+      ImGui::LogToClipboard();
+      view::drawPlanPanel(*r);
+      ImGui::LogFinish();
+    });
+    return loggedText;
+  };
+  r->render();
+  ASSERT_FALSE(r->cpuTimed());
+  EXPECT_NE(panelText().find("no frame's times in yet"), std::string::npos) << loggedText;
+  r->collectTimings(/*wait=*/true);
+  r->render();
+  ASSERT_TRUE(r->timingsFrame());
+  const std::string expected = "of frame " + std::to_string(*r->timingsFrame()) + " (" +
+                               std::to_string(r->frameIndex() - 1 - *r->timingsFrame()) + " behind)";
+  EXPECT_NE(panelText().find(expected), std::string::npos) << loggedText;
+}
+
 // The value under the cursor: the panel prints the texel it reads at the
 // mouse; it is the copy's texel at those coordinates (rows from the top).
 TEST_F(ViewPanelsImgui, TheInspectorPrintsTheValueUnderTheCursor) {

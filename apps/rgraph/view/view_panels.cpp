@@ -36,6 +36,15 @@ void drawPasses(Renderer& renderer, const Plan& plan) {
   ImGui::TextDisabled("%s", !renderer.cpuTimed() ? "time: GPU timer queries (GL_TIME_ELAPSED)"
                             : renderer.cpuPassTiming() ? "time: CPU time, glFinish after each pass"
                                                        : "time: off (profile to time each pass)");
+  if (!renderer.cpuTimed()) {
+    // Query results come in frames later (render() never waits for them): say which frame the column is.
+    const std::optional<uint64_t> frame = renderer.timingsFrame();
+    if (frame)
+      ImGui::TextDisabled("of frame %llu (%llu behind)", static_cast<unsigned long long>(*frame),
+                          static_cast<unsigned long long>(renderer.frameIndex() - 1 - *frame));
+    else
+      ImGui::TextDisabled("no frame's times in yet");
+  }
   if (!ImGui::BeginTable("passes", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) return;
   ImGui::TableSetupColumn("step");
   ImGui::TableSetupColumn("pass");

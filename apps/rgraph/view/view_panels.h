@@ -20,7 +20,7 @@ namespace rgraph::view {
 // Passes in execution order (culled ones greyed, with their reasons),
 // resources with lifetime bars and the physical texture each uses (aliasing
 // visible), memory allocated vs naive, per-pass times and what they measure
-// (Renderer::cpuTimed()).
+// (Renderer::cpuTimed()) and, with GPU timer queries, which frame they are of.
 void drawPlanPanel(Renderer& renderer);
 
 // Every pass parameter with a widget from its declaration (type, range, enum

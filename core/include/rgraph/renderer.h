@@ -75,6 +75,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -171,6 +172,10 @@ struct RendererOptions {
   bool adaptToScene = true;
   // The GL state contract (top of this file).
   bool restoreGlState = true;
+  // Time passes with GL_TIME_ELAPSED queries on a software renderer too
+  // (Executor::setGpuTimerQueries; a GPU always uses them). For tests of the
+  // query path: llvmpipe's query values are poor.
+  bool gpuTimerQueries = false;
 };
 
 // A rectangle of a framebuffer, in pixels from its lower-left corner.
@@ -282,8 +287,23 @@ class Renderer {
     std::string name;
     double ms = 0.0;
   };
-  // Per executed pass of the last frame, in execution order.
+  // Per executed pass, in execution order, of the frame timingsFrame() names
+  // (ms 0 while it names none). With GL_TIME_ELAPSED queries (GPUs) that is
+  // a frame 1-3 frames back: render() never waits for the GPU to time a
+  // frame; with CPU timing (software renderers) the frame just rendered.
+  // Executor::timings says more.
   std::vector<PassTiming> timings() const;
+  // Which frame timings() belong to, counted as frameIndex() counts (the
+  // frame just rendered is frameIndex() - 1); nullopt while none is known
+  // (before the first frame, CPU pass timing off, and after a rebuild until a
+  // frame of the rebuilt pipeline is in: no result is attributed across it).
+  std::optional<uint64_t> timingsFrame() const;
+  // Frames this renderer has drawn (render() calls that completed), across rebuilds.
+  uint64_t frameIndex() const;
+  // Takes the timer query results that are in now, without waiting (render()
+  // does so at its start). wait: waits for the GPU first (glFinish), so that
+  // the last frame's times are in: at the end of a run, never per frame.
+  void collectTimings(bool wait = false);
   // true: timings are CPU time around a glFinish per pass (software renderers,
   // whose timer queries are not trustworthy); false: GL_TIME_ELAPSED queries.
   bool cpuTimed() const;

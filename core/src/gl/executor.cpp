@@ -261,8 +261,6 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(PassIndex pass, Extent output
     }
   }
 
-  if (!software) run->query = gl::createQuery(GL_TIME_ELAPSED);
-
   if (!type->create) throw RuntimeError("pass type '" + pd.type + "' has no factory");
   run->instance = type->create();
   if (!run->instance) throw RuntimeError("pass '" + pd.name + "': pass type '" + pd.type + "' created no instance");
@@ -330,6 +328,8 @@ void Executor::Impl::createRuns() {
   for (PassIndex pass : plan.order) runs.push_back(createRun(pass, size));
   timings.clear();
   for (const auto& run : runs) timings.push_back({run->name, 0.0});
+  timingsFrame.reset();
+  queryRing.reset();  // pending results are of the previous runs
   assignMemoryBarriers();
   planHistory();
   for (auto& run : runs) {
@@ -465,6 +465,12 @@ Executor::Executor(const PipelineConfig& pipeline, const PassRegistry& registry,
 
 void Executor::setCamera(const Camera& camera) { impl_->camera = camera; }
 void Executor::setCpuPassTiming(bool on) { impl_->cpuPassTiming = on; }
+void Executor::setGpuTimerQueries(bool on) {
+  if (impl_->gpuTimerQueries == on) return;
+  impl_->gpuTimerQueries = on;
+  impl_->queryRing.reset();  // the clock changes: what was measured with the other one is not reported
+  impl_->timingsFrame.reset();
+}
 void Executor::setStateChecks(bool on) { impl_->stateChecks = on; }
 void Executor::setAfterPass(std::function<void(size_t)> callback) { impl_->afterPass = std::move(callback); }
 
@@ -498,7 +504,19 @@ void Executor::renderFrame() {
   im.beginHistory();
   // Software renderers: CPU time around a glFinish per pass, only when asked
   // (setCpuPassTiming): each finish stalls the pipeline the driver keeps.
-  const bool cpuTiming = im.software && im.cpuPassTiming;
+  // Otherwise timer queries, read frames later without waiting (timer_query_ring.h).
+  const bool queries = im.queryTimed();
+  const bool cpuTiming = !queries && im.cpuPassTiming;
+  gl::TimerQueryRing* ring = nullptr;
+  if (queries) {
+    if (!im.queryRing) im.queryRing = std::make_unique<gl::TimerQueryRing>(im.runs.size());
+    ring = im.queryRing.get();
+    ring->beginFrame(im.frame);
+    im.takeQueryTimes();
+  } else {
+    im.timingsFrame.reset();
+    for (auto& t : im.timings) t.ms = 0.0;
+  }
   im.dirtyState = kGlStateAll;  // whatever the caller left
   // The scene's draws keep the passes' binding record up to date (no
   // kGlStateBindings for a pass that draws the scene), this frame only.
@@ -512,9 +530,8 @@ void Executor::renderFrame() {
   if (cpuTiming) glFinish();
   for (size_t i = 0; i < im.runs.size(); ++i) {
     PassRun& run = *im.runs[i];
-    im.timings[i].ms = 0.0;
     const Clock::time_point t0 = cpuTiming ? Clock::now() : Clock::time_point{};
-    if (run.query) glBeginQuery(GL_TIME_ELAPSED, run.query.id());
+    if (ring) ring->beginPass(i);
     if (run.memoryBarrier) glMemoryBarrier(run.memoryBarrier);
     im.resetState(run);
     if (im.gpuScene) im.gpuScene->selectJitter(run.jitter);
@@ -533,12 +550,12 @@ void Executor::renderFrame() {
       im.dirtyState |= run.instance->changedState();
       if (im.stateChecks) im.checkState(run);
     } catch (const RuntimeError& e) {
-      if (run.query) glEndQuery(GL_TIME_ELAPSED);
+      if (ring) ring->endPass(i);
       std::string message = std::string(e.what()) + "\n  (in pass '" + run.name + "' of type '" + run.typeName + "')";
       if (dynamic_cast<const LocatedError*>(&e)) throw LocatedError(message);
       throw RuntimeError(message);
     }
-    if (run.query) glEndQuery(GL_TIME_ELAPSED);
+    if (ring) ring->endPass(i);
     if (cpuTiming) {
       glFinish();
       im.timings[i].ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -549,6 +566,8 @@ void Executor::renderFrame() {
     }
   }
   if (im.frameEndBarrier) glMemoryBarrier(im.frameEndBarrier);
+  if (ring) ring->endFrame();
+  if (cpuTiming) im.timingsFrame = im.frame;
   im.endHistory();
   ++im.frame;
   // Leave a neutral state for whoever draws next (e.g. a blit to the window:
@@ -560,13 +579,22 @@ void Executor::renderFrame() {
   glUseProgram(0);
   glBindVertexArray(0);
   for (uint32_t unit : im.slotUnits) glBindTextureUnit(unit, 0);
-  if (!im.software) {
-    for (size_t i = 0; i < im.runs.size(); ++i) {
-      GLuint64 ns = 0;
-      glGetQueryObjectui64v(im.runs[i]->query.id(), GL_QUERY_RESULT, &ns);
-      im.timings[i].ms = static_cast<double>(ns) / 1.0e6;
-    }
-  }
+}
+
+void Executor::Impl::takeQueryTimes() {
+  if (!queryRing || queryRing->resultFrame() == timingsFrame) return;
+  const std::vector<double>& ms = queryRing->resultMs();
+  for (size_t i = 0; i < timings.size() && i < ms.size(); ++i) timings[i].ms = ms[i];
+  timingsFrame = queryRing->resultFrame();
+}
+
+void Executor::collectTimings(bool wait) {
+  Impl& im = *impl_;
+  if (!im.queryRing) return;
+  im.requireContext("Executor::collectTimings");
+  if (wait) glFinish();  // asked for: the frames in flight finish, their queries are in
+  im.queryRing->collect();
+  im.takeQueryTimes();
 }
 
 const Plan& Executor::plan() const { return impl_->plan; }
@@ -579,6 +607,7 @@ std::vector<uint32_t> Executor::memoryBarriers() const {
 uint32_t Executor::frameEndMemoryBarrier() const { return impl_->frameEndBarrier; }
 GpuScene* Executor::gpuScene() const { return impl_->gpuScene; }
 const std::vector<Executor::PassTiming>& Executor::timings() const { return impl_->timings; }
-bool Executor::cpuTimed() const { return impl_->software; }
+std::optional<uint64_t> Executor::timingsFrame() const { return impl_->timingsFrame; }
+bool Executor::cpuTimed() const { return !impl_->queryTimed(); }
 
 }  // namespace rgraph

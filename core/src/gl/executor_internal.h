@@ -20,6 +20,7 @@
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/pass.h"
 #include "rgraph/scene.h"
+#include "timer_query_ring.h"
 
 namespace rgraph {
 namespace exec_detail {
@@ -80,7 +81,6 @@ class PassRun final : public PassContext {
   std::vector<size_t> clearSlots;  // slots first written here whose resource has a clear value
   std::shared_ptr<gl::Framebuffer> fbo;  // shared by passes with the same attachments
   Extent fbExtent;
-  gl::Query query;
   std::unique_ptr<PassInstance> instance;
   ShaderLibrary* shaderLib = nullptr;
   const Scene* scenePtr = nullptr;
@@ -159,6 +159,7 @@ struct Executor::Impl {
   std::optional<Camera> camera;           // none: the scene's
   std::function<void(size_t)> afterPass;  // Executor::setAfterPass
   bool cpuPassTiming = true;              // Executor::setCpuPassTiming
+  bool gpuTimerQueries = false;           // Executor::setGpuTimerQueries
   bool stateChecks = false;               // Executor::setStateChecks
   uint32_t dirtyState = kGlStateAll;      // GlStateGroup bits resetState() puts back
   bool depthMaskOff = false;              // the last pass read depth only: its mask alone to put back
@@ -181,6 +182,10 @@ struct Executor::Impl {
   std::map<std::vector<uint32_t>, std::shared_ptr<gl::Framebuffer>> framebuffers;
   gl::VertexArray emptyVao;  // PassContext::emptyVertexArray, made with the runs
   std::vector<PassTiming> timings;  // named in createRuns(), timed per frame
+  std::optional<uint64_t> timingsFrame;  // the frame `timings` belong to (Executor::timingsFrame)
+  // Timing with queries: made at the first frame so timed, dropped with the
+  // runs (resize, rebuild), so that no result lands on another pass list.
+  std::unique_ptr<gl::TimerQueryRing> queryRing;
   std::vector<uint32_t> slotUnits;  // texture units passes' slots are bound to: cleared after a frame
   std::vector<BuiltProgram> builtPrograms;  // what passes asked the ShaderLibrary for, in order
   uint32_t frameEndBarrier = 0;  // glMemoryBarrier bits after the last pass
@@ -204,6 +209,8 @@ struct Executor::Impl {
     physicalBuffers.clear();
     byName.clear();
     timings.clear();
+    timingsFrame.reset();
+    queryRing.reset();
     slotUnits.clear();
     builtPrograms.clear();
     frameEndBarrier = 0;
@@ -225,6 +232,10 @@ struct Executor::Impl {
     }
   }
   void createResources();
+  // Timing (executor.cpp): whether passes are timed with GL_TIME_ELAPSED
+  // queries, and the ring's newest results copied into `timings`.
+  bool queryTimed() const { return !software || gpuTimerQueries; }
+  void takeQueryTimes();
   // A reusable texture of this description (unless !reuse), else a new one.
   SharedTexture takeTexture(Format format, Extent extent, uint32_t mips, uint32_t samples, bool reuse = true);
   gl::TextureShape declaredShape(ResourceIndex r) const;

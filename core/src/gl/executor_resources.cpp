@@ -159,7 +159,7 @@ size_t Executor::ownedObjects() const {
   for (const auto& b : impl_->physicalBuffers) n += b ? 1 : 0;
   for (const auto& r : impl_->resources) n += own(r.ownTexture) + (r.ownBuffer ? 1 : 0);
   n += impl_->framebuffers.size() + (impl_->emptyVao ? 1 : 0);
-  for (const auto& run : impl_->runs) n += run->query ? 1 : 0;
+  if (impl_->queryRing) n += impl_->queryRing->queryCount();
   return n;
 }
 

@@ -64,6 +64,7 @@ struct Renderer::Impl {
   ShaderLibrary shaders;                       // kept across rebuilds: unchanged programs are reused
   std::shared_ptr<RenderScene> executorScene;  // what `executor` draws: alive as long as it is
   std::unique_ptr<Executor> executor;
+  uint64_t framesBefore = 0;  // frames drawn by the executors before `executor` (Renderer::frameIndex)
   bool rebuild = true;       // the executor must be made again before the next frame
   bool sizeRefused = false;  // the last build failed on the size itself: the graph there, or its memory
   uint64_t builds = 0;
@@ -258,8 +259,10 @@ void Renderer::Impl::buildExecutor() {
   for (const auto& [name, texture] : imports) next->importTexture(name, texture);
   next->setAfterPass(afterPass);
   next->setCpuPassTiming(cpuPassTiming);
+  next->setGpuTimerQueries(options.gpuTimerQueries);
   if (executor) next->reuseTextures(*executor);  // what did not change is kept
   next->resize(size);
+  if (executor) framesBefore += executor->frameIndex();
   executor = std::move(next);
   executorScene = scene;
   rebuild = false;
@@ -480,6 +483,21 @@ std::vector<Renderer::PassTiming> Renderer::timings() const {
   if (!impl_->executor) return out;
   for (const auto& t : impl_->executor->timings()) out.push_back({t.name, t.ms});
   return out;
+}
+
+std::optional<uint64_t> Renderer::timingsFrame() const {
+  if (!impl_->executor) return std::nullopt;
+  const std::optional<uint64_t> f = impl_->executor->timingsFrame();
+  return f ? std::optional<uint64_t>(impl_->framesBefore + *f) : std::nullopt;
+}
+
+uint64_t Renderer::frameIndex() const {
+  return impl_->framesBefore + (impl_->executor ? impl_->executor->frameIndex() : 0);
+}
+
+void Renderer::collectTimings(bool wait) {
+  impl_->refuseInFrame("collectTimings");
+  if (impl_->executor) impl_->executor->collectTimings(wait);
 }
 
 bool Renderer::cpuTimed() const { return impl_->executor && impl_->executor->cpuTimed(); }

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,7 +50,8 @@ class Executor {
   // framebuffer is incomplete (names the pass and status) or a pass's setup fails.
   void resize(Extent output);
   // Executes every planned pass in order (clears first-written resources that
-  // have a clear value, then Pass::execute). Times each pass.
+  // have a clear value, then Pass::execute). Times each pass (timings()).
+  // Never waits for the GPU, except with CPU pass timing (below).
   void renderFrame();
 
   // The camera of the following frames (default: the scene's own camera).
@@ -114,8 +116,28 @@ class Executor {
     std::string name;
     double ms = 0.0;
   };
-  // Per executed pass, in execution order, of the last frame.
+  // Per executed pass, in execution order, of the frame timingsFrame() names
+  // (ms 0 while it names none). Two clocks:
+  // - GL_TIME_ELAPSED queries (GPUs; any renderer with setGpuTimerQueries):
+  //   each frame's queries are read without waiting, once the GPU says they
+  //   are in, at the start of a later frame (or collectTimings()): timings
+  //   are those of a frame 1-3 frames back. A frame that finds the queries
+  //   of the 3 frames before it all still in flight is not timed (it never
+  //   waits for them).
+  // - CPU time around a glFinish per pass (software renderers, whose timer
+  //   queries are not trustworthy; setCpuPassTiming): the frame just rendered.
   const std::vector<PassTiming>& timings() const;
+  // The frame timings() belong to: frameIndex() as it was while that frame
+  // ran (the frame just rendered is frameIndex() - 1). nullopt while no
+  // frame's times are known: before the first, with CPU pass timing off, and
+  // after resize(), an import or a clock change until a frame timed since is in
+  // (results of the GL objects before are dropped, never given to the new ones).
+  std::optional<uint64_t> timingsFrame() const;
+  // Takes the query results that are in now, without waiting (renderFrame
+  // does so at its start). wait: first waits for the GPU to finish (a
+  // glFinish), so that the last frame's times are in: for a tool at the end
+  // of a run or after its own glFinish, never per frame. No-op with CPU timing.
+  void collectTimings(bool wait = false);
   // Whether timings come from the CPU clock around glFinish (software renderers)
   // rather than GL_TIME_ELAPSED queries.
   bool cpuTimed() const;
@@ -123,6 +145,11 @@ class Executor {
   // it (default true). Off, passes are not timed (their ms stay 0) and the
   // frame runs without the stalls. GPU timer queries are unaffected.
   void setCpuPassTiming(bool on);
+  // Times passes with GL_TIME_ELAPSED queries on a software renderer too
+  // (default false: the CPU clock there; a GPU always uses queries). For tests
+  // of the query path: llvmpipe supports the queries, but its values are
+  // poor. From the next frame on; what the other clock measured is dropped.
+  void setGpuTimerQueries(bool on);
   // After every pass, reads back the state groups its changedState() says
   // it leaves alone (rgraph/pass.h) and throws RuntimeError naming the pass
   // and the state when one differs. For tests of pass types; off by default
@@ -144,7 +171,8 @@ class Executor {
   uint32_t textureOf(const std::string& resourceOrVersionName) const;
   uint32_t bufferOf(const std::string& resourceOrVersionName) const;
 
-  // GL objects this executor owns right now (textures + buffers + framebuffers + queries).
+  // GL objects this executor owns right now (textures + buffers + framebuffers + queries;
+  // the timer queries are made at the first frame timed with them).
   size_t ownedObjects() const;
 
   struct Impl;
