@@ -21,11 +21,18 @@
 // 64 lights, 13.5 at 1,024 against 14.1 and 18.4 for 8x8 quarters). A half row
 // is TILE_SIZE / 2 pixels: one SIMD row of a CPU rasteriser's 8 lanes, a
 // quarter of a GPU warp; every lane of it pays the loop its list makes, so
-// the list is the half row's, not the pixel's. The lists are bits over the
-// tile's list: TILE_SIZE * 2 half rows x MAX_TILE_LIGHTS bits of shared
-// memory, and the view-space spheres 16 bytes a light. Not with FAR_FIELD:
-// it shades each listed light without its cut, so its tail reaches every
-// pixel of the quarter, and sums the rest per quarter.
+// the list is the half row's, not the pixel's (a speed matter only: which
+// invocations run together never changes the result). The lists are bits
+// over the tile's list: TILE_SIZE * 2 half rows x MAX_TILE_LIGHTS bits of
+// shared memory, and the view-space spheres 16 bytes a light. Not with
+// FAR_FIELD: it shades each listed light without its cut, so its tail
+// reaches every pixel of the quarter, and sums the rest per quarter (its
+// quarters' lists are bits over the tile's list too).
+// Scheduling (include/invocation.glsl): the tile's list is appended in the
+// bin's order (include/ordered_append.glsl), the bits and depth bounds are
+// atomicOr, atomicMin and atomicMax, the far field integer atomicAdd: every
+// pixel sums the same lights in the same order whatever order the
+// invocations run in.
 // The maths is include/lighting.glsl's, as in deferred_lighting.frag and
 // light_volume.frag, so the methods agree.
 // Defines: one GBUFFER_*, one LIGHTING_*, one ATTENUATION_*; TILE_SIZE,
