@@ -48,6 +48,8 @@ void addPixelDepth(float d) {
 #endif
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
+#include "include/invocation.glsl"
+#include "include/ordered_append.glsl"
 
 // Candidates one tile holds in shared memory (20 KiB, within the 32 KiB every
 // GL 4.5 device has); a tile with more tests every light in step 2.
@@ -62,7 +64,6 @@ vec3 rayPoint(vec2 ndc, float d) {
   return vec3((ndc.x + u_proj[2][0]) * d / u_proj[0][0], (ndc.y + u_proj[2][1]) * d / u_proj[1][1], -d);
 }
 
-shared uint s_count;
 shared uint s_index[MAX_TILE_CANDIDATES];
 shared vec4 s_light[MAX_TILE_CANDIDATES];  // xyz view-space centre, w: radius with slack (negative: no cut-off)
 
@@ -81,17 +82,18 @@ vec3 sidePlane(vec2 a, vec2 b, vec3 inside) {
 
 void main() {
   const ivec2 tiles = clusterTiles();
-  const ivec2 tile = ivec2(gl_WorkGroupID.xy);
-  const uint local = gl_LocalInvocationIndex;
+  const ivec2 tile = ivec2(groupId().xy);
+  const uint local = localIndex();
   // The same for the whole group (no return before a barrier).
   const bool builds = clusterListsFit(uint(data.length())) && tile.x < tiles.x && tile.y < tiles.y;
-  if (local == 0u) s_count = 0u;
+  orderedAppendInit(local);
 #if defined(CLUSTER_DEPTH_BOUNDS)
   for (int i = int(local); i < SLICES; i += 64) {
     s_sliceMin[i] = 0x7f7fffffu;
     s_sliceMax[i] = 0u;
   }
-  barrier();
+  groupBarrier();
+  // The slices' depth bounds: atomicMin and atomicMax, the same in any order.
   for (int i = int(local); builds && i < TILE_SIZE * TILE_SIZE; i += 64) {
     const ivec2 px = tile * TILE_SIZE + ivec2(i % TILE_SIZE, i / TILE_SIZE);
     if (px.x >= int(u_viewport.x) || px.y >= int(u_viewport.y)) continue;
@@ -99,7 +101,7 @@ void main() {
     if (s.covered) addPixelDepth(max(-(u_view * vec4(s.position, 1.0)).z, 0.0));
   }
 #endif
-  barrier();
+  groupBarrier();
 
   const vec2 size = u_viewport.xy;
   const vec2 ndc0 = vec2(tile * TILE_SIZE) / size * 2.0 - 1.0;
@@ -117,26 +119,35 @@ void main() {
   const uint binAt = 0u;
   const int culled = u_pointLightCount;
 #endif
-  for (int j = int(local); builds && j < culled; j += 64) {
+  // The candidates in the order of what is culled (the bin's list, in light
+  // order, or every light), 64 a round, whichever invocation tests which
+  // (include/ordered_append.glsl): each cluster's list follows this order,
+  // and its pixels sum their lights in it.
+  uint count = 0u;
+  for (int first = 0; builds && first < culled; first += 64) {
+    const int j = first + int(local);
+    int i = j;
+    vec4 l = vec4(0.0);
+    bool visible = false;
+    if (j < culled) {
 #if defined(CLUSTER_DEPTH_BOUNDS)
-    const int i = binned ? int(bins[binAt + uint(BIN_HEADER) + uint(j)]) : j;
-#else
-    const int i = j;
+      if (binned) i = int(bins[binAt + uint(BIN_HEADER) + uint(j)]);
 #endif
-    const vec4 l = viewLight(i);
-    bool visible = true;
-    for (int p = 0; p < 4 && visible && l.w >= 0.0; ++p) visible = dot(planes[p], l.xyz) >= -l.w;
-    if (visible) {
-      const uint slot = atomicAdd(s_count, 1u);
-      if (slot < uint(MAX_TILE_CANDIDATES)) {
-        s_index[slot] = uint(i);
-        s_light[slot] = l;
-      }
+      l = viewLight(i);
+      visible = true;
+      for (int p = 0; p < 4 && visible && l.w >= 0.0; ++p) visible = dot(planes[p], l.xyz) >= -l.w;
+    }
+    uint kept = 0u;
+    const uint slot = count + orderedAppend(visible, local, kept);
+    count += kept;
+    if (visible && slot < uint(MAX_TILE_CANDIDATES)) {
+      s_index[slot] = uint(i);
+      s_light[slot] = l;
     }
   }
-  barrier();
-  const bool candidates = s_count <= uint(MAX_TILE_CANDIDATES);
-  const int tested = candidates ? int(s_count) : u_pointLightCount;
+  groupBarrier();
+  const bool candidates = count <= uint(MAX_TILE_CANDIDATES);
+  const int tested = candidates ? int(count) : u_pointLightCount;
 
   for (int slice = int(local); builds && slice < SLICES; slice += 64) {
     // The cluster's box: the tile's corner rays between the slice's depths,
@@ -160,17 +171,18 @@ void main() {
     }
     const int cluster = clusterIndex(tile, slice);
     const uint base = uint(clusterCount()) + uint(cluster) * uint(MAX_CLUSTER_LIGHTS);
-    uint count = 0u;
+    uint listed = 0u;
     for (int j = 0; j < tested; ++j) {
       const vec4 l = candidates ? s_light[j] : viewLight(j);
       const vec3 d = l.xyz - clamp(l.xyz, lo, hi);
       const uint index = candidates ? s_index[j] : uint(j);
       if ((l.w < 0.0 || dot(d, d) <= l.w * l.w) && spotMayReachViewBox(lights[index], lo, hi)) {
-        if (count < uint(MAX_CLUSTER_LIGHTS)) data[base + count] = index;
-        ++count;
+        if (listed < uint(MAX_CLUSTER_LIGHTS)) data[base + listed] = index;
+        ++listed;
       }
     }
-    data[cluster] = count;
-    if (count > uint(MAX_CLUSTER_LIGHTS)) atomicAdd(overflowedClusters, 1u);
+    data[cluster] = listed;
+    // A count: the same in any order.
+    if (listed > uint(MAX_CLUSTER_LIGHTS)) atomicAdd(overflowedClusters, 1u);
   }
 }

@@ -26,6 +26,7 @@
 #endif
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+#include "include/invocation.glsl"
 
 layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
 #include "include/cluster_shading.glsl"
@@ -35,7 +36,8 @@ uniform int u_ambientAndSun;  // 1: add ambient and the directional light
 uniform int u_load;           // 1: add to what the target holds
 
 void main() {
-  const ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+  // One pixel an invocation, nothing shared: no assumption about the others.
+  const ivec2 px = ivec2(globalId().xy);
   if (px.x >= int(u_viewport.x) || px.y >= int(u_viewport.y)) return;
   const Surface s = readSurface(px);
   if (!s.covered) return;  // the target's clear value (background) stays

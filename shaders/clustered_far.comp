@@ -40,6 +40,8 @@
 #include "include/cluster_far_field.glsl"
 
 layout(local_size_x = 16, local_size_y = 16, local_size_z = 1) in;
+#include "include/invocation.glsl"
+#include "include/ordered_append.glsl"
 
 layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
 uniform int u_pointLightCount;
@@ -47,7 +49,6 @@ uniform int u_pointLightCount;
 const uint kGroup = 256u;
 #define HASH_SIZE 1024u  // > 2 x MAX_BIN_LIGHTS: short probes
 shared uint s_sliceMin[SLICES], s_sliceMax[SLICES];  // floatBitsToUint of the pixels' view depths
-shared uint s_occupied;                  // clusters with pixels (the first FAR_CLUSTERS are summed)
 shared int s_slice[FAR_CLUSTERS];        // the slice of summed cluster o
 shared vec3 s_point[FAR_CLUSTERS];       // where it is summed
 shared uint s_bins[FAR_CLUSTERS];        // its direction bins that hold light
@@ -56,6 +57,8 @@ shared uint s_listedBy[MAX_BIN_LIGHTS];  // bit o: summed cluster o lists the bi
 
 uint hashOf(uint light) { return (light * 2654435761u) >> 22u; }  // 10 bits: HASH_SIZE
 
+// Where a light lands depends on the order of the inserts (linear probing),
+// what hashFind returns does not: each light is in the bin's list once.
 void hashInsert(uint light, uint position) {
   const uint entry = ((light + 1u) << 9u) | position;
   for (uint h = hashOf(light), n = 0u; n < HASH_SIZE; ++n, h = (h + 1u) & (HASH_SIZE - 1u))
@@ -75,8 +78,8 @@ uint hashFind(uint light) {
 uint clusterBase(int cluster) { return uint(clusterCount()) + uint(cluster) * uint(MAX_CLUSTER_LIGHTS); }
 
 void main() {
-  const uint local = gl_LocalInvocationIndex;
-  const ivec2 tile = ivec2(gl_WorkGroupID.xy);
+  const uint local = localIndex();
+  const ivec2 tile = ivec2(groupId().xy);
   const ivec2 size = ivec2(u_viewport.xy);
   // The same for the whole group: lists and records for this viewport.
   if (!clusterListsFit(uint(data.length())) || !clusterFarFieldsFit(uint(farFields.length())) ||
@@ -89,7 +92,7 @@ void main() {
   for (uint i = local; i < HASH_SIZE; i += kGroup) s_hash[i] = 0u;
   for (uint i = local; i < uint(MAX_BIN_LIGHTS); i += kGroup) s_listedBy[i] = 0u;
   if (local < uint(FAR_CLUSTERS)) s_bins[local] = 0u;
-  if (local == 0u) s_occupied = 0u;
+  orderedAppendInit(local);
   farFieldClear(local, kGroup);
   // The tile's bin's list (hashed below), or every light when it overflowed.
   const uvec2 bin = uvec2(tile) / uint(BIN_TILES);
@@ -97,10 +100,13 @@ void main() {
   const bool binned = binFits(bin, uint(bins.length())) && bins[binAt] <= uint(MAX_BIN_LIGHTS) &&
                       u_pointLightCount < (1 << 22);
   const uint candidates = binned ? bins[binAt] : uint(u_pointLightCount);
-  barrier();
+  groupBarrier();
 
-  for (int y = int(gl_LocalInvocationID.y); y < TILE_SIZE; y += 16)
-    for (int x = int(gl_LocalInvocationID.x); x < TILE_SIZE; x += 16) {
+  // The slices' depth bounds (atomicMin, atomicMax) and the hash: the same
+  // in any order.
+  const ivec2 at = ivec2(localId().xy);
+  for (int y = at.y; y < TILE_SIZE; y += 16)
+    for (int x = at.x; x < TILE_SIZE; x += 16) {
       const ivec2 px = tile * TILE_SIZE + ivec2(x, y);
       if (px.x >= size.x || px.y >= size.y) continue;
       const Surface s = readSurface(px);
@@ -112,26 +118,33 @@ void main() {
     }
   if (binned)
     for (uint j = local; j < candidates; j += kGroup) hashInsert(bins[binAt + uint(BIN_HEADER) + j], j);
-  barrier();
+  groupBarrier();
 
   // The clusters to sum: with pixels, lights, and a list that did not overflow.
   vec2 perDepth0, perDepth1;
   frustumPerDepth(uvec2(tile * TILE_SIZE), uvec2((tile + 1) * TILE_SIZE), perDepth0, perDepth1);
-  for (int slice = int(local); slice < SLICES; slice += int(kGroup)) {
-    const int cluster = clusterIndex(tile, slice);
-    uint o = uint(FAR_CLUSTERS);
-    if (s_sliceMin[slice] != 0x7f7fffffu && data[cluster] <= uint(MAX_CLUSTER_LIGHTS) && u_pointLightCount > 0)
-      o = atomicAdd(s_occupied, 1u);
-    if (o < uint(FAR_CLUSTERS)) {
+  // Summed cluster o: the o-th such slice from the camera (whichever
+  // invocation tests which: include/ordered_append.glsl), so that with more
+  // than FAR_CLUSTERS the nearest are summed.
+  uint summed = 0u;
+  for (int first = 0; first < SLICES; first += int(kGroup)) {
+    const int slice = first + int(local);
+    const int cluster = clusterIndex(tile, min(slice, SLICES - 1));
+    const bool sums = slice < SLICES && s_sliceMin[slice] != 0x7f7fffffu &&
+                      data[cluster] <= uint(MAX_CLUSTER_LIGHTS) && u_pointLightCount > 0;
+    uint kept = 0u;
+    const uint o = summed + orderedAppend(sums, local, kept);
+    summed += kept;
+    if (sums && o < uint(FAR_CLUSTERS)) {
       s_slice[o] = slice;
       s_point[o] = frustumMidPoint(perDepth0, perDepth1, uintBitsToFloat(s_sliceMin[slice]),
                                    uintBitsToFloat(s_sliceMax[slice]));
-    } else {
+    } else if (slice < SLICES) {
       farFields[uint(cluster) * uint(CLUSTER_FAR_RECORD)] = 0u;  // nothing to add
     }
   }
-  barrier();
-  const uint summed = min(s_occupied, uint(FAR_CLUSTERS));
+  groupBarrier();
+  summed = min(summed, uint(FAR_CLUSTERS));
 
   // Which of the bin's lights each cluster lists.
   if (binned)
@@ -143,10 +156,11 @@ void main() {
         if (at < uint(MAX_BIN_LIGHTS)) atomicOr(s_listedBy[at], 1u << o);
       }
     }
-  barrier();
+  groupBarrier();
 
   // The bin's far field moved to each cluster's point, and the bin's lights
-  // the cluster does not list summed there: (cluster, light) pairs over the group.
+  // the cluster does not list summed there: (cluster, light) pairs over the
+  // group, into integer sums (far_field.glsl): the same in any order.
   if (binned)
     for (uint k = local; k < summed * uint(FAR_FIELD_BINS); k += kGroup) {
       const uint o = k / uint(FAR_FIELD_BINS), b = k % uint(FAR_FIELD_BINS);
@@ -169,7 +183,7 @@ void main() {
     }
     if (!listed) farFieldAdd(int(o), lights[light], s_point[o]);
   }
-  barrier();
+  groupBarrier();
 
   // What each cluster's pixels shade per direction bin.
   for (uint k = local; k < summed * uint(FAR_FIELD_BINS); k += kGroup) {
@@ -182,7 +196,7 @@ void main() {
     for (uint j = 0u; j < 4u; ++j)
       for (uint c = 0u; c < 3u; ++c) farFields[record + 4u + b * 12u + j * 3u + c] = floatBitsToUint(v[j][c]);
   }
-  barrier();
+  groupBarrier();
   if (local < summed) {
     const uint record = uint(clusterIndex(tile, s_slice[local])) * uint(CLUSTER_FAR_RECORD);
     farFields[record] = s_bins[local];

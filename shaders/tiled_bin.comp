@@ -29,29 +29,33 @@
 #endif
 
 layout(local_size_x = 16, local_size_y = 16, local_size_z = 1) in;
+#include "include/invocation.glsl"
+#include "include/ordered_append.glsl"
 
 layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
 uniform int u_pointLightCount;
 
-shared uint s_minDepth, s_maxDepth, s_count;
+shared uint s_minDepth, s_maxDepth;
 
 void main() {
-  const uint local = gl_LocalInvocationIndex;
-  const uvec2 binMin = gl_WorkGroupID.xy * uint(BIN_PIXELS);
+  const uint local = localIndex();
+  const uvec2 group = groupId().xy, binMin = group * uint(BIN_PIXELS);
   const ivec2 size = ivec2(u_viewport.xy);
   if (local == 0u) {
     s_minDepth = 0x7f7fffffu;
     s_maxDepth = 0u;
-    s_count = 0u;
   }
+  orderedAppendInit(local);
 #if defined(FAR_FIELD)
   farFieldClear(local, 256u);
 #endif
-  barrier();
-  // Depth bounds: each invocation reads every 16th pixel in x and y.
+  groupBarrier();
+  // Depth bounds: each invocation reads every 16th pixel in x and y (min and
+  // max: the same in any order).
   float lo = 3.0e38, hi = 0.0;
-  for (uint y = gl_LocalInvocationID.y; y < uint(BIN_PIXELS); y += 16u)
-    for (uint x = gl_LocalInvocationID.x; x < uint(BIN_PIXELS); x += 16u) {
+  const uvec2 at = localId().xy;
+  for (uint y = at.y; y < uint(BIN_PIXELS); y += 16u)
+    for (uint x = at.x; x < uint(BIN_PIXELS); x += 16u) {
       const ivec2 px = ivec2(binMin + uvec2(x, y));
       if (px.x >= size.x || px.y >= size.y) continue;
       const Surface s = readSurface(px);
@@ -64,34 +68,38 @@ void main() {
     atomicMin(s_minDepth, floatBitsToUint(lo));
     atomicMax(s_maxDepth, floatBitsToUint(hi));
   }
-  barrier();
+  groupBarrier();
   const bool covered = s_maxDepth != 0u || s_minDepth != 0x7f7fffffu;
   const float minDepth = uintBitsToFloat(s_minDepth), maxDepth = uintBitsToFloat(s_maxDepth);
-  const uint record = binRecord(gl_WorkGroupID.xy);
-  const bool fits = binFits(gl_WorkGroupID.xy, uint(bins.length()));  // the same for the whole group
+  const uint record = binRecord(group);
+  const bool fits = binFits(group, uint(bins.length()));  // the same for the whole group
   vec2 perDepth0, perDepth1;
   frustumPerDepth(binMin, binMin + uvec2(BIN_PIXELS), perDepth0, perDepth1);
   const vec3 point = covered ? frustumMidPoint(perDepth0, perDepth1, minDepth, maxDepth) : vec3(0.0);
-  if (covered && fits) {
-    for (uint i = local; i < uint(u_pointLightCount); i += 256u) {
+  // The list in light order (include/ordered_append.glsl), 256 lights a
+  // round: the tiles' lists follow it. The far field of the rest: integer
+  // sums (far_field.glsl), the same in any order.
+  uint count = 0u;
+  for (uint first = 0u; covered && fits && first < uint(u_pointLightCount); first += 256u) {
+    const uint i = first + local;
+    bool listed = false;
+    if (i < uint(u_pointLightCount)) {
       const vec4 pr = lightBounds(lights[i]);
       const vec3 c = (u_view * vec4(pr.xyz, 1.0)).xyz;
-      if (pr.w < 0.0 ||
-          sphereMeetsFrustumBox(vec3(c.xy, -c.z), slackRadius(pr.w) * BIN_REACH, minDepth, maxDepth, perDepth0,
-                                perDepth1)) {
-        const uint slot = atomicAdd(s_count, 1u);
-        if (slot < uint(MAX_BIN_LIGHTS)) bins[record + uint(BIN_HEADER) + slot] = i;
-      }
+      listed = pr.w < 0.0 || sphereMeetsFrustumBox(vec3(c.xy, -c.z), slackRadius(pr.w) * BIN_REACH, minDepth,
+                                                   maxDepth, perDepth0, perDepth1);
 #if defined(FAR_FIELD)
-      else {
-        farFieldAdd(0, lights[i], point);
-      }
+      if (!listed) farFieldAdd(0, lights[i], point);
 #endif
     }
+    uint kept = 0u;
+    const uint slot = count + orderedAppend(listed, local, kept);
+    if (listed && slot < uint(MAX_BIN_LIGHTS)) bins[record + uint(BIN_HEADER) + slot] = i;
+    count += kept;
   }
-  barrier();
+  groupBarrier();
   if (fits && local == 0u) {
-    bins[record] = s_count;
+    bins[record] = count;
     bins[record + 4u] = floatBitsToUint(point.x);
     bins[record + 5u] = floatBitsToUint(point.y);
     bins[record + 6u] = floatBitsToUint(point.z);

@@ -21,11 +21,18 @@
 // 64 lights, 13.5 at 1,024 against 14.1 and 18.4 for 8x8 quarters). A half row
 // is TILE_SIZE / 2 pixels: one SIMD row of a CPU rasteriser's 8 lanes, a
 // quarter of a GPU warp; every lane of it pays the loop its list makes, so
-// the list is the half row's, not the pixel's. The lists are bits over the
-// tile's list: TILE_SIZE * 2 half rows x MAX_TILE_LIGHTS bits of shared
-// memory, and the view-space spheres 16 bytes a light. Not with FAR_FIELD:
-// it shades each listed light without its cut, so its tail reaches every
-// pixel of the quarter, and sums the rest per quarter.
+// the list is the half row's, not the pixel's (a speed matter only: which
+// invocations run together never changes the result). The lists are bits
+// over the tile's list: TILE_SIZE * 2 half rows x MAX_TILE_LIGHTS bits of
+// shared memory, and the view-space spheres 16 bytes a light. Not with
+// FAR_FIELD: it shades each listed light without its cut, so its tail
+// reaches every pixel of the quarter, and sums the rest per quarter (its
+// quarters' lists are bits over the tile's list too).
+// Scheduling (include/invocation.glsl): the tile's list is appended in the
+// bin's order (include/ordered_append.glsl), the bits and depth bounds are
+// atomicOr, atomicMin and atomicMax, the far field integer atomicAdd: every
+// pixel sums the same lights in the same order whatever order the
+// invocations run in.
 // The maths is include/lighting.glsl's, as in deferred_lighting.frag and
 // light_volume.frag, so the methods agree.
 // Defines: one GBUFFER_*, one LIGHTING_*, one ATTENUATION_*; TILE_SIZE,
@@ -63,7 +70,6 @@ const uint kLanes = uint(TILE_SIZE * TILE_SIZE) & ~3u;
 // only those (half the bins are empty on a floor under the lights), in order.
 shared vec3 s_farShade[4][FAR_FIELD_BINS][4];
 shared uint s_farBins[4];
-shared uint s_midCount;
 shared uint s_midLights[FAR_FIELD_MID];
 shared vec3 s_farPoint[FAR_FIELD_CUBES];  // where each set was summed
 #else
@@ -81,6 +87,8 @@ const uint kLanes = uint(TILE_SIZE * TILE_SIZE);
 #endif
 
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE, local_size_z = 1) in;
+#include "include/invocation.glsl"
+#include "include/ordered_append.glsl"
 
 layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
 layout(TARGET_FORMAT, binding = 0) uniform image2D u_target;
@@ -90,13 +98,15 @@ uniform int u_load;           // 1: add to what the target holds (e.g. an ambien
 
 shared uint s_minDepth;  // floatBitsToUint of the positive view depth (orders like the float)
 shared uint s_maxDepth;
-shared uint s_count;
 shared uint s_depthMask;  // 2.5D culling: bit b set when a pixel's depth falls in slice b of [min, max]
 shared uint s_lights[MAX_TILE_LIGHTS];
 const uint kHalf = uint(TILE_SIZE) / 2u;
+const uint kListWords = (uint(MAX_TILE_LIGHTS) + 31u) / 32u;  // a bit per entry of s_lights
 #if defined(FAR_FIELD)
-shared uint s_quarterMin[4], s_quarterMax[4], s_quarterCount[4];
-shared uint s_quarterLights[4][MAX_TILE_LIGHTS];  // each a subset of s_lights: never overflows
+shared uint s_quarterMin[4], s_quarterMax[4];
+// Quarter q shades the tile's light e when bit e % 32 of s_quarterLights[q][e / 32]
+// is set: in the tile's list order, whichever invocation marked it.
+shared uint s_quarterLights[4][kListWords];
 #else
 // Half row `row` (local y * 2 + (local x >= kHalf)) shades the
 // tile's light e when bit e % 32 of s_rowLights[row][e / 32] is set; s_view[e]
@@ -104,10 +114,9 @@ shared uint s_quarterLights[4][MAX_TILE_LIGHTS];  // each a subset of s_lights: 
 // radius negative: no cut-off), found once in the tile's culling loop.
 #define ROW_LISTS 1
 const uint kRows = uint(TILE_SIZE) * 2u;
-const uint kRowWords = (uint(MAX_TILE_LIGHTS) + 31u) / 32u;
 shared vec4 s_view[MAX_TILE_LIGHTS];
 shared uint s_rowMin[kRows], s_rowMax[kRows];
-shared uint s_rowLights[kRows][kRowWords];
+shared uint s_rowLights[kRows][kListWords];
 #endif
 
 // The slice (0..31) of [minDepth, minDepth + 32 / scale] a view depth falls in.
@@ -119,37 +128,44 @@ int depthSlice(float depth, float minDepth, float scale) {
 
 void main() {
   const ivec2 size = ivec2(u_viewport.xy);
-  const ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-  const uint local = gl_LocalInvocationIndex;
+  // The pixel, quarter and half row are functions of the (permutable,
+  // include/invocation.glsl) IDs; which invocations run together does not
+  // matter to the result: a half row is a unit of work (one list), not a
+  // set of lanes that run together. It matters to the speed: llvmpipe runs 8
+  // neighbouring invocations (x-major, one half row at TILE_SIZE 16) as one
+  // SIMD row, which then loops over one list; a 32-wide warp over 4 half
+  // rows loops over the union of theirs.
+  const uvec2 group = groupId().xy, lid = localId().xy, tileMin = group * uvec2(TILE_SIZE);
+  const ivec2 px = ivec2(tileMin + lid);
+  const uint local = localIndex();
   const bool inside = px.x < size.x && px.y < size.y;
-  const uint quarter = (gl_LocalInvocationID.x >= kHalf ? 1u : 0u) + (gl_LocalInvocationID.y >= kHalf ? 2u : 0u);
+  const uint quarter = (lid.x >= kHalf ? 1u : 0u) + (lid.y >= kHalf ? 2u : 0u);
 
   if (local == 0u) {
     s_minDepth = 0x7f7fffffu;
     s_maxDepth = 0u;
-    s_count = 0u;
     s_depthMask = 0u;
   }
+  orderedAppendInit(local);
 #if defined(ROW_LISTS)
-  const uint row = gl_LocalInvocationID.y * 2u + (gl_LocalInvocationID.x >= kHalf ? 1u : 0u);
+  const uint row = lid.y * 2u + (lid.x >= kHalf ? 1u : 0u);
   if (local < kRows) {
     s_rowMin[local] = 0x7f7fffffu;
     s_rowMax[local] = 0u;
   }
-  for (uint w = local; w < kRows * kRowWords; w += uint(TILE_SIZE * TILE_SIZE))
-    s_rowLights[w / kRowWords][w % kRowWords] = 0u;
+  for (uint w = local; w < kRows * kListWords; w += uint(TILE_SIZE * TILE_SIZE))
+    s_rowLights[w / kListWords][w % kListWords] = 0u;
 #endif
 #if defined(FAR_FIELD)
   if (local < 4u) {
     s_quarterMin[local] = 0x7f7fffffu;
     s_quarterMax[local] = 0u;
-    s_quarterCount[local] = 0u;
   }
+  for (uint w = local; w < 4u * kListWords; w += uint(TILE_SIZE * TILE_SIZE)) s_quarterLights[w / kListWords][w % kListWords] = 0u;
   farFieldClear(local, uint(TILE_SIZE * TILE_SIZE));
-  if (local == 0u) s_midCount = 0u;
   if (local < 4u) s_farBins[local] = 0u;
 #endif
-  barrier();
+  groupBarrier();
 
   Surface s;
   s.covered = false;
@@ -169,7 +185,9 @@ void main() {
 #endif
     }
   }
-  barrier();
+  // Depth bounds and slice bits: atomicMin, atomicMax and atomicOr, the same
+  // in any order.
+  groupBarrier();
 
   const bool tileCovered = s_maxDepth != 0u || s_minDepth != 0x7f7fffffu;
   const float minDepth = uintBitsToFloat(s_minDepth);
@@ -179,10 +197,15 @@ void main() {
   // lights in the empty gap between them, which the depth bounds keep.
   const float sliceScale = 32.0 / max(maxDepth - minDepth, 1e-6);
   if (inside && s.covered) atomicOr(s_depthMask, 1u << uint(depthSlice(viewDepth, minDepth, sliceScale)));
-  barrier();
+  groupBarrier();
 
-  if (tileCovered && u_pointLightCount > 0) {
-    const uvec2 tileMin = gl_WorkGroupID.xy * uvec2(TILE_SIZE);
+  // The tile's list (past MAX_TILE_LIGHTS too: then every pixel shades every
+  // light), the same in every invocation.
+  uint count = 0u;
+#if defined(FAR_FIELD)
+  uint midCount = 0u;
+#endif
+  if (tileCovered && u_pointLightCount > 0) {  // the same for the whole group
     vec2 perDepth0, perDepth1;
     frustumPerDepth(tileMin, tileMin + uvec2(TILE_SIZE), perDepth0, perDepth1);
     const uint mask = s_depthMask;
@@ -193,49 +216,67 @@ void main() {
 #endif
     // The lights of the tile's bin (tiled_bin.comp), or every light when the
     // bin's list overflowed.
-    const uvec2 bin = gl_WorkGroupID.xy / uint(BIN_TILES);
+    const uvec2 bin = group / uint(BIN_TILES);
     const uint record = binRecord(bin);
     const bool binned = binFits(bin, uint(bins.length())) && bins[record] <= uint(MAX_BIN_LIGHTS);
     const uint candidates = binned ? bins[record] : uint(u_pointLightCount);
     // The view-space box around the tile's frustum between its depths (spot cones).
     const vec3 boxLo = vec3(min(perDepth0 * minDepth, perDepth0 * maxDepth), -maxDepth);
     const vec3 boxHi = vec3(max(perDepth1 * minDepth, perDepth1 * maxDepth), -minDepth);
-    for (uint j = local; j < candidates && local < kLanes; j += kLanes) {
-      const uint i = binned ? bins[record + uint(BIN_HEADER) + j] : j;
-      const vec4 pr = lightBounds(lights[i]);
-      bool visible = true;
+    // kLanes candidates a round, listed in the bin's order (tiled_bin.comp:
+    // the lights' order) whichever invocation tests which: the pixels sum
+    // their lights in list order, and a list cut at MAX_TILE_LIGHTS or
+    // FAR_FIELD_MID keeps its first ones (include/ordered_append.glsl).
+    for (uint first = 0u; first < candidates; first += kLanes) {
+      const uint j = first + local;
+      uint i = 0u;
+      bool visible = false;
       vec4 view = vec4(0.0, 0.0, 0.0, -1.0);
-      if (pr.w >= 0.0) {
-        const float r = slackRadius(pr.w);
-        // The depth test first: it needs only the view matrix's z row.
-        const float depth = -dot(viewRowZ, vec4(pr.xyz, 1.0));
-        const float z0 = max(depth - r, minDepth), z1 = min(depth + r, maxDepth);
-        visible = z0 <= z1;
-        if (visible) {
-          const int lo = depthSlice(z0, minDepth, sliceScale), hi = depthSlice(z1, minDepth, sliceScale);
-          visible = (mask & ((0xffffffffu >> uint(31 - hi)) & (0xffffffffu << uint(lo)))) != 0u;
-        }
-        if (visible) {
-          view = vec4((u_view * vec4(pr.xyz, 1.0)).xy, depth, r);
-          visible = sphereMeetsFrustumBox(view.xyz, r, minDepth, maxDepth, perDepth0, perDepth1);
-        }
-      }
-      if (visible) visible = spotMayReachViewBox(lights[i], boxLo, boxHi);
-      if (visible) {
-        const uint slot = atomicAdd(s_count, 1u);
-        if (slot < uint(MAX_TILE_LIGHTS)) {
-          s_lights[slot] = i;
-#if defined(ROW_LISTS)
-          s_view[slot] = view;
+#if defined(FAR_FIELD)
+      bool near = false;
 #endif
+      if (j < candidates && local < kLanes) {
+        i = binned ? bins[record + uint(BIN_HEADER) + j] : j;
+        const vec4 pr = lightBounds(lights[i]);
+        visible = true;
+        if (pr.w >= 0.0) {
+          const float r = slackRadius(pr.w);
+          // The depth test first: it needs only the view matrix's z row.
+          const float depth = -dot(viewRowZ, vec4(pr.xyz, 1.0));
+          const float z0 = max(depth - r, minDepth), z1 = min(depth + r, maxDepth);
+          visible = z0 <= z1;
+          if (visible) {
+            const int lo = depthSlice(z0, minDepth, sliceScale), hi = depthSlice(z1, minDepth, sliceScale);
+            visible = (mask & ((0xffffffffu >> uint(31 - hi)) & (0xffffffffu << uint(lo)))) != 0u;
+          }
+          if (visible) {
+            view = vec4((u_view * vec4(pr.xyz, 1.0)).xy, depth, r);
+            visible = sphereMeetsFrustumBox(view.xyz, r, minDepth, maxDepth, perDepth0, perDepth1);
+          }
         }
+        if (visible) visible = spotMayReachViewBox(lights[i], boxLo, boxHi);
+#if defined(FAR_FIELD)
+        if (!visible) {
+          const vec3 toLight = pr.xyz - farPoint;
+          const float nearDistance = FAR_FIELD_NEAR * pr.w;
+          near = dot(toLight, toLight) < nearDistance * nearDistance;
+          if (!near) farFieldAdd(4, lights[i], farPoint);  // integer sums: any order
+        }
+#endif
+      }
+      uint kept = 0u;
+      const uint slot = count + orderedAppend(visible, local, kept);
+      count += kept;
+      if (visible && slot < uint(MAX_TILE_LIGHTS)) {
+        s_lights[slot] = i;
+#if defined(ROW_LISTS)
+        s_view[slot] = view;
+#endif
       }
 #if defined(FAR_FIELD)
-      else {
-        const vec3 toLight = pr.xyz - farPoint;
-        const float nearDistance = FAR_FIELD_NEAR * pr.w;
-        uint mid = uint(FAR_FIELD_MID);
-        if (dot(toLight, toLight) < nearDistance * nearDistance) mid = atomicAdd(s_midCount, 1u);
+      const uint mid = midCount + orderedAppend(near, local, kept);
+      midCount += kept;
+      if (near) {
         if (mid < uint(FAR_FIELD_MID))
           s_midLights[mid] = i;
         else
@@ -254,19 +295,18 @@ void main() {
     }
 #endif
   }
-  barrier();
+  groupBarrier();
 
   // With FAR_FIELD, refine the tile's list into its quarters' lists:
   // (light, quarter) pairs spread over the group (a handful per invocation);
   // the lights a quarter drops go to its far field.
-  const uint count = s_count;
 #if defined(FAR_FIELD)
-  const uint midCount = min(s_midCount, uint(FAR_FIELD_MID));
+  midCount = min(midCount, uint(FAR_FIELD_MID));
   if (count <= uint(MAX_TILE_LIGHTS)) {
     // k & 3 == local & 3 (kLanes is a multiple of 4): one quarter per invocation.
     vec3 farPoint = vec3(0.0);
     {
-      const uvec2 tileMin = gl_WorkGroupID.xy * uvec2(TILE_SIZE), high = uvec2(local & 1u, (local >> 1u) & 1u);
+      const uvec2 high = uvec2(local & 1u, (local >> 1u) & 1u);
       vec2 perDepth0, perDepth1;
       frustumPerDepth(tileMin + high * kHalf, tileMin + mix(uvec2(kHalf), uvec2(TILE_SIZE), bvec2(high)), perDepth0,
                       perDepth1);
@@ -287,7 +327,7 @@ void main() {
       if (pr.w >= 0.0) {
         // Quarter q: the low or high half in x (bit 0) and in y (bit 1); the
         // high half takes the odd column/row of an odd TILE_SIZE.
-        const uvec2 tileMin = gl_WorkGroupID.xy * uvec2(TILE_SIZE), high = uvec2(q & 1u, q >> 1u);
+        const uvec2 high = uvec2(q & 1u, q >> 1u);
         const uvec2 qMin = tileMin + high * kHalf, qMax = tileMin + mix(uvec2(kHalf), uvec2(TILE_SIZE), bvec2(high));
         vec2 perDepth0, perDepth1;
         frustumPerDepth(qMin, qMax, perDepth0, perDepth1);
@@ -295,8 +335,9 @@ void main() {
         visible = sphereMeetsFrustumBox(vec3(c.xy, -c.z), slackRadius(pr.w), uintBitsToFloat(s_quarterMin[q]),
                                         uintBitsToFloat(s_quarterMax[q]), perDepth0, perDepth1);
       }
+      const uint e = k >> 2u;
       if (visible)
-        s_quarterLights[q][atomicAdd(s_quarterCount[q], 1u)] = light;
+        atomicOr(s_quarterLights[q][e / 32u], 1u << (e % 32u));
       else
         farFieldAdd(int(q), lights[light], farPoint);
     }
@@ -308,9 +349,8 @@ void main() {
   // lane one shared-memory atomic.
   if (count <= uint(MAX_TILE_LIGHTS) && !(s_rowMax[row] == 0u && s_rowMin[row] == 0x7f7fffffu)) {
     const uint high = row & 1u, lanes = high != 0u ? uint(TILE_SIZE) - kHalf : kHalf;
-    const uint lane = gl_LocalInvocationID.x - high * kHalf;
-    const uvec2 tileMin = gl_WorkGroupID.xy * uvec2(TILE_SIZE);
-    const uvec2 rowMin = tileMin + uvec2(high * kHalf, gl_LocalInvocationID.y);
+    const uint lane = lid.x - high * kHalf;
+    const uvec2 rowMin = tileMin + uvec2(high * kHalf, lid.y);
     vec2 perDepth0, perDepth1;
     frustumPerDepth(rowMin, uvec2(tileMin.x + kHalf + high * (uint(TILE_SIZE) - kHalf), rowMin.y + 1u), perDepth0,
                     perDepth1);
@@ -326,7 +366,7 @@ void main() {
     }
   }
 #endif
-  barrier();
+  groupBarrier();
 #if defined(FAR_FIELD)
   // Merge the tile's set into each quarter's at the quarter's point, once per
   // (quarter, bin) instead of per pixel.
@@ -347,7 +387,7 @@ void main() {
       s_farShade[q][b][3] = mean / (wt + wq);
     }
   }
-  barrier();
+  groupBarrier();
 #endif
 
   if (!inside || !s.covered) return;  // the target's clear value (background) stays
@@ -357,10 +397,10 @@ void main() {
   if (u_ambientAndSun != 0) color += ambientTerm(s) + shadeDirectionalLight(s, V);
   if (count <= uint(MAX_TILE_LIGHTS)) {
 #if defined(FAR_FIELD)
-    const uint quarterCount = s_quarterCount[quarter];
     // The listed lights without their cut (their tails), the rest as the far field.
-    for (uint i = 0u; i < quarterCount; ++i)
-      color += shadePointLight(farFieldUncut(lights[s_quarterLights[quarter][i]]), s, V);
+    for (uint w = 0u; w * 32u < count; ++w)
+      for (uint bits = s_quarterLights[quarter][w]; bits != 0u; bits &= bits - 1u)
+        color += shadePointLight(farFieldUncut(lights[s_lights[w * 32u + uint(findLSB(bits))]]), s, V);
     const vec3 offset = s.position - s_farPoint[quarter];
     for (uint bits = s_farBins[quarter]; bits != 0u; bits &= bits - 1u) {
       const int b = findLSB(bits);

@@ -27,6 +27,7 @@
 #include "rgraph/pass_decl.h"
 #include "rgraph/passes/cluster_lists.h"
 #include "rgraph/passes/far_field.h"
+#include "rgraph/passes/invocation_order.h"
 #include "rgraph/passes/light_bins.h"
 #include "rgraph/passes/lighting_options.h"
 #include "rgraph/registry.h"
@@ -48,10 +49,13 @@ lighting::BinGrid binGrid(const ParamSet& p) {
   return {tile, std::max(1, (64 + tile - 1) / tile), farField(p), 2};
 }
 
-// Lighting, G-buffer and far-field defines: every program but the list build.
+// Lighting, G-buffer and far-field defines and a test's invocation
+// permutation: every program but the list build (clusters::buildProgram
+// adds the permutation there).
 std::vector<std::string> shadingDefines(const ParamSet& p) {
   std::vector<std::string> defines = lighting::shadingDefines(p);
   lighting::addFarFieldDefine(p, defines);
+  invocations::addPermuteDefine(p, defines);
   return defines;
 }
 

@@ -4,6 +4,7 @@
 
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/invocation_order.h"
 #include "rgraph/passes/lighting_options.h"
 
 namespace rgraph::clusters {
@@ -41,6 +42,7 @@ ShaderProgramSpec buildProgram(const ParamSet& p) {
   ShaderProgramSpec build;
   build.comp = "clustered_build.comp";
   build.defines = gridDefines(p);
+  invocations::addPermuteDefine(p, build.defines);
   build.drawsToAttachments = false;
   return build;
 }

@@ -20,6 +20,7 @@
 #include "rgraph/gl/uniform.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/passes/far_field.h"
+#include "rgraph/passes/invocation_order.h"
 #include "rgraph/passes/light_bins.h"
 #include "rgraph/passes/lighting_options.h"
 #include "rgraph/registry.h"
@@ -27,26 +28,28 @@
 namespace {
 using namespace rgraph;
 
-// Shared memory: 20 bytes a listed light (the tile's list and either its
-// four quarters' lists or the lights' view-space spheres), the counters and
-// depth bounds (< 128 bytes) and either, with far_field, the far field's sums
-// and near-light list (< 10 KiB) or, without, each of the tile's 2 x
-// tile_size half rows' depth bounds and a bit per listed light
-// (tiled_deferred.comp), within the 32 KiB every GL 4.5 device has
-// (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE's minimum), so that the program does not
-// depend on the device and validate checks the one that runs: 1,344 lights at
-// tile_size 16, 1,120 with far_field.
+// Shared memory: 4 bytes a listed light (the tile's list) and either, with
+// far_field, a bit a light for each of its four quarters' lists, the far
+// field's sums and near-light list (< 10 KiB), or, without, 16 bytes a light
+// (the lights' view-space spheres) and each of the tile's 2 x tile_size half
+// rows' depth bounds and a bit per listed light (tiled_deferred.comp); then
+// the counters and depth bounds (< 128 bytes) and the ordered appends' three
+// bits per invocation (include/ordered_append.glsl), within the 32 KiB every
+// GL 4.5 device has (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE's minimum), so that
+// the program does not depend on the device and validate checks the one that
+// runs: 1,344 lights at tile_size 16, 4,956 with far_field.
 int64_t tileSharedBytes(int64_t lights, int64_t tile, bool farField) {
-  const int64_t rows = 2 * tile;
-  return 128 + 20 * lights + (farField ? 10240 : rows * 8 + rows * 4 * ((lights + 31) / 32));
+  const int64_t rows = 2 * tile, words = (lights + 31) / 32, appendBits = 12 * ((tile * tile + 31) / 32);
+  return 128 + appendBits + 4 * lights +
+         (farField ? 10240 + 4 * 4 * words : 16 * lights + rows * 8 + rows * 4 * words);
 }
 
 int maxTileLights(const ParamSet& p) {
   const int64_t tile = p.getInt("tile_size", 16);
   const bool farField = p.getBool("far_field", false);
   int64_t n = std::clamp<int64_t>(p.getInt("max_tile_lights", 1024), 1, 65536);
-  // The largest count that fits: the bytes grow by at least 20 a light.
-  if (tileSharedBytes(n, tile, farField) > 32768) n = (32768 - tileSharedBytes(0, tile, farField)) / 20;
+  // The largest count that fits: the bytes grow by at least 4 a light.
+  if (tileSharedBytes(n, tile, farField) > 32768) n = (32768 - tileSharedBytes(0, tile, farField)) / 4;
   while (n > 1 && tileSharedBytes(n, tile, farField) > 32768) --n;
   return static_cast<int>(n);
 }
@@ -59,11 +62,13 @@ lighting::BinGrid binGrid(const ParamSet& p) {
 }
 
 // What both programs share: lighting, G-buffer, tile and far-field defines
-// (the bin program adds the bins' own, lighting::binProgram).
+// and a test's invocation permutation (the bin program adds the bins' own,
+// lighting::binProgram).
 std::vector<std::string> commonDefines(const ParamSet& p) {
   std::vector<std::string> defines = lighting::shadingDefines(p);
   defines.push_back("TILE_SIZE=" + std::to_string(p.getInt("tile_size", 16)));
   lighting::addFarFieldDefine(p, defines);
+  invocations::addPermuteDefine(p, defines);
   return defines;
 }
 

@@ -7,7 +7,9 @@
 // The list buffer (storage buffer 1): a header (clusters that overflowed this
 // frame, then the grid it was built with: tile size, slices, list length),
 // one count per cluster (every light that reaches it, also past
-// MAX_CLUSTER_LIGHTS), then MAX_CLUSTER_LIGHTS light indices per cluster.
+// MAX_CLUSTER_LIGHTS), then MAX_CLUSTER_LIGHTS light indices per cluster (in
+// the order of what the build culled, the light bin's list or the lights',
+// whatever the scheduling; a cut list keeps the first).
 // The builder (CLUSTER_LISTS_BUILD) takes the grid from its defines and the
 // pass that dispatches it writes the header; readers take the grid from the
 // header, so that it is stated once, by the pass that builds the lists

@@ -9,7 +9,8 @@
 // (every light listed, also past MAX_BIN_LIGHTS: then the tiles test every
 // light), 3 unused, the point the far field was summed at (xyz floats, 1
 // unused), FAR_FIELD_VALUES far-field floats (radiance, weighted direction,
-// gradient, weighted offset per direction bin: far_field.glsl), then MAX_BIN_LIGHTS indices.
+// gradient, weighted offset per direction bin: far_field.glsl), then MAX_BIN_LIGHTS indices
+// in increasing order (the first MAX_BIN_LIGHTS listed, whatever the scheduling).
 // On storage-buffer binding BIN_BINDING: writable in tiled_bin.comp
 // (BIN_WRITER), read-only in the programs that read the bins.
 // Needs TILE_SIZE and include/frame.glsl first.

@@ -35,7 +35,8 @@ uint64_t bufferBytes(const Grid& g, Extent size);
 // program's, and those of a program that reads lists its own pass built
 // (CLUSTER_GRID_DEFINES in include/clusters.glsl).
 std::vector<std::string> gridDefines(const ParamSet& params);
-// The build program (clustered_build.comp with the grid's defines).
+// The build program (clustered_build.comp with the grid's defines and a
+// test's invocation permutation, rgraph/passes/invocation_order.h).
 ShaderProgramSpec buildProgram(const ParamSet& params);
 // The build program of a pass that reads the G-buffer and builds lists for
 // its own pixels only (clustered_deferred): CLUSTER_DEPTH_BOUNDS bounds each
