@@ -99,7 +99,6 @@ class ClusteredDeferredPass final : public PassInstance {
     GpuScene& scene = *ctx.gpuScene();
     const Extent size = ctx.extent("color");
     const int lights = ctx.params().getBool("point_lights", true) ? static_cast<int>(scene.pointLightCount()) : 0;
-    scene.bindFrame();
     scene.bindPointLights(lighting::threshold(ctx.params()));
     if (buffer_) {
       bins_.build(lights, size);  // what the list build (and the far field) culls

@@ -94,7 +94,6 @@ void Builder::build(GpuScene& scene, uint32_t buffer, const Grid& g, Extent size
   glNamedBufferSubData(buffer, 0, sizeof header, header);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBinding, buffer);
   if (lights <= 0) return;
-  scene.bindFrame();
   scene.bindPointLights(threshold);
   glUseProgram(program_);
   lightCount_.set(lights);

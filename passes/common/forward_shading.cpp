@@ -29,7 +29,6 @@ void SurfaceDrawer::draw(PassContext& ctx, bool blended) const {
   GpuScene& scene = *ctx.gpuScene();
   const GpuScene::Filter filter = blended ? GpuScene::Filter::blend : GpuScene::Filter::opaque;
   if (scene.primitiveCount(filter) == 0) return;
-  scene.bindFrame();
   scene.bindPointLights(lighting::threshold(ctx.params()));
   const uint32_t prog = program_;
   gl::useProgram(ctx, prog);

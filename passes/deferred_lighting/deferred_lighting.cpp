@@ -21,7 +21,6 @@ class DeferredLightingPass final : public gl::FullscreenPass {
     ambientAndSun_.set(1);
     // Optional ambient occlusion (e.g. the ssao plugin's output) scales the ambient term.
     hasAo_.set(ctx.bound("ao"));
-    scene.bindFrame();
     scene.bindPointLights(lighting::threshold(ctx.params()));
   }
   uint32_t changedState() const override { return 0; }  // uniforms and the scene's buffers only

@@ -22,8 +22,7 @@ class GBufferViewPass final : public gl::FullscreenPass {
     int mode = 3;
     for (size_t i = 0; i < kViews.size(); ++i)
       if (kViews[i] == view) mode = static_cast<int>(i);
-    mode_.set(mode);
-    ctx.gpuScene()->bindFrame();
+    mode_.set(mode);  // (the executor bound the Frame block)
   }
   ProgramUniform mode_{this, "u_mode"};
 };

@@ -107,7 +107,6 @@ class TiledDeferredPass final : public PassInstance {
     const Extent size = ctx.extent("color");
     const bool points = ctx.params().getBool("point_lights", true);
     const int lights = points ? static_cast<int>(scene.pointLightCount()) : 0;
-    scene.bindFrame();
     scene.bindPointLights(lighting::threshold(ctx.params()));
     bins_.build(lights, size);
     glUseProgram(program_);

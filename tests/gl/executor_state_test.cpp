@@ -8,6 +8,8 @@
 #include "gl_test_util.h"
 #include "rgraph/adapt.h"
 #include "rgraph/error.h"
+#include "rgraph/gl/gpu_scene.h"
+#include "rgraph/gl/objects.h"
 #include "rgraph/pipeline_load.h"
 #include "rgraph/scene.h"
 
@@ -224,6 +226,72 @@ TEST_F(StateTest, BindingsARawBindMustBeDeclared) {
   const std::string msg = frameError(exec);
   EXPECT_NE(msg.find("pass 'middle' of type 'lying_unbinder' bound another program (0"), std::string::npos) << msg;
   EXPECT_NE(msg.find("kGlStateBindings"), std::string::npos) << msg;
+}
+
+}  // namespace
+
+namespace {
+
+// Binds a buffer of its own at uniform buffer 0, where the scene's Frame block
+// is, and answers `declared`.
+template <uint32_t declared>
+struct FrameBlockHider final : PassInstance {
+  void execute(PassContext& ctx) override {
+    if (!buffer_) {
+      buffer_ = gl::createBuffer();
+      glNamedBufferStorage(buffer_.id(), 256, nullptr, 0);
+    }
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffer_.id());
+    glClearNamedFramebufferfv(ctx.framebuffer(), GL_COLOR, 0, std::array<float, 4>{0, 0, 0, 1}.data());
+  }
+  uint32_t changedState() const override { return declared; }
+  gl::Buffer buffer_;
+};
+// What is bound at uniform buffer 0 when it runs, and what the scene's record says.
+uint32_t frameBindingSeen = 0, frameBindingRecorded = 0;
+struct FrameBlockLooker final : PassInstance {
+  void execute(PassContext& ctx) override {
+    GLint b = 0;
+    glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, 0, &b);
+    frameBindingSeen = static_cast<uint32_t>(b);
+    frameBindingRecorded = ctx.gpuScene() ? ctx.gpuScene()->recordedFrameBinding() : 0;
+    glClearNamedFramebufferfv(ctx.framebuffer(), GL_COLOR, 0, std::array<float, 4>{1, 1, 1, 1}.data());
+  }
+  uint32_t changedState() const override { return 0; }
+};
+
+// The executor binds the Frame block before a pass only when the scene's
+// record says it is not bound there: a pass that binds another buffer at 0
+// says so (kGlStateBindings), and the next pass gets the Frame block back;
+// one that does not is named by the state checks.
+TEST_F(StateTest, BindingsAnotherBufferWhereTheFrameBlockIsMustBeDeclared) {
+  ASSERT_TRUE(reg.add(probeType("honest_hider", [] { return std::make_unique<FrameBlockHider<kGlStateBindings>>(); })));
+  ASSERT_TRUE(reg.add(probeType("lying_hider", [] { return std::make_unique<FrameBlockHider<0>>(); })));
+  ASSERT_TRUE(reg.add(probeType("frame_looker", [] { return std::make_unique<FrameBlockLooker>(); })));
+  const Scene scene = loadSceneAny("learnopengl:overview");
+  auto hideThenLook = [](const std::string& hider) {
+    GraphBuilder g;
+    g.texture("a", Format::rgba8).output("out");
+    g.pass("hide", hider, {writeUse("dst", Access::color_attachment, "a")});
+    g.pass("look", "frame_looker",
+           {readUse("src", Access::sampled, "a"), writeUse("dst", Access::color_attachment, "out")});
+    return g.config();
+  };
+  {
+    Executor exec(hideThenLook("honest_hider"), reg, *shaders, &scene);
+    exec.setStateChecks(true);
+    exec.resize({8, 8});
+    ASSERT_NO_THROW(exec.renderFrame());
+    EXPECT_NE(frameBindingRecorded, 0u);
+    EXPECT_EQ(frameBindingSeen, frameBindingRecorded);
+  }
+  Executor exec(hideThenLook("lying_hider"), reg, *shaders, &scene);
+  exec.setStateChecks(true);
+  exec.resize({8, 8});
+  const std::string msg = frameError(exec);
+  EXPECT_NE(msg.find("pass 'hide' of type 'lying_hider' bound another uniform buffer at 0 (the Frame block)"),
+            std::string::npos)
+      << msg;
 }
 
 }  // namespace

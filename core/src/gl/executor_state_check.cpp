@@ -54,6 +54,12 @@ void Executor::Impl::checkBindings(const exec_detail::PassRun& run) const {
     glGetIntegerv(pname, &v);
     return static_cast<uint32_t>(v);
   };
+  auto indexed = [](GLenum pname) {
+    GLint v = 0;
+    glGetIntegeri_v(pname, 0, &v);
+    return static_cast<uint32_t>(v);
+  };
+  const auto known = [](uint32_t scene) { return scene ? scene : GlBindings::kUnknown; };
   struct Item {
     const char* what;
     uint32_t recorded, actual;
@@ -64,6 +70,11 @@ void Executor::Impl::checkBindings(const exec_detail::PassRun& run) const {
       {"viewport height", bound.viewportHeight, static_cast<uint32_t>(viewport[3])},
       {"program", bound.program, integer(GL_CURRENT_PROGRAM)},
       {"vertex array", bound.vertexArray, integer(GL_VERTEX_ARRAY_BINDING)},
+      {"uniform buffer at 0 (the Frame block)", gpuScene ? known(gpuScene->recordedFrameBinding()) : GlBindings::kUnknown,
+       indexed(GL_UNIFORM_BUFFER_BINDING)},
+      {"storage buffer at 0 (the scene's lights)",
+       gpuScene ? known(gpuScene->recordedLightBinding()) : GlBindings::kUnknown,
+       indexed(GL_SHADER_STORAGE_BUFFER_BINDING)},
   };
   for (const Item& i : items)
     if (i.recorded != GlBindings::kUnknown && i.recorded != i.actual)

@@ -284,12 +284,11 @@ glm::mat4 GpuScene::writeFrame(Extent viewport, const Camera& cam, const FrameMo
 
 void GpuScene::selectJitter(bool jittered) {
   jittered_ = jittered;
-  bindFrame();
+  if (boundFrame_ != (jittered_ ? frame_.id() : frameUnjittered_.id())) bindFrame();
 }
 
 void GpuScene::bindFrame() const {
   const uint32_t block = jittered_ ? frame_.id() : frameUnjittered_.id();
-  if (boundFrame_ == block) return;
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, block);
   boundFrame_ = block;
 }

@@ -82,16 +82,21 @@ class GpuScene {
   // Binds the Frame block at 0: the frame's jittered camera, or the same
   // camera without jitter while the executor runs a pass whose
   // PassDecl::jitter is false (selectJitter).
-  // Skipped when that block is already bound there by this scene (see
-  // forgetBindings), as are bindPointLights of the buffer bound there.
+  // The executor has bound it before every pass: a pass calls this only to
+  // get it back after binding another buffer there itself.
   void bindFrame() const;
-  // The executor, before each pass: which block bindFrame() binds (and binds it).
+  // The executor, before each pass: which block bindFrame() binds, and binds
+  // it unless this scene's record says it is bound there already.
   void selectJitter(bool jittered);
   // Uniform buffer 0 and storage buffer 0 may hold something else now (a
   // pass bound them with raw GL calls, the caller ran between frames): the
   // next bindFrame / bindPointLights binds again. updateFrame forgets too; the
   // executor calls it after a pass whose changedState() has kGlStateBindings.
   void forgetBindings() const { boundFrame_ = boundLights_ = 0; }
+  // The buffers the record says are bound at uniform buffer 0 and storage
+  // buffer 0 (0: not known), for Executor::setStateChecks.
+  uint32_t recordedFrameBinding() const { return boundFrame_; }
+  uint32_t recordedLightBinding() const { return boundLights_; }
   // The executor, for the length of a frame: the record its passes bind
   // through (PassContext::bindings). The draws below bind their program and
   // vertex arrays with the same calls as without one and write them into it,
@@ -107,7 +112,8 @@ class GpuScene {
   // through many values holds no more buffers than that.
   // The buffer holds the point lights first, then the spot lights (its last
   // spotLightCount() entries), each in scene order.
-  // Binds the buffer at shader storage binding 0.
+  // Binds the buffer at shader storage binding 0, unless this scene's record
+  // says it is bound there already (forgetBindings).
   void bindPointLights(float threshold);
   uint32_t pointLightBuffer(float threshold);
   uint32_t pointLightCount() const;  // every light in the buffer, spot lights included

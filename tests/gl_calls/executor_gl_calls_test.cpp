@@ -1,0 +1,131 @@
+// What the executor costs in GL calls (issue 26): a pass makes the calls a
+// hand-written frame would make for it and no more, and a frame of the
+// default pipeline binds and sets state once where hand-written GL would.
+// Counted by bench/gl_call_counter.h: every GL call this program and
+// librgraph make (cmake/rgraphGlCallCounter.cmake). The figures beside the
+// counts are bench/render_executor_overhead.cpp's hand-written frames; the
+// benchmark times both, this test holds the counts.
+#include <GL/glcorearb.h>
+#include <gtest/gtest.h>
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "gl_call_counter.h"
+#include "rgraph/adapt.h"
+#include "rgraph/gl/executor.h"
+#include "rgraph/gl/shader_library.h"
+#include "rgraph/registry.h"
+#include "rgraph/scene.h"
+#include "support/test_support.h"
+
+namespace rgraph {
+namespace {
+
+using bench::GlCallCounter;
+using Calls = std::map<std::string, long long>;
+
+// The calls one renderFrame() makes, per GL function.
+Calls frameCalls(Executor& exec) {
+  const auto before = GlCallCounter::perFunction();
+  exec.renderFrame();
+  Calls d;
+  for (const auto& [name, n] : GlCallCounter::perFunction()) d[name] += static_cast<long long>(n);
+  for (const auto& [name, n] : before) d[name] -= static_cast<long long>(n);
+  for (auto it = d.begin(); it != d.end();) it = it->second == 0 ? d.erase(it) : std::next(it);
+  return d;
+}
+
+long long total(const Calls& calls) {
+  long long n = 0;
+  for (const auto& [name, k] : calls) n += k;
+  return n;
+}
+
+std::string listing(const Calls& calls) {
+  std::string s;
+  for (const auto& [name, k] : calls) s += "  " + name + " " + std::to_string(k) + "\n";
+  return s;
+}
+
+// A gradient, then `passes` - 1 fullscreen inverts each reading the one before.
+PipelineConfig chain(int passes) {
+  std::string json = R"({"version": 1, "resources": {)";
+  for (int i = 0; i < passes; ++i)
+    json += (i ? "," : "") + std::string("\"t") + std::to_string(i) + "\": {\"format\": \"rgba8\", \"size\": \"output\"}";
+  json += R"(}, "passes": [{"name": "p0", "type": "fullscreen", "params": {"shader": "gradient.frag"},
+             "outputs": {"color": "t0"}})";
+  for (int i = 1; i < passes; ++i)
+    json += ",{\"name\": \"p" + std::to_string(i) + "\", \"type\": \"fullscreen\", \"params\": {\"shader\": " +
+            "\"invert.frag\"}, \"inputs\": {\"input0\": \"t" + std::to_string(i - 1) + "\"}, \"outputs\": " +
+            "{\"color\": \"t" + std::to_string(i) + "\"}}";
+  json += "], \"output\": \"t" + std::to_string(passes - 1) + "\"}";
+  return testsupport::buildPipelineOrThrow(json, "<chain>");
+}
+
+class GlCalls : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!GlCallCounter::available()) GTEST_FAIL() << "the GL call counter needs x86-64 ELF";
+    testsupport::sharedGlContext();
+    shaders = std::make_unique<ShaderLibrary>();
+  }
+  // Built at `size`, warmed up (programs linked, first-touch allocations
+  // done), per-pass CPU timing off (on llvmpipe it adds a glFinish per pass).
+  std::unique_ptr<Executor> warmed(const PipelineConfig& cfg, const Scene* scene, Extent size) {
+    auto exec = std::make_unique<Executor>(cfg, PassRegistry::builtins(), *shaders, scene);
+    exec->setCpuPassTiming(false);
+    exec->resize(size);
+    for (int i = 0; i < 3; ++i) exec->renderFrame();
+    return exec;
+  }
+  std::unique_ptr<ShaderLibrary> shaders;
+};
+
+// A fullscreen pass reading the one before costs what it costs by hand: its
+// framebuffer, its input's texture unit, its draw. Nothing per pass for
+// state the pass leaves alone, the program and vertex array already bound,
+// the viewport already set, or timing.
+TEST_F(GlCalls, AFullscreenPassCostsItsFramebufferItsInputAndItsDraw) {
+  auto shortChain = warmed(chain(40), nullptr, {16, 16});
+  auto longChain = warmed(chain(120), nullptr, {16, 16});
+  const Calls few = frameCalls(*shortChain), many = frameCalls(*longChain);
+  Calls perEighty = many;
+  for (const auto& [name, k] : few) perEighty[name] -= k;
+  for (auto it = perEighty.begin(); it != perEighty.end();) it = it->second == 0 ? perEighty.erase(it) : std::next(it);
+  const Calls expected = {{"glBindFramebuffer", 80}, {"glBindTextureUnit", 80}, {"glDrawArrays", 80}};
+  EXPECT_EQ(perEighty, expected) << "80 passes more cost:\n" << listing(perEighty);
+  // Per frame, beside the passes: the state a caller may have left put back
+  // (10 calls), the context left neutral, one viewport, one program per shader.
+  EXPECT_LE(total(few) - 3 * 40, 20) << listing(few);
+}
+
+// learnopengl:overview through pipelines/default.json at 32x32: 349 calls a
+// frame (hand-written: 312; 409 before the executor kept the scene's
+// bindings and passes declared what they change). Each binding is made once
+// a frame, and a steady frame asks GL nothing (no glGet: a round trip on
+// drivers that run GL on a thread of their own).
+TEST_F(GlCalls, ADefaultPipelineFrameBindsOnceAndAsksNothing) {
+  const Scene scene = loadSceneAny("learnopengl:overview");
+  PipelineConfig cfg = testsupport::loadPipelineOrThrow(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/default.json");
+  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
+  auto exec = warmed(cfg, &scene, {32, 32});
+  const Calls calls = frameCalls(*exec);
+  const auto count = [&](const char* name) { return calls.count(name) ? calls.at(name) : 0ll; };
+  EXPECT_EQ(count("glViewport"), 1) << listing(calls);
+  // The Frame block when it is written, again by the first pass (the frame's
+  // state reset forgets it), and the light buffer once.
+  EXPECT_EQ(count("glBindBufferBase"), 3) << listing(calls);
+  EXPECT_EQ(count("glUseProgram"), 6) << listing(calls);  // five programs, program 0 at the end
+  EXPECT_EQ(count("glDepthFunc"), 3) << listing(calls);  // the reset, light volumes' GL_GEQUAL and back
+  EXPECT_LE(total(calls), 349) << listing(calls);
+  for (const auto& [name, k] : calls) {
+    EXPECT_NE(name.rfind("glGet", 0), 0u) << name << " in a steady frame";
+    if (name.rfind("glIs", 0) == 0) EXPECT_EQ(name + " " + std::to_string(k), "glIsBuffer 1");  // the scene's context check
+  }
+  EXPECT_EQ(count("glFinish"), 0);
+}
+
+}  // namespace
+}  // namespace rgraph
