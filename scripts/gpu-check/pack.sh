@@ -109,7 +109,7 @@ pack_libraries() {  # STAGE ELF...
     [[ "$pkg" =~ $GPUCHECK_BASE_PACKAGES_RE ]] && dest=$stage/lib-base
     find "$tmp/root" \( -type f -o -type l \) -name '*.so*' -not -name '*.py' -path '*/lib/*' -not -path '*/gconv/*' \
       -exec cp -P {} "$dest/" \;
-    echo "$(basename "$deb" .deb)" >>"$stage/packages.txt"
+    basename "$deb" .deb >>"$stage/packages.txt"
     rm -f "$deb"
   done <"$tmp/packages"
   rm -rf "$tmp"

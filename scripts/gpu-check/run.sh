@@ -7,7 +7,9 @@
 # the unpacked copy everything resolves as it did there: a symbolic link
 # where the path is free (a bare machine), else a bind mount in a private
 # mount namespace (`unshare -m`, root), which also serves a dry run on the
-# machine that packed it, where the path is the real checkout.
+# machine that packed it, where the path is the real checkout; where neither
+# works (a sandbox without mount namespaces), root moves the folder aside for
+# the run and puts it back.
 
 # Seconds each suite and the bench may take before they are stopped (the
 # whole check has 8 minutes on the device; one hung suite must not eat it).
@@ -23,6 +25,7 @@ run_main() {  # DIR OUT JOBS SUITES BENCH
   work=$(mktemp -d /tmp/rgraph-gpucheck.XXXXXX)
   GPUCHECK_WORK=$work
   trap 'gpucheck_cleanup' EXIT
+  trap 'exit 130' INT TERM
   local t0=$SECONDS
   tar -xzf "$dir/$GPUCHECK_ARCHIVE" -C "$work" || die "cannot unpack $dir/$GPUCHECK_ARCHIVE"
   # shellcheck disable=SC1090
@@ -32,15 +35,27 @@ run_main() {  # DIR OUT JOBS SUITES BENCH
   note "unpacked in $((SECONDS - t0)) s into $work; the tests' source root is $root"
 
   if [[ ! -e "$root" && ! -L "$root" ]] || stale_link "$root"; then
-    mkdir -p "$(dirname "$root")"
-    ln -sfn "$work/src" "$root"
-    GPUCHECK_LINK=$root
+    link_root "$root" "$work"
     run_checks "$work" || status=$?
   else
-    command -v unshare >/dev/null || die "$root exists and unshare is missing: cannot point it at the unpacked tree"
-    note "$root exists: running in a private mount namespace with the unpacked tree mounted over it"
-    unshare -m bash "$gpucheck_dir/../gpu-check.sh" --in-namespace "$work" || status=$?
+    if [[ -z "${GPUCHECK_NO_NAMESPACE:-}" ]]; then  # set: try the fallback below (tests)
+      note "$root exists: running in a private mount namespace with the unpacked tree mounted over it"
+      unshare -m bash "$gpucheck_dir/../gpu-check.sh" --in-namespace "$work" || status=$?
+    fi
+    if [[ ! -f "$work/namespace-entered" ]]; then
+      # No mount namespace here (no unshare, no CAP_SYS_ADMIN, a sandbox
+      # without them): move the folder aside for the run; gpucheck_cleanup
+      # puts it back, also when the check is stopped.
+      [[ "$(id -u)" == 0 ]] || die "cannot mount over $root, and only root may move it aside: pack from a build whose source path is free there"
+      note "no mount namespace: moving $root aside to $root.gpucheck-aside for the run"
+      mv "$root" "$root.gpucheck-aside" || die "cannot move $root aside"
+      GPUCHECK_ASIDE=$root
+      link_root "$root" "$work"
+      status=0
+      run_checks "$work" || status=$?
+    fi
   fi
+  gpucheck_restore_root
   [[ -f "$work/results/done" ]] || die "the check stopped before it finished (exit $status); partial results in $work"
   write_report "$work/results" "$out/report.md"
   tar -C "$work/results" -czf "$out/details.tar.gz" .
@@ -53,8 +68,22 @@ stale_link() {
   [[ -L "$1" ]] && [[ "$(readlink "$1")" == /tmp/rgraph-gpucheck.*/src ]]
 }
 
+link_root() {  # ROOT WORK
+  mkdir -p "$(dirname "$1")"
+  ln -sfn "$2/src" "$1"
+  GPUCHECK_LINK=$1
+}
+
+# The source path as it was: our link removed, a folder moved aside back.
+gpucheck_restore_root() {
+  if [[ -n "${GPUCHECK_LINK:-}" && -L "$GPUCHECK_LINK" ]]; then rm -f "$GPUCHECK_LINK"; fi
+  GPUCHECK_LINK=
+  if [[ -n "${GPUCHECK_ASIDE:-}" && ! -e "$GPUCHECK_ASIDE" ]]; then mv "$GPUCHECK_ASIDE.gpucheck-aside" "$GPUCHECK_ASIDE"; fi
+  GPUCHECK_ASIDE=
+}
+
 gpucheck_cleanup() {
-  [[ -n "${GPUCHECK_LINK:-}" && -L "$GPUCHECK_LINK" ]] && rm -f "$GPUCHECK_LINK"
+  gpucheck_restore_root
   [[ -n "${GPUCHECK_WORK:-}" && -z "${GPUCHECK_KEEP:-}" ]] && rm -rf "$GPUCHECK_WORK"
   return 0
 }
@@ -67,7 +96,8 @@ run_in_namespace() {  # WORK
   source "$work/$GPUCHECK_MANIFEST"
   root=$GPUCHECK_SOURCE_ROOT
   mount --make-rprivate / 2>/dev/null || true
-  mount --bind "$work/src" "$root" || die "cannot mount $work/src over $root (not root?)"
+  mount --bind "$work/src" "$root" 2>/dev/null || exit 3  # the caller moves the folder aside instead
+  touch "$work/namespace-entered"
   shared=$(dirname "$root")/shared
   if [[ -d "$work/shared" ]]; then
     mkdir -p "$shared"
@@ -121,7 +151,7 @@ run_suite() {  # WORK NAME PROGRAM FILTER
   local work=$1 name=$2 prog=$3 filter=$4 res=$1/results/suites/$2 t0=$SECONDS rc=0
   mkdir -p "$res/run" "$work/tmp/$name"
   (cd "$res/run" && TMPDIR=$work/tmp/$name RGRAPH_TEST_OUTPUT=$res/run/images \
-    timeout -k 10 "$GPUCHECK_SUITE_TIMEOUT" "$work/src/$GPUCHECK_BUILD_REL/bin/$prog" \
+    timeout -k 10 "$GPUCHECK_SUITE_TIMEOUT" "$GPUCHECK_SOURCE_ROOT/$GPUCHECK_BUILD_REL/bin/$prog" \
     --gtest_filter="$filter" --gtest_output="xml:$res/gtest.xml" >"$res/log.txt" 2>&1) || rc=$?
   echo "$rc" >"$res/exit"
   echo "$((SECONDS - t0))" >"$res/seconds"
@@ -136,7 +166,9 @@ run_checks() {  # WORK
   # shellcheck disable=SC1090
   source "$work/options.env"
   source "$work/$GPUCHECK_MANIFEST"
-  bin=$work/src/$GPUCHECK_BUILD_REL/bin
+  # Through the source path, not the unpacked one: the programs find their
+  # plugins from /proc/self/exe, and the tests expect the compiled-in folder.
+  bin=$GPUCHECK_SOURCE_ROOT/$GPUCHECK_BUILD_REL/bin
   check_environment "$work"
   mkdir -p "$results"
   cp "$work/$GPUCHECK_MANIFEST" "$work/packages.txt" "$results/"
