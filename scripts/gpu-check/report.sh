@@ -25,6 +25,36 @@ gtest_listed() {  # LOG KIND
     on { on = 0 }' "$1"
 }
 
+# Median frame ms per method and light count: the points of results.csv on
+# the bench's "lights" axis (one size), as a markdown table.
+bench_time_table() {  # RESULTS_CSV
+  awk -F, '
+    NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+    {
+      n = split($col["axes"], axes, ";"); on = 0
+      for (i = 1; i <= n; ++i) on = on || axes[i] == "lights"
+      if (!on || $col["status"] != "ok") next
+      m = $col["method"]; l = $col["lights"] + 0
+      size = $col["width"] "x" $col["height"]
+      if (!(m in seen)) { seen[m] = 1; methods[++nm] = m }
+      if (!(l in lseen)) { lseen[l] = 1; lights[++nl] = l }
+      if (!((m, l) in ms)) ms[m, l] = $col["median_ms"]
+    }
+    END {
+      if (!nm) exit
+      for (i = 1; i <= nl; ++i) for (j = i + 1; j <= nl; ++j) if (lights[j] < lights[i]) { t = lights[i]; lights[i] = lights[j]; lights[j] = t }
+      printf "Median frame ms at %s by light count (results.csv, axis lights):\n\n| method |", size
+      for (i = 1; i <= nl; ++i) printf " %d |", lights[i]
+      printf "\n| --- |"; for (i = 1; i <= nl; ++i) printf " ---: |"; printf "\n"
+      for (k = 1; k <= nm; ++k) {
+        printf "| %s |", methods[k]
+        for (i = 1; i <= nl; ++i) printf " %s |", ((methods[k], lights[i]) in ms) ? sprintf("%.2f", ms[methods[k], lights[i]]) : ""
+        printf "\n"
+      }
+      printf "\n"
+    }' "$1"
+}
+
 suite_row() {  # RESULTS NAME PROGRAM FILTER
   local d=$1/suites/$2 rc seconds passed failed skipped ran status
   rc=$(cat "$d/exit" 2>/dev/null || echo "?")
@@ -100,6 +130,7 @@ write_report() {  # RESULTS OUTFILE
       echo
       sed -n '/^rgraph bench:/,$p' "$r/bench/log.txt" 2>/dev/null | sed 's/^/    /'
       echo
+      [[ -f "$r/bench/results.csv" ]] && bench_time_table "$r/bench/results.csv"
       if [[ -f "$r/bench/figures.md" ]]; then
         cat "$r/bench/figures.md"
       else

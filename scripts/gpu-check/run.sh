@@ -13,8 +13,11 @@
 
 # Seconds each suite and the bench may take before they are stopped (the
 # whole check has 8 minutes on the device; one hung suite must not eat it).
-GPUCHECK_SUITE_TIMEOUT=${GPUCHECK_SUITE_TIMEOUT:-300}
-GPUCHECK_BENCH_TIMEOUT=${GPUCHECK_BENCH_TIMEOUT:-300}
+# A software renderer (a dry run on llvmpipe) gets the second figure: its
+# bench --quick alone takes 5-6 minutes on 2 cores.
+GPUCHECK_TIMEOUTS_GPU="300 300"
+GPUCHECK_TIMEOUTS_SOFTWARE="900 1200"
+GPUCHECK_SOFTWARE_RE='llvmpipe|softpipe|SwiftShader|software'
 GPUCHECK_NVIDIA_EGL_VENDOR=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
 
 run_main() {  # DIR OUT JOBS SUITES BENCH
@@ -181,6 +184,11 @@ run_checks() {  # WORK
     gl_strings "$bin" "$work/tmp/gl"
   } >"$results/machine.txt"
   sed 's/^/  /' "$results/machine.txt" >&2
+  local timeouts=$GPUCHECK_TIMEOUTS_GPU
+  grep -Eq "^GL_RENDERER: .*($GPUCHECK_SOFTWARE_RE)" "$results/machine.txt" && timeouts=$GPUCHECK_TIMEOUTS_SOFTWARE
+  GPUCHECK_SUITE_TIMEOUT=${GPUCHECK_SUITE_TIMEOUT:-${timeouts% *}}
+  GPUCHECK_BENCH_TIMEOUT=${GPUCHECK_BENCH_TIMEOUT:-${timeouts#* }}
+  echo "timeouts: ${GPUCHECK_SUITE_TIMEOUT} s a suite, ${GPUCHECK_BENCH_TIMEOUT} s the bench" >>"$results/machine.txt"
 
   jobs=${GPUCHECK_JOBS:-$(($(nproc) > 4 ? 4 : 1))}
   : >"$results/suites.list"
