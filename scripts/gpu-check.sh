@@ -52,6 +52,10 @@ image a test saved because it differed beyond the test's tolerance.
 --report R F   writes the report F from a results folder R (what --from
                leaves in its work folder; for tests of the report).
 
+Environment: GPUCHECK_SUITE_TIMEOUT, GPUCHECK_BENCH_TIMEOUT (seconds; 300
+each on a GPU, 900 and 1200 on a software renderer), GPUCHECK_KEEP=1 keeps
+the work folder under /tmp, __EGL_VENDOR_LIBRARY_FILENAMES (kept if set).
+
 On a lent GPU machine with the device tool's `run` (repo root there):
   here:  cmake --build build -j2 --target rgraph_cli rgraph_render_tests \
            rgraph_oracle_tests rgraph_tiled_tests rgraph_aa_tests \
