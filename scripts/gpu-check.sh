@@ -20,13 +20,17 @@ usage: scripts/gpu-check.sh --pack DIR [--build BUILD]
 Runs the render, clustered, oracle, tiled, aa, stability and plugin test
 suites and `rgraph bench --quick` on a machine with a GPU that has no
 compiler and no package registry, and writes one report: the GL strings,
-each suite's passed/failed/skipped counts, the bench's tables, and every
-image a test saved because it differed beyond the test's tolerance.
+each suite's passed/failed/skipped counts, the bench's tables, every image a
+test saved because it differed beyond the test's tolerance, and the shipped
+pipelines' frames that differ from llvmpipe's (rendered by --pack here) by
+more than 1/255.
 
 --pack DIR     (here, after building) writes DIR/rgraph-gpucheck.tar.gz and
                DIR/scripts/: the build's programs, librgraph and plugins
                (strip --strip-debug copies), the tracked source files the
-               tests read, ../shared/assets, and the shared libraries the
+               tests read, ../shared/assets, the reference frames (every
+               pipelines/ file on learnopengl and many-lights:64, 320x180,
+               rendered here), and the shared libraries the
                programs link that are not glibc, taken from this machine's
                Debian packages with `apt-get download` + `dpkg -x` (the list
                comes from ldd + dpkg -S; the GL/EGL loaders libegl1
@@ -35,7 +39,8 @@ image a test saved because it differed beyond the test's tolerance.
                exceed 64 MiB. Needs: a configured and built BUILD (default
                ./build: targets rgraph_cli rgraph_render_tests
                rgraph_oracle_tests rgraph_tiled_tests rgraph_aa_tests
-               rgraph_stability_tests rgraph_plugin_tests), git, dpkg, apt-get.
+               rgraph_stability_tests rgraph_plugin_tests rgraph_png_compare),
+               git, dpkg, apt-get.
 --from DIR     (there) unpacks DIR's archive under /tmp, makes the source
                path the tests were built with (see docs/gpu-check.md) point at
                it, sets LD_LIBRARY_PATH, __EGL_VENDOR_LIBRARY_FILENAMES (the
@@ -53,13 +58,14 @@ image a test saved because it differed beyond the test's tolerance.
                leaves in its work folder; for tests of the report).
 
 Environment: GPUCHECK_SUITE_TIMEOUT, GPUCHECK_BENCH_TIMEOUT (seconds; 300
-each on a GPU, 900 and 1200 on a software renderer), GPUCHECK_KEEP=1 keeps
+each on a GPU, 900 and 1200 on a software renderer), GPUCHECK_FRAME_TOLERANCE
+(of 255, default 1), GPUCHECK_KEEP=1 keeps
 the work folder under /tmp, __EGL_VENDOR_LIBRARY_FILENAMES (kept if set).
 
 On a lent GPU machine with the device tool's `run` (repo root there):
   here:  cmake --build build -j2 --target rgraph_cli rgraph_render_tests \
            rgraph_oracle_tests rgraph_tiled_tests rgraph_aa_tests \
-           rgraph_stability_tests rgraph_plugin_tests
+           rgraph_stability_tests rgraph_plugin_tests rgraph_png_compare
          scripts/gpu-check.sh --pack .gpucheck    (.gpucheck/ is git-ignored)
   run:   carry [".gpucheck"], timeout_s 600, command
            bash .gpucheck/scripts/gpu-check.sh --from .gpucheck --out $OUT

@@ -115,6 +115,17 @@ pack_libraries() {  # STAGE ELF...
   rm -rf "$tmp"
 }
 
+# The reference frames as this machine renders them (llvmpipe, here).
+pack_reference_frames() {  # RGRAPH SRC DEST
+  local name pipeline scene cache
+  mkdir -p "$3"
+  cache=$(mktemp -d)
+  while read -r name pipeline scene; do
+    RGRAPH_CACHE_DIR=$cache render_frame "$1" "$2" "$pipeline" "$scene" "$3/$name"
+  done < <(reference_frames "$2")
+  rm -rf "$cache"
+}
+
 pack_main() {  # DIR BUILD
   local dir=$1 build src assets stage rel tracked size
   build=$(cd "$2" 2>/dev/null && pwd) || die "no build folder '$2' (configure and build it first: see --help)"
@@ -139,6 +150,8 @@ pack_main() {  # DIR BUILD
   else
     note "no $assets: the glTF model tests will fail there"
   fi
+  note "rendering the reference frames on $(reference_frames "$src" | wc -l) pipeline/scene pairs"
+  pack_reference_frames "$build/bin/rgraph" "$src" "$stage/frames"
   local elves=()
   while IFS= read -r -d '' f; do is_elf "$f" && elves+=("$f"); done \
     < <(find "$stage/src/$rel" -type f -print0)

@@ -3,6 +3,7 @@
 #   manifest.env, packages.txt, machine.txt (GL strings: run.sh's gl_strings)
 #   suites.list                 NAME PROGRAM FILTER per line, in order
 #   suites/NAME/{log.txt,exit,seconds,images/*.png}
+#   frames/{list.txt,seconds,images/*.png}    (the reference frames; optional)
 #   bench/{log.txt,exit,seconds,figures.md}   (absent with --no-bench)
 # and writes markdown, plus RESULTS/verdict.env (GPUCHECK_VERDICT=pass|fail).
 
@@ -53,6 +54,34 @@ bench_time_table() {  # RESULTS_CSV
       }
       printf "\n"
     }' "$1"
+}
+
+# The reference frames against llvmpipe's (run.sh's compare_frames). Fails
+# when a frame llvmpipe rendered could not be rendered here.
+frames_section() {  # RESULTS
+  local list=$1/frames/list.txt st n
+  [[ -f "$list" ]] || return 0
+  echo "## Frames against llvmpipe's"
+  echo
+  echo -n "Every shipped pipeline on ${GPUCHECK_FRAME_SCENES[*]}, 320x180, against the same frames rendered on"
+  echo " llvmpipe by --pack ($(cat "$1/frames/seconds" 2>/dev/null || echo '?') s):"
+  for st in same within over refused-both refused-here only-here; do
+    n=$(awk -v s="$st" '$2 == s' "$list" | wc -l)
+    echo -n " $st $n;"
+  done
+  echo
+  echo
+  echo "over: a channel differs by more than the suites' tolerance (both PNGs in details.tar.gz under"
+  echo "frames/images/); refused-here: llvmpipe rendered it, this machine did not."
+  echo
+  if awk '$2 == "over" || $2 == "refused-here" || $2 == "only-here"' "$list" | grep -q .; then
+    echo "| frame | status | detail |"
+    echo "| --- | --- | --- |"
+    awk '$2 == "over" || $2 == "refused-here" || $2 == "only-here" {
+      d = $0; sub(/^[^ ]+ [^ ]+ ?/, "", d); gsub(/\|/, "/", d); printf "| %s | %s | %s |\n", $1, $2, d }' "$list"
+    echo
+  fi
+  ! awk '$2 == "refused-here"' "$list" | grep -q .
 }
 
 suite_row() {  # RESULTS NAME PROGRAM FILTER
@@ -118,8 +147,15 @@ write_report() {  # RESULTS OUTFILE
         images=$((images + 1))
       done
     done <"$r/suites.list"
+    for img in "$r/frames/images"/*.png; do
+      [[ -f "$img" ]] || continue
+      echo "- frames: $(basename "$img")"
+      images=$((images + 1))
+    done
     ((images > 0)) || echo "None."
     echo
+
+    frames_section "$r" || failed_suites=$((failed_suites + 1))
 
     echo "## rgraph bench --quick"
     echo
@@ -142,7 +178,7 @@ write_report() {  # RESULTS OUTFILE
     echo "## Verdict"
     echo
     echo "$total_p passed, $total_f failed, $total_s skipped"
-    echo "$failed_suites of the suites and the bench did not pass; $images images saved."
+    echo "$failed_suites of the checks (suites, frames, bench) did not pass; $images images saved."
   } >"$f"
   echo "GPUCHECK_VERDICT=$( ((failed_suites == 0)) && echo pass || echo fail)" >"$r/verdict.env"
 }

@@ -18,6 +18,9 @@
 GPUCHECK_TIMEOUTS_GPU="300 300"
 GPUCHECK_TIMEOUTS_SOFTWARE="900 1200"
 GPUCHECK_SOFTWARE_RE='llvmpipe|softpipe|SwiftShader|software'
+# Largest channel difference (of 255) a reference frame may have against
+# llvmpipe's before the report shows both: the suites' own image tolerance.
+GPUCHECK_FRAME_TOLERANCE=${GPUCHECK_FRAME_TOLERANCE:-1}
 GPUCHECK_NVIDIA_EGL_VENDOR=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
 
 run_main() {  # DIR OUT JOBS SUITES BENCH
@@ -164,6 +167,39 @@ run_suite() {  # WORK NAME PROGRAM FILTER
   note "$name: exit $rc in $((SECONDS - t0)) s"
 }
 
+# The reference frames rendered here against the packed ones: results/frames/
+# list.txt ("NAME STATUS DETAIL": same, within, over, refused-here,
+# refused-both, only-here), and both PNGs of each frame over the tolerance.
+compare_frames() {  # WORK BIN
+  local work=$1 bin=$2 res=$1/results/frames name pipeline scene ref status detail t0=$SECONDS
+  mkdir -p "$res/images" "$work/tmp/frames"
+  : >"$res/list.txt"
+  while read -r name pipeline scene; do
+    ref=$work/frames/$name
+    render_frame "$bin/rgraph" "$GPUCHECK_SOURCE_ROOT" "$pipeline" "$scene" "$work/tmp/frames/$name"
+    local here=$work/tmp/frames/$name
+    if [[ -f "$ref.refused" && -f "$here.refused" ]]; then
+      status=refused-both detail=$(head -n 1 "$here.refused")
+    elif [[ -f "$here.refused" ]]; then
+      status=refused-here detail=$(head -n 1 "$here.refused")
+    elif [[ -f "$ref.refused" ]]; then
+      status=only-here detail=$(head -n 1 "$ref.refused")
+    elif cmp -s "$ref.png" "$here.png"; then
+      status=same detail=
+    else
+      detail=$("$bin/rgraph_png_compare" "$ref.png" "$here.png" "$GPUCHECK_FRAME_TOLERANCE" 2>&1) && status=within || status=over
+      if [[ $status == over ]]; then
+        cp "$ref.png" "$res/images/$name.llvmpipe.png"
+        cp "$here.png" "$res/images/$name.here.png"
+      fi
+    fi
+    echo "$name $status ${detail//$'\n'/ }" >>"$res/list.txt"
+  done < <(reference_frames "$work/src")
+  echo "$((SECONDS - t0))" >"$res/seconds"
+  rm -rf "$work/tmp/frames"
+  note "frames: $(grep -c ' over ' "$res/list.txt" || true) of $(wc -l <"$res/list.txt") over $GPUCHECK_FRAME_TOLERANCE/255 in $((SECONDS - t0)) s"
+}
+
 run_checks() {  # WORK
   local work=$1 results=$1/results bin s name prog filter jobs running=0
   # shellcheck disable=SC1090
@@ -202,6 +238,8 @@ run_checks() {  # WORK
   done
   wait
   [[ -s "$results/suites.list" ]] || die "--suites '$GPUCHECK_ONLY' names no suite (see --help)"
+
+  [[ -d "$work/frames" ]] && compare_frames "$work" "$bin"
 
   if [[ "$GPUCHECK_BENCH" == 1 ]]; then
     local t0=$SECONDS rc=0

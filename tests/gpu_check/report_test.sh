@@ -39,6 +39,15 @@ make_results() {  # BROKEN: 1 = one failing suite, one crashed suite, an image
     : >"$r/suites/tiled/images/tiled-256-lit.png"
     echo "[ RUN      ] Stability.Boom" >"$r/suites/stability/log.txt"
     echo 139 >"$r/suites/stability/exit"
+    mkdir -p "$r/frames/images"
+    {
+      echo "default@learnopengl same "
+      echo "deferred-taa@learnopengl over max difference 9 at 3,4 over 57600 pixels compared, 12 over tolerance 1"
+      echo "forward@many-lights_64 refused-here error: cannot create the GL context"
+      echo "compact@many-lights_64 refused-both error: needs thing"
+    } >"$r/frames/list.txt"
+    : >"$r/frames/images/deferred-taa@learnopengl.here.png"
+    echo 5 >"$r/frames/seconds"
   fi
   mkdir -p "$r/bench"
   printf 'rgraph bench: 42 points, 6 aa rows in 88 s on Canned GPU 9000 (--quick)\n' >"$r/bench/log.txt"
@@ -77,5 +86,11 @@ grep -q '^- TiledDeferred.MatchesFullscreen$' "$tmp/report.md" || fail "the fail
 grep -q '^- TiledDeferred.NeedsThing$' "$tmp/report.md" || fail "the skipped test is not named"
 grep -q '^| stability | .* | no summary (exit 139) |$' "$tmp/report.md" || fail "the crash is not reported"
 grep -q '^- tiled: tiled-256-lit.png$' "$tmp/report.md" || fail "the saved image is not listed"
+grep -q '^| deferred-taa@learnopengl | over | max difference 9 at 3,4 .*|$' "$tmp/report.md" || fail "the frame over tolerance is not listed"
+grep -q '^| forward@many-lights_64 | refused-here | error: cannot create the GL context |$' "$tmp/report.md" ||
+  fail "the frame refused here is not listed"
+grep -q ' same 1; within 0; over 1; refused-both 1; refused-here 1; only-here 0;$' "$tmp/report.md" || fail "the frame counts are wrong"
+grep -q '^- frames: deferred-taa@learnopengl.here.png$' "$tmp/report.md" || fail "the frame's image is not listed"
+grep -q '^3 of the checks (suites, frames, bench) did not pass' "$tmp/report.md" || fail "a frame refused here is not a failure"
 grep -q '^GPUCHECK_VERDICT=fail$' "$r/verdict.env" || fail "a failure, yet the verdict is not fail"
 echo "gpu-check report: ok"

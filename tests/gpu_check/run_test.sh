@@ -19,7 +19,11 @@ root=$tmp/root/checkout   # the "compiled-in" source path
 fail() { echo "FAIL: $*" >&2; [[ -f "$tmp/out/report.md" ]] && cat "$tmp/out/report.md" >&2; exit 1; }
 
 stage=$tmp/stage
-mkdir -p "$stage/src/tests" "$stage/src/build/bin" "$stage/shared/assets" "$stage/lib" "$stage/lib-base" "$tmp/pack"
+mkdir -p "$stage/src/tests" "$stage/src/build/bin" "$stage/shared/assets" "$stage/lib" "$stage/lib-base" "$tmp/pack" \
+  "$stage/src/pipelines/examples" "$stage/frames"
+echo '{}' >"$stage/src/pipelines/fake.json"
+# The reference frames llvmpipe "rendered" (what the fake rgraph writes).
+for scene in learnopengl many-lights_64; do echo "frame pipelines/fake.json" >"$stage/frames/fake@$scene.png"; done
 echo unpacked >"$stage/src/tests/marker.txt"
 echo asset >"$stage/shared/assets/a.txt"
 : >"$stage/packages.txt"
@@ -44,8 +48,15 @@ echo "[  FAILED  ] Fake.SeesTheUnpackedTree"
 exit 1
 FAKE
 done
+cat >"$stage/src/build/bin/rgraph_png_compare" <<'FAKE'
+#!/usr/bin/env bash
+echo "max difference 7 at 1,2 over 57600 pixels compared, 3 over tolerance $3"
+exit 2
+FAKE
 cat >"$stage/src/build/bin/rgraph" <<'FAKE'
 #!/usr/bin/env bash
+[[ "$1" == render && -n "${FAKE_FRAME_DIFF:-}" ]] && echo changed >"${@: -1}" && exit 0
+[[ "$1" == render && "$2" != --* ]] && echo "frame $2" >"${@: -1}" && exit 0
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --stats) printf '{\n  "gl_renderer": "Fake GPU",\n  "gl_vendor": "Fake Vendor",\n  "gl_version": "4.6 fake"\n}\n' >"$2"; shift ;;
@@ -71,6 +82,8 @@ check() {  # CASE [VAR=VALUE...]: a run that must pass
   [[ $(grep -c '| pass |$' "$tmp/out/report.md") == 7 ]] || fail "$name: not 7 passing suites"
   grep -q 'GL_VENDOR: Fake Vendor' "$tmp/out/report.md" || fail "$name: GL_VENDOR not read from --stats JSON"
   grep -q '^| fake | 1.5 |$' "$tmp/out/report.md" || fail "$name: no bench table"
+  [[ -n "${FAKE_FRAME_DIFF:-}" ]] || grep -q ' same 2; within 0; over 0;' "$tmp/out/report.md" ||
+    fail "$name: the reference frames are not the same"
   tar -tzf "$tmp/out/details.tar.gz" >"$tmp/list" && grep -q 'suites/tiled/log.txt' "$tmp/list" || fail "$name: details.tar.gz lacks the logs"
 }
 
@@ -96,4 +109,10 @@ fi
 grep -q '^| tiled | .* | 2 | 1 | 0 | .* | FAIL (exit 1) |$' "$tmp/out/report.md" || fail "tiled's failure is not in its row"
 grep -q '^- tiled: fake-diff.png$' "$tmp/out/report.md" || fail "the saved image is not listed"
 tar -tzf "$tmp/out/details.tar.gz" >"$tmp/list" && grep -q 'suites/tiled/images/fake-diff.png' "$tmp/list" || fail "the image is not in details.tar.gz"
+# A frame that differs from llvmpipe's: listed with both images; not a failure
+# (a GPU's frames differ from llvmpipe's in the last bits).
+FAKE_FRAME_DIFF=1 check "frame differs"
+grep -q '^| fake@learnopengl | over | max difference 7 at 1,2 ' "$tmp/out/report.md" || fail "the differing frame is not listed"
+grep -q '^- frames: fake@learnopengl.llvmpipe.png$' "$tmp/out/report.md" || fail "llvmpipe's frame is not listed"
+grep -q '^- frames: fake@learnopengl.here.png$' "$tmp/out/report.md" || fail "this machine's frame is not listed"
 echo "gpu-check run: ok"
