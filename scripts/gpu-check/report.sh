@@ -138,7 +138,8 @@ write_report() {  # RESULTS OUTFILE
 
     echo "## Images that differ beyond the tests' tolerances"
     echo
-    echo "Saved by the failing tests (details.tar.gz: suites/SUITE/images/)."
+    echo "Saved by failing tests (details.tar.gz: suites/SUITE/images/), and both sides of each reference"
+    echo "frame over the tolerance (frames/images/: NAME.llvmpipe.png, NAME.here.png)."
     echo
     while read -r name prog filter; do
       for img in "$r/suites/$name/images"/*.png; do
