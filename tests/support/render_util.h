@@ -115,8 +115,8 @@ constexpr int kMinLightGain = 8;
 LightGain expectLightsShow(const Image& lit, const PipelineConfig& cfg, const Scene& scene, ShaderLibrary& shaders,
                            double minShare, const std::string& name);
 
-// Writes a PNG under $RGRAPH_TEST_OUTPUT (default: <build dir>/render-test-output
-// via the working directory) for looking at failures; returns the path.
+// Writes a PNG under $RGRAPH_TEST_OUTPUT (default: <temp dir>/rgraph-render-tests)
+// for looking at failures; returns the path. scripts/gpu-check.sh collects them.
 std::string saveImage(const Image& img, const std::string& name);
 std::string pixelText(glm::ivec3 c);
 
