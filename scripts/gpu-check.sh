@@ -17,8 +17,8 @@ usage: scripts/gpu-check.sh --pack DIR [--build BUILD]
        scripts/gpu-check.sh --report RESULTS OUTFILE
        scripts/gpu-check.sh --help
 
-Runs the render, clustered, oracle, tiled, aa, stability and plugin test
-suites and `rgraph bench --quick` on a machine with a GPU that has no
+Runs the render, clustered, oracle, tiled, aa, stability, plugin, stalls
+and gl_calls test suites and `rgraph bench --quick` on a machine with a GPU that has no
 compiler and no package registry, and writes one report: the GL strings,
 each suite's passed/failed/skipped counts, the bench's tables, every image a
 test saved because it differed beyond the test's tolerance, and the shipped
@@ -39,7 +39,8 @@ more than 1/255.
                exceed 64 MiB. Needs: a configured and built BUILD (default
                ./build: targets rgraph_cli rgraph_render_tests
                rgraph_oracle_tests rgraph_tiled_tests rgraph_aa_tests
-               rgraph_stability_tests rgraph_plugin_tests rgraph_png_compare),
+               rgraph_stability_tests rgraph_plugin_tests rgraph_stall_tests
+               rgraph_gl_calls_tests rgraph_png_compare),
                git, dpkg, apt-get.
 --from DIR     (there) unpacks DIR's archive under /tmp, makes the source
                path the tests were built with (see docs/gpu-check.md) point at

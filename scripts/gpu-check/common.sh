@@ -19,6 +19,8 @@ GPUCHECK_SUITES=(
   "aa rgraph_aa_tests *"
   "stability rgraph_stability_tests *"
   "plugin rgraph_plugin_tests *"
+  "stalls rgraph_stall_tests *"
+  "gl_calls rgraph_gl_calls_tests *"
 )
 
 # The programs the suites need besides their own: the CLI (bench, GL

@@ -128,26 +128,25 @@ check_environment() {  # WORK
 }
 
 # GL_VENDOR / GL_RENDERER / GL_VERSION of the context the suites get, as
-# "KEY: value" lines. One place to change: `rgraph render --stats` JSON
-# (keys gl_vendor, gl_renderer, gl_version) when it has them, else the
-# context's debug log line "GL context (platform): RENDERER / VERSION".
+# "KEY: value" lines, with the EGL platform and device: the "context" object
+# of `rgraph render --stats` JSON (vendor, renderer, version, platform,
+# egl_device, egl_device_description).
 gl_strings() {  # BIN TMP
-  local bin=$1 tmp=$2 key value line
+  local bin=$1 tmp=$2 key value context
   mkdir -p "$tmp"
   "$bin/rgraph" --log-level debug render --width 64 --height 64 --out "$tmp/frame.png" \
     --stats "$tmp/stats.json" >"$tmp/render.log" 2>&1 || echo "(rgraph render failed: $(tail -n 1 "$tmp/render.log"))"
-  if grep -q '"gl_renderer"' "$tmp/stats.json" 2>/dev/null; then
-    for key in vendor renderer version; do
-      value=$(sed -n "s/.*\"gl_$key\": *\"\([^\"]*\)\".*/\1/p" "$tmp/stats.json" | head -n 1)
-      echo "GL_${key^^}: $value"
-    done
-    return 0
-  fi
-  line=$(sed -n 's/.*GL context (\([^)]*\)): \(.*\) \/ \(.*\)$/\1|\2|\3/p' "$tmp/render.log" | head -n 1)
-  echo "GL_VENDOR: (not reported by this rgraph)"
-  echo "GL_RENDERER: $(cut -d'|' -f2 <<<"$line")"
-  echo "GL_VERSION: $(cut -d'|' -f3 <<<"$line")"
-  echo "EGL platform: $(cut -d'|' -f1 <<<"$line")"
+  # The stats file's "context" object (rgraph render --stats; one key a line).
+  context=$(sed -n '/"context": {/,/}/p' "$tmp/stats.json" 2>/dev/null || true)
+  for key in vendor renderer version platform egl_device egl_device_description; do
+    value=$(grep -m1 "^ *\"$key\":" <<<"$context" | sed -e 's/,$//' -e "s/^ *\"$key\": *//" -e 's/^"\(.*\)"$/\1/' || true)
+    case $key in
+      vendor | renderer | version) echo "GL_${key^^}: ${value:-(not in the stats file)}" ;;
+      platform) echo "EGL platform: ${value:-(not in the stats file)}" ;;
+      egl_device) echo "EGL device: ${value:-(none)}" ;;
+      egl_device_description) [[ -z "$value" || "$value" == null ]] || echo "EGL device description: $value" ;;
+    esac
+  done
 }
 
 # One suite: its log, gtest XML, exit status, seconds, and the PNGs its tests
