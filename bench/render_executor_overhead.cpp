@@ -35,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include "chain_pipeline.h"
 #include "gl_call_counter.h"
 #include "render_context.h"
 #include "rgraph/adapt.h"
@@ -122,17 +123,7 @@ std::unique_ptr<Executor> makeExecutor(const PipelineConfig& cfg, World& w, cons
 constexpr int kChain = 200;
 
 void setUpChain(World& w, Case& c) {
-  std::string json = R"({"version": 1, "resources": {)";
-  for (int i = 0; i < kChain; ++i)
-    json += (i ? "," : "") + std::string("\"t") + std::to_string(i) + "\": {\"format\": \"rgba8\", \"size\": \"output\"}";
-  json += R"(}, "passes": [{"name": "p0", "type": "fullscreen", "params": {"shader": "gradient.frag"},
-             "outputs": {"color": "t0"}})";
-  for (int i = 1; i < kChain; ++i)
-    json += ",{\"name\": \"p" + std::to_string(i) + "\", \"type\": \"fullscreen\", \"params\": {\"shader\": " +
-            "\"invert.frag\"}, \"inputs\": {\"input0\": \"t" + std::to_string(i - 1) + "\"}, \"outputs\": " +
-            "{\"color\": \"t" + std::to_string(i) + "\"}}";
-  json += "], \"output\": \"t" + std::to_string(kChain - 1) + "\"}";
-  const PipelineConfig cfg = loadPipelineTextOrThrow(json, "<chain>");
+  const PipelineConfig cfg = loadPipelineTextOrThrow(bench::chainPipelineJson(kChain), "<chain>");
   c.exec = makeExecutor(cfg, w, nullptr, {16, 16});
   c.passes = kChain;
 

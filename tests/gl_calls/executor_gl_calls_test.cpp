@@ -12,6 +12,7 @@
 #include <memory>
 #include <string>
 
+#include "chain_pipeline.h"
 #include "gl_call_counter.h"
 #include "rgraph/adapt.h"
 #include "rgraph/gl/executor.h"
@@ -49,19 +50,9 @@ std::string listing(const Calls& calls) {
   return s;
 }
 
-// A gradient, then `passes` - 1 fullscreen inverts each reading the one before.
+// bench/chain_pipeline.h: a gradient, then `passes` - 1 fullscreen inverts.
 PipelineConfig chain(int passes) {
-  std::string json = R"({"version": 1, "resources": {)";
-  for (int i = 0; i < passes; ++i)
-    json += (i ? "," : "") + std::string("\"t") + std::to_string(i) + "\": {\"format\": \"rgba8\", \"size\": \"output\"}";
-  json += R"(}, "passes": [{"name": "p0", "type": "fullscreen", "params": {"shader": "gradient.frag"},
-             "outputs": {"color": "t0"}})";
-  for (int i = 1; i < passes; ++i)
-    json += ",{\"name\": \"p" + std::to_string(i) + "\", \"type\": \"fullscreen\", \"params\": {\"shader\": " +
-            "\"invert.frag\"}, \"inputs\": {\"input0\": \"t" + std::to_string(i - 1) + "\"}, \"outputs\": " +
-            "{\"color\": \"t" + std::to_string(i) + "\"}}";
-  json += "], \"output\": \"t" + std::to_string(passes - 1) + "\"}";
-  return testsupport::buildPipelineOrThrow(json, "<chain>");
+  return testsupport::buildPipelineOrThrow(bench::chainPipelineJson(passes), "<chain>");
 }
 
 class GlCalls : public ::testing::Test {
