@@ -12,15 +12,19 @@
 
 // Per entry point: its counter, the function it forwards to, and the
 // trampoline under the entry point's own name (arguments stay in their
-// registers and on the stack: a jump, not a call).
+// registers and on the stack: a jump, not a call). The trampoline goes into
+// .text and the assembler is put back in the section it was in: the
+// compiler does not know the asm switched, and would otherwise place the
+// variables after it in .text (read-only: a crash at the first write, seen
+// in the sanitizer build).
 #define RGRAPH_GL_ENTRY(name)                                                                                      \
   extern "C" {                                                                                                     \
   __attribute__((used, visibility("hidden"))) uint64_t rgraph_count_##name = 0;                                     \
   __attribute__((used, visibility("hidden"))) void* rgraph_real_##name = nullptr;                                   \
   }                                                                                                                \
-  asm(".text\n.p2align 4\n.globl " #name "\n.type " #name ", @function\n" #name                                    \
+  asm(".pushsection .text\n.p2align 4\n.globl " #name "\n.type " #name ", @function\n" #name                       \
       ":\n  endbr64\n  addq $1, rgraph_count_" #name "(%rip)\n  jmp *rgraph_real_" #name "(%rip)\n.size " #name \
-      ", . - " #name "\n");
+      ", . - " #name "\n.popsection\n");
 #include "gl_entry_points.inc"
 #undef RGRAPH_GL_ENTRY
 
