@@ -29,10 +29,11 @@
 // reaches every pixel of the quarter, and sums the rest per quarter (its
 // quarters' lists are bits over the tile's list too).
 // Scheduling (include/invocation.glsl): the tile's list is appended in the
-// bin's order (include/ordered_append.glsl), the bits and depth bounds are
-// atomicOr, atomicMin and atomicMax, the far field integer atomicAdd: every
-// pixel sums the same lights in the same order whatever order the
-// invocations run in.
+// bin's order (cullTile: one barrier, none in a loop: llvmpipe runs a loop
+// that holds a barrier much slower, even one it never takes), the bits and
+// depth bounds are atomicOr, atomicMin and atomicMax, the far field integer
+// atomicAdd: every pixel sums the same lights in the same order whatever
+// order the invocations run in.
 // The maths is include/lighting.glsl's, as in deferred_lighting.frag and
 // light_volume.frag, so the methods agree.
 // Defines: one GBUFFER_*, one LIGHTING_*, one ATTENUATION_*; TILE_SIZE,
@@ -88,7 +89,31 @@ const uint kLanes = uint(TILE_SIZE * TILE_SIZE);
 
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE, local_size_z = 1) in;
 #include "include/invocation.glsl"
-#include "include/ordered_append.glsl"
+// The culling's shared words: invocation j < kBlocks tests a run of the
+// tile's candidates (the j-th kBlocks-th of them) and counts in s_cullKept[0][j]
+// those it lists and in s_cullKept[1][j] (FAR_FIELD) the near unlisted ones;
+// s_tileCount: the list's and the near list's lengths. 16 runs: on llvmpipe
+// (invocations run a SIMD row after another) the tests cost the same
+// however few invocations share them, and a run's place is the sum of the
+// counts before it, so fewer runs sum less (64 runs were 5% slower).
+const uint kBlocks = min(kLanes, 16u);
+#if defined(FAR_FIELD)
+const uint kCullSets = 2u;
+#else
+const uint kCullSets = 1u;
+#endif
+shared uint s_cullKept[kCullSets][kBlocks];
+shared uint s_tileCount[2];
+#if RGRAPH_PERMUTE_INVOCATIONS == 5
+shared uint s_cullAtomic[2];
+#endif
+
+// The counts of set `set` of the runs before run j.
+uint cullKeptBefore(uint set, uint j) {
+  uint n = 0u;
+  for (uint w = 0u; w < j; ++w) n += s_cullKept[set][w];
+  return n;
+}
 
 layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
 layout(TARGET_FORMAT, binding = 0) uniform image2D u_target;
@@ -126,6 +151,157 @@ int depthSlice(float depth, float minDepth, float scale) {
   return clamp(int(floor((depth - minDepth) * scale)), 0, 31);
 }
 
+// What the culling loop tests the tile's candidates against, the same in
+// every invocation.
+struct TileCull {
+  uint record, candidates, mask;
+  bool binned;
+  vec4 viewRowZ;
+  float minDepth, maxDepth, sliceScale;
+  vec2 perDepth0, perDepth1;
+  vec3 boxLo, boxHi, farPoint;
+};
+
+uint candidateLight(TileCull t, uint p) { return t.binned ? bins[t.record + uint(BIN_HEADER) + p] : p; }
+
+// A light's bounding sphere in view space: x, y, depth, slack radius (radius
+// negative: no cut-off), as cullTest finds it.
+vec4 viewSphere(TileCull t, vec4 pr) {
+  if (pr.w < 0.0) return vec4(0.0, 0.0, 0.0, -1.0);
+  return vec4((u_view * vec4(pr.xyz, 1.0)).xy, -dot(t.viewRowZ, vec4(pr.xyz, 1.0)), slackRadius(pr.w));
+}
+
+// Whether light i may reach the tile; `view`: its bounding sphere in view
+// space (ROW_LISTS); `near` (FAR_FIELD): unlisted but near the tile's point.
+// addFar: add an unlisted light that is not near to the tile's far field.
+bool cullTest(TileCull t, uint i, bool addFar, out vec4 view, out bool near) {
+  const vec4 pr = lightBounds(lights[i]);
+  bool visible = true;
+  view = vec4(0.0, 0.0, 0.0, -1.0);
+  near = false;
+  if (pr.w >= 0.0) {
+    const float r = slackRadius(pr.w);
+    // The depth test first: it needs only the view matrix's z row.
+    const float depth = -dot(t.viewRowZ, vec4(pr.xyz, 1.0));
+    const float z0 = max(depth - r, t.minDepth), z1 = min(depth + r, t.maxDepth);
+    visible = z0 <= z1;
+    if (visible) {
+      const int lo = depthSlice(z0, t.minDepth, t.sliceScale), hi = depthSlice(z1, t.minDepth, t.sliceScale);
+      visible = (t.mask & ((0xffffffffu >> uint(31 - hi)) & (0xffffffffu << uint(lo)))) != 0u;
+    }
+    if (visible) {
+      view = vec4((u_view * vec4(pr.xyz, 1.0)).xy, depth, r);
+      visible = sphereMeetsFrustumBox(view.xyz, r, t.minDepth, t.maxDepth, t.perDepth0, t.perDepth1);
+    }
+  }
+  if (visible) visible = spotMayReachViewBox(lights[i], t.boxLo, t.boxHi);
+#if defined(FAR_FIELD)
+  if (!visible) {
+    const vec3 toLight = pr.xyz - t.farPoint;
+    const float nearDistance = FAR_FIELD_NEAR * pr.w;
+    near = dot(toLight, toLight) < nearDistance * nearDistance;
+    if (!near && addFar) farFieldAdd(4, lights[i], t.farPoint);  // integer sums: any order
+  }
+#endif
+  return visible;
+}
+
+// Light i at place `slot` of the tile's list (kept when the list holds it).
+void listLight(uint slot, uint i, vec4 view) {
+  if (slot < uint(MAX_TILE_LIGHTS)) {
+    s_lights[slot] = i;
+#if defined(ROW_LISTS)
+    s_view[slot] = view;
+#endif
+  }
+}
+
+// Near light i at place `mid` of the near list, or, past it, in the far field.
+void listNear(uint mid, uint i, TileCull t) {
+#if defined(FAR_FIELD)
+  if (mid < uint(FAR_FIELD_MID))
+    s_midLights[mid] = i;
+  else
+    farFieldAdd(4, lights[i], t.farPoint);
+#endif
+}
+
+// The tile's list and near list (FAR_FIELD) into s_tileCount, in the
+// candidates' order whichever invocation tests which, with one barrier:
+// invocation j < kBlocks tests run j of the candidates and counts what it
+// keeps; after the barrier it appends its kept ones from the counts of the
+// runs before. It keeps the answers for its run's first 32 candidates (every
+// bin's list: at most MAX_BIN_LIGHTS (512) / kBlocks a run) and tests the rest
+// again (the same test of the same light: the same answers).
+// s_tileCount is read after the caller's next barrier. Call in dynamically
+// uniform control flow.
+void cullTile(TileCull t, uint local) {
+  const uint run = (t.candidates + kBlocks - 1u) / kBlocks, runFirst = local * run;
+  const uint runEnd = local < kBlocks ? min(runFirst + run, t.candidates) : 0u;
+  vec4 view;
+  bool near;
+  if (run > 32u) {
+    // Should the second test ever disagree with the first, a place left
+    // unwritten names light 0, never one past the buffer.
+    for (uint e = local; e < uint(MAX_TILE_LIGHTS); e += kGroupInvocations) s_lights[e] = 0u;
+#if defined(FAR_FIELD)
+    for (uint e = local; e < uint(FAR_FIELD_MID); e += kGroupInvocations) s_midLights[e] = 0u;
+#endif
+  }
+  uint kept = 0u, nearKept = 0u, mine = 0u, mineNear = 0u;  // bit k: candidate runFirst + k
+  for (uint p = runFirst; p < runEnd; ++p) {
+    const uint i = candidateLight(t, p), bit = p - runFirst < 32u ? 1u << (p - runFirst) : 0u;
+    const bool visible = cullTest(t, i, true, view, near);
+#if RGRAPH_PERMUTE_INVOCATIONS == 5
+    // Broken on purpose (include/invocation.glsl): the places atomicAdd gives.
+    if (visible) listLight(atomicAdd(s_cullAtomic[0], 1u), i, view);
+    if (near) listNear(atomicAdd(s_cullAtomic[1], 1u), i, t);
+#endif
+    if (visible) {
+      ++kept;
+      mine |= bit;
+    }
+    if (near) {
+      ++nearKept;
+      mineNear |= bit;
+    }
+  }
+  if (local < kBlocks) {
+    s_cullKept[0][local] = kept;
+    if (kCullSets > 1u) s_cullKept[kCullSets - 1u][local] = nearKept;
+  }
+  groupBarrier();
+#if RGRAPH_PERMUTE_INVOCATIONS == 5
+  if (local == 0u) {
+    s_tileCount[0] = s_cullAtomic[0];
+    s_tileCount[1] = s_cullAtomic[1];
+  }
+#else
+  if (local < kBlocks) {
+    uint slot = cullKeptBefore(0u, local);
+    uint mid = kCullSets > 1u ? cullKeptBefore(kCullSets - 1u, local) : 0u;
+    for (uint p = runFirst; p < runEnd; ++p) {
+      const uint i = candidateLight(t, p), k = p - runFirst;
+      bool visible;
+      if (k < 32u) {
+        visible = ((mine >> k) & 1u) != 0u;
+        near = ((mineNear >> k) & 1u) != 0u;
+        // The sphere again: cheaper than keeping 32 across the barrier.
+        if (visible) view = viewSphere(t, lightBounds(lights[i]));
+      } else {
+        visible = cullTest(t, i, false, view, near);
+      }
+      if (visible) listLight(slot++, i, view);
+      if (near) listNear(mid++, i, t);
+    }
+    if (local == kBlocks - 1u) {
+      s_tileCount[0] = slot;
+      s_tileCount[1] = mid;
+    }
+  }
+#endif
+}
+
 void main() {
   const ivec2 size = ivec2(u_viewport.xy);
   // The pixel, quarter and half row are functions of the (permutable,
@@ -145,8 +321,13 @@ void main() {
     s_minDepth = 0x7f7fffffu;
     s_maxDepth = 0u;
     s_depthMask = 0u;
+    s_tileCount[0] = 0u;
+    s_tileCount[1] = 0u;
+#if RGRAPH_PERMUTE_INVOCATIONS == 5
+    s_cullAtomic[0] = 0u;
+    s_cullAtomic[1] = 0u;
+#endif
   }
-  orderedAppendInit(local);
 #if defined(ROW_LISTS)
   const uint row = lid.y * 2u + (lid.x >= kHalf ? 1u : 0u);
   if (local < kRows) {
@@ -199,12 +380,6 @@ void main() {
   if (inside && s.covered) atomicOr(s_depthMask, 1u << uint(depthSlice(viewDepth, minDepth, sliceScale)));
   groupBarrier();
 
-  // The tile's list (past MAX_TILE_LIGHTS too: then every pixel shades every
-  // light), the same in every invocation.
-  uint count = 0u;
-#if defined(FAR_FIELD)
-  uint midCount = 0u;
-#endif
   if (tileCovered && u_pointLightCount > 0) {  // the same for the whole group
     vec2 perDepth0, perDepth1;
     frustumPerDepth(tileMin, tileMin + uvec2(TILE_SIZE), perDepth0, perDepth1);
@@ -223,67 +398,29 @@ void main() {
     // The view-space box around the tile's frustum between its depths (spot cones).
     const vec3 boxLo = vec3(min(perDepth0 * minDepth, perDepth0 * maxDepth), -maxDepth);
     const vec3 boxHi = vec3(max(perDepth1 * minDepth, perDepth1 * maxDepth), -minDepth);
-    // kLanes candidates a round, listed in the bin's order (tiled_bin.comp:
-    // the lights' order) whichever invocation tests which: the pixels sum
-    // their lights in list order, and a list cut at MAX_TILE_LIGHTS or
-    // FAR_FIELD_MID keeps its first ones (include/ordered_append.glsl).
-    for (uint first = 0u; first < candidates; first += kLanes) {
-      const uint j = first + local;
-      uint i = 0u;
-      bool visible = false;
-      vec4 view = vec4(0.0, 0.0, 0.0, -1.0);
+    // Listed in the bin's order (tiled_bin.comp: the lights' order)
+    // whichever invocation tests which (cullTile): the pixels sum their
+    // lights in list order, and a list cut at MAX_TILE_LIGHTS or FAR_FIELD_MID
+    // keeps its first ones.
+    TileCull t;
+    t.record = record;
+    t.candidates = candidates;
+    t.mask = mask;
+    t.binned = binned;
+    t.viewRowZ = viewRowZ;
+    t.minDepth = minDepth;
+    t.maxDepth = maxDepth;
+    t.sliceScale = sliceScale;
+    t.perDepth0 = perDepth0;
+    t.perDepth1 = perDepth1;
+    t.boxLo = boxLo;
+    t.boxHi = boxHi;
 #if defined(FAR_FIELD)
-      bool near = false;
+    t.farPoint = farPoint;
+#else
+    t.farPoint = vec3(0.0);
 #endif
-      if (j < candidates && local < kLanes) {
-        i = binned ? bins[record + uint(BIN_HEADER) + j] : j;
-        const vec4 pr = lightBounds(lights[i]);
-        visible = true;
-        if (pr.w >= 0.0) {
-          const float r = slackRadius(pr.w);
-          // The depth test first: it needs only the view matrix's z row.
-          const float depth = -dot(viewRowZ, vec4(pr.xyz, 1.0));
-          const float z0 = max(depth - r, minDepth), z1 = min(depth + r, maxDepth);
-          visible = z0 <= z1;
-          if (visible) {
-            const int lo = depthSlice(z0, minDepth, sliceScale), hi = depthSlice(z1, minDepth, sliceScale);
-            visible = (mask & ((0xffffffffu >> uint(31 - hi)) & (0xffffffffu << uint(lo)))) != 0u;
-          }
-          if (visible) {
-            view = vec4((u_view * vec4(pr.xyz, 1.0)).xy, depth, r);
-            visible = sphereMeetsFrustumBox(view.xyz, r, minDepth, maxDepth, perDepth0, perDepth1);
-          }
-        }
-        if (visible) visible = spotMayReachViewBox(lights[i], boxLo, boxHi);
-#if defined(FAR_FIELD)
-        if (!visible) {
-          const vec3 toLight = pr.xyz - farPoint;
-          const float nearDistance = FAR_FIELD_NEAR * pr.w;
-          near = dot(toLight, toLight) < nearDistance * nearDistance;
-          if (!near) farFieldAdd(4, lights[i], farPoint);  // integer sums: any order
-        }
-#endif
-      }
-      uint kept = 0u;
-      const uint slot = count + orderedAppend(visible, local, kept);
-      count += kept;
-      if (visible && slot < uint(MAX_TILE_LIGHTS)) {
-        s_lights[slot] = i;
-#if defined(ROW_LISTS)
-        s_view[slot] = view;
-#endif
-      }
-#if defined(FAR_FIELD)
-      const uint mid = midCount + orderedAppend(near, local, kept);
-      midCount += kept;
-      if (near) {
-        if (mid < uint(FAR_FIELD_MID))
-          s_midLights[mid] = i;
-        else
-          farFieldAdd(4, lights[i], farPoint);
-      }
-#endif
-    }
+    cullTile(t, local);
 #if defined(FAR_FIELD)
     // The bin's far field (the lights its list leaves out), moved to the
     // tile's point to first order: direction bin `local`.
@@ -296,12 +433,17 @@ void main() {
 #endif
   }
   groupBarrier();
+  // The tile's list's length (past MAX_TILE_LIGHTS too: then every pixel
+  // shades every light), the same in every invocation.
+  const uint count = s_tileCount[0];
+#if defined(FAR_FIELD)
+  const uint midCount = min(s_tileCount[1], uint(FAR_FIELD_MID));
+#endif
 
   // With FAR_FIELD, refine the tile's list into its quarters' lists:
   // (light, quarter) pairs spread over the group (a handful per invocation);
   // the lights a quarter drops go to its far field.
 #if defined(FAR_FIELD)
-  midCount = min(midCount, uint(FAR_FIELD_MID));
   if (count <= uint(MAX_TILE_LIGHTS)) {
     // k & 3 == local & 3 (kLanes is a multiple of 4): one quarter per invocation.
     vec3 farPoint = vec3(0.0);

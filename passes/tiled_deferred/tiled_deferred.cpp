@@ -33,14 +33,16 @@ using namespace rgraph;
 // field's sums and near-light list (< 10 KiB), or, without, 16 bytes a light
 // (the lights' view-space spheres) and each of the tile's 2 x tile_size half
 // rows' depth bounds and a bit per listed light (tiled_deferred.comp); then
-// the counters and depth bounds (< 128 bytes) and the ordered appends' three
-// bits per invocation (include/ordered_append.glsl), within the 32 KiB every
+// the counters and depth bounds (< 128 bytes) and the culling's counts (a
+// word per run and list, up to 16 runs, and 4 words), within the 32 KiB every
 // GL 4.5 device has (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE's minimum), so that
 // the program does not depend on the device and validate checks the one that
-// runs: 1,344 lights at tile_size 16, 4,956 with far_field.
+// runs: 1,344 lights at tile_size 16, 4,944 with far_field.
 int64_t tileSharedBytes(int64_t lights, int64_t tile, bool farField) {
-  const int64_t rows = 2 * tile, words = (lights + 31) / 32, appendBits = 12 * ((tile * tile + 31) / 32);
-  return 128 + appendBits + 4 * lights +
+  const int64_t rows = 2 * tile, words = (lights + 31) / 32;
+  const int64_t lanes = farField ? (tile * tile) & ~int64_t{3} : tile * tile;
+  const int64_t cull = 4 * (farField ? 2 : 1) * std::min<int64_t>(lanes, 16) + 16;
+  return 128 + cull + 4 * lights +
          (farField ? 10240 + 4 * 4 * words : 16 * lights + rows * 8 + rows * 4 * words);
 }
 

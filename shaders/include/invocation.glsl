@@ -18,11 +18,12 @@
 //   0 (or undefined) identity; 1 local index reversed; 2 local index rotated
 //   by a third of the group plus one; 3 transposed (an x-major group read
 //   y-major; a 1-D group as 8 columns); 4 the work groups and the local index
-//   reversed; 5 rotated, with include/ordered_append.glsl appending in
-//   atomic order (order-dependent on purpose: the tests assert it changes
-//   the output, so that they can see an order dependence; reversed, the
-//   tiles' lists would come out in order again, reversed once by the bins
-//   and once by the tiles).
+//   reversed; 5 rotated, with include/ordered_append.glsl (and
+//   tiled_deferred.comp's cullTile) appending in atomic order
+//   (order-dependent on purpose: the tests assert it changes the output,
+//   so that they can see an order dependence; reversed, the tiles' lists
+//   would come out in order again, reversed once by the bins and once by
+//   the tiles).
 // Include after the layout(local_size_...) declaration (gl_WorkGroupSize).
 #ifndef RGRAPH_PERMUTE_INVOCATIONS
 #define RGRAPH_PERMUTE_INVOCATIONS 0
