@@ -25,6 +25,7 @@
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rgraph/diagnostics.h"
@@ -54,13 +55,47 @@ struct Extent {
 // Resolve a size against the output extent (scale rounds, never below 1).
 Extent resolveSize(const SizeSpec& s, Extent output);
 
+// A texture's shape: a 2D image, or a 2D array (layers > 1), a cube map
+// (cube, layers == 1) or a cube-map array (cube, layers cubes), each with a
+// mip chain. A cube's faces are array layers in GL order +x, -x, +y, -y, +z,
+// -z; cube k of a cube array is layers 6k .. 6k+5.
 struct TextureDesc {
   Format format = Format::rgba8;
   SizeSpec size;
-  uint32_t mips = 1;     // 0 means a full mip chain
+  uint32_t mips = 1;     // 0 means a full mip chain (config "mips": "full")
   uint32_t samples = 1;
+  uint32_t layers = 1;   // array layers; cubes when `cube`
+  bool cube = false;     // square; six faces per layer
   std::optional<std::vector<float>> clear;  // clear value applied by the first writer
 };
+
+// Mip levels of a texture of this descriptor at this extent (a full chain for mips 0).
+uint32_t mipLevels(const TextureDesc& t, Extent e);
+// Array layers a subresource index counts (6 per cube).
+inline uint32_t arrayLayers(const TextureDesc& t) { return t.layers * (t.cube ? 6u : 1u); }
+
+// A part of a texture that a slot binds: mip levels [mipBegin, mipBegin +
+// mipCount) and array layers [layerBegin, layerBegin + layerCount). kAll
+// counts to the last level or layer. Config syntax after a name (either part
+// may be left out, ranges inclusive, `*` all): `hdr.mip[2]`, `bloom.mip[1..4]`,
+// `shadow.layer[3]`, `shadow.layer[*]`, `env.face[+x]` (a cube's faces: +x -x
+// +y -y +z -z), `env.mip[1].face[-z]`. An attachment bound to several layers
+// is a layered attachment (the shader picks the layer with gl_Layer).
+struct Subresource {
+  static constexpr uint32_t kAll = UINT32_MAX;
+  uint32_t mipBegin = 0, mipCount = kAll;
+  uint32_t layerBegin = 0, layerCount = kAll;
+  bool whole() const { return mipBegin == 0 && mipCount == kAll && layerBegin == 0 && layerCount == kAll; }
+  bool operator==(const Subresource&) const = default;
+};
+
+// Splits "NAME(.mip[..])(.layer[..]|.face[..])" into the name and the
+// subresource. A string with no ".mip[", ".layer[" or ".face[" is a plain
+// name (whole). Returns an error message (empty when it parsed).
+std::string parseSubresourceRef(std::string_view text, std::string& name, Subresource& sub);
+// "bloom.mip[3]", "shadow.layer[0..3]", "env.face[+x]" (a face when `cube`
+// and the range is one layer of the first cube); the bare name for whole().
+std::string subresourceLabel(std::string_view name, const Subresource& sub, bool cube = false);
 
 enum class ResourceKind { texture, buffer };
 
@@ -114,6 +149,9 @@ struct ResourceUse {
   std::string input;
   std::string output;
   bool acceptsMultisample = false;  // sampled through sampler2DMS / resolved by the pass itself
+  // The part of the texture the slot binds (input and output alike): whole
+  // by default. Versions, order, culling and hazards are per subresource.
+  Subresource sub;
   SourceLocation inputWhere, outputWhere;
 };
 
@@ -212,7 +250,9 @@ struct PhysicalTexture {
   ResourceKind kind = ResourceKind::texture;
   Format format = Format::rgba8;
   Extent extent;
-  uint32_t mips = 1, samples = 1;
+  uint32_t mips = 1, samples = 1;  // mips resolved (never 0)
+  uint32_t layers = 1;             // as TextureDesc::layers
+  bool cube = false;
   uint64_t bytes = 0;
   std::vector<ResourceIndex> resources;  // the resources sharing it, in first-use order
 };
@@ -226,6 +266,9 @@ struct BoundUse {
   std::string readVersion;  // empty for a fresh write
   std::string writeVersion; // empty for a read
   bool firstWrite = false;  // writes version 0: apply the resource's clear here
+  // The part bound, resolved: counts are never kAll in an ok plan (whole
+  // textures: every level and layer). Buffers: whole.
+  Subresource sub;
 };
 
 // What a plan promises its readers (the executor, the memory barriers, the
@@ -281,7 +324,7 @@ Plan compile(const GraphDesc& desc, const CompileOptions& options = {});
 std::string checkPlanContract(const Plan& plan);
 
 // Size in bytes of a texture with this descriptor at this extent (mips, samples included).
-uint64_t textureBytes(Format f, Extent e, uint32_t mips, uint32_t samples);
+uint64_t textureBytes(Format f, Extent e, uint32_t mips, uint32_t samples, uint32_t arrayLayers = 1);
 
 // Graphviz DOT of a compiled graph: passes (boxes) and resource versions
 // (ellipses), read/write edges, culled passes dashed grey, aliased resources

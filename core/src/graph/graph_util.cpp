@@ -23,12 +23,13 @@ Extent resolveSize(const SizeSpec& s, Extent output) {
   return output;
 }
 
-uint64_t textureBytes(Format f, Extent e, uint32_t mips, uint32_t samples) {
+uint64_t textureBytes(Format f, Extent e, uint32_t mips, uint32_t samples, uint32_t arrayLayers) {
   if (e.width == 0 || e.height == 0) return 0;
   uint32_t full = 1;
   for (uint32_t m = std::max(e.width, e.height); m > 1; m >>= 1) ++full;
   uint32_t levels = mips == 0 ? full : std::min(mips, full);
-  const uint64_t perPixel = uint64_t{formatInfo(f).bytesPerPixel} * std::max<uint32_t>(samples, 1);
+  const uint64_t perPixel =
+      uint64_t{formatInfo(f).bytesPerPixel} * std::max<uint32_t>(samples, 1) * std::max<uint32_t>(arrayLayers, 1);
   uint64_t total = 0;
   for (uint32_t l = 0; l < levels; ++l) {
     uint64_t w = std::max<uint64_t>(1, e.width >> l), h = std::max<uint64_t>(1, e.height >> l);
