@@ -31,6 +31,7 @@ enum class DiagCode {
   invalid_output,         // the output cannot be shown: multisampled, depth, a buffer, overwritten later
   output_size,            // warning: the output's own size is not the requested output size
   history_error,          // a history resource whose source is unknown, unwritten, not kept, or differs in size/format
+  subresource_range,      // a mip, layer or face out of the texture's range, or a part of a buffer or history
   // config
   json_syntax,
   file_not_found,

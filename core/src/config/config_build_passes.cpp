@@ -142,7 +142,11 @@ void Builder::readBindings(const Json* object, const std::string& pointer, PassI
       error(DiagCode::config_schema, at(valuePointer), "expected a resource name, got an empty string").pass =
           passName;
     } else {
-      out[it.key()] = {it->get<std::string>(), valuePointer};
+      Binding b{{}, valuePointer, {}};
+      if (std::string why = parseSubresourceRef(it->get<std::string>(), b.name, b.sub); !why.empty())
+        error(DiagCode::config_schema, at(valuePointer), "bad subresource " + why).pass = passName;
+      else
+        out[it.key()] = std::move(b);
     }
     if (info.type) checkSlotName(it.key(), valuePointer, inputs, info, passName);
   }
@@ -216,6 +220,7 @@ void Builder::checkSlots(const PassInfo& info, PassDecl& decl) {
         use.access = slot.access;
         use.input = in->second.name;
         use.inputWhere = at(in->second.pointer);
+        use.sub = in->second.sub;
         use.acceptsMultisample = slot.acceptsMultisample;
         decl.uses.push_back(std::move(use));
       }
@@ -240,14 +245,33 @@ void Builder::checkSlots(const PassInfo& info, PassDecl& decl) {
       use.access = slot.access;
       use.output = out->second.name;
       use.outputWhere = at(out->second.pointer);
+      use.sub = out->second.sub;
       if (mayLoad && in != info.inputs.end()) {
         use.input = in->second.name;
         use.inputWhere = at(in->second.pointer);
+        loadedPart(in->second, out->second, slot.name, decl.name, use.sub);
       }
       use.acceptsMultisample = slot.acceptsMultisample;
       decl.uses.push_back(std::move(use));
     }
   }
+}
+
+// A slot that loads a version and writes its successor touches one part of
+// the texture: the part named on either side, or on both alike.
+void Builder::loadedPart(const Binding& in, const Binding& out, const std::string& slot, const std::string& passName,
+                         Subresource& sub) {
+  if (in.sub == out.sub || in.sub.whole()) return;
+  if (out.sub.whole()) {
+    sub = in.sub;
+    return;
+  }
+  Diagnostic& d = error(DiagCode::config_schema, at(out.pointer),
+                        "slot '" + slot + "' loads " + subresourceLabel(in.name, in.sub) + " but writes " +
+                            subresourceLabel(out.name, out.sub) +
+                            "; a slot that loads a version writes the same part of it (name the part once, or alike)");
+  d.pass = passName;
+  d.slot = slot;
 }
 
 // ------------------------------------------------------------ params

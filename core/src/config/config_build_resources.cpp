@@ -13,8 +13,9 @@ namespace rgraph::config_detail {
 
 namespace {
 
-const std::vector<std::string> kResourceKeys = {"type",  "format",       "size",        "samples",  "mips",
-                                                "clear", "buffer_bytes", "description", "imported", "history_of"};
+const std::vector<std::string> kResourceKeys = {"type",         "format",      "size",     "samples",
+                                                "mips",         "layers",      "cube",     "clear",
+                                                "buffer_bytes", "description", "imported", "history_of"};
 
 }  // namespace
 
@@ -61,6 +62,8 @@ void Builder::inheritHistoryDescriptors(const Json& resources) {
     if (!object.contains("size")) h.texture.size = src->texture.size;
     if (!object.contains("samples")) h.texture.samples = src->texture.samples;
     if (!object.contains("mips")) h.texture.mips = src->texture.mips;
+    if (!object.contains("layers")) h.texture.layers = src->texture.layers;
+    if (!object.contains("cube")) h.texture.cube = src->texture.cube;
   }
 }
 
@@ -110,7 +113,7 @@ bool Builder::checkResource(const Json& res, const std::string& pointer, Resourc
   }
 
   if (r.kind == ResourceKind::buffer) {
-    for (const char* key : {"format", "size", "samples", "mips", "clear"})
+    for (const char* key : {"format", "size", "samples", "mips", "layers", "cube", "clear"})
       if (member(key))
         error(DiagCode::config_schema, keyAt(sub(key)),
               std::string("'") + key + "' does not apply to buffer resources")
@@ -174,12 +177,35 @@ bool Builder::checkResource(const Json& res, const std::string& pointer, Resourc
 
   if (const Json* mips = member("mips")) {
     int64_t n = 0;
-    if (readInteger(*mips).status == IntegerValue::Status::not_a_number)
-      typeError(sub("mips"), "an integer", *mips);
-    else if (std::string why = integerInRange(*mips, "mips", 0, 32, n, {}, " (0: a full mip chain)"); !why.empty())
+    if (mips->is_string() && *mips == "full")
+      t.mips = 0;
+    else if (readInteger(*mips).status == IntegerValue::Status::not_a_number)
+      typeError(sub("mips"), "an integer or \"full\"", *mips);
+    else if (std::string why = integerInRange(*mips, "mips", 0, 32, n, {}, " (0 or \"full\": a full mip chain)");
+             !why.empty())
       error(DiagCode::config_schema, at(sub("mips")), why);
     else
       t.mips = static_cast<uint32_t>(n);
+  }
+
+  // An array (layers > 1), a cube map ("cube": true) or a cube array (both:
+  // "layers" counts cubes). compile() checks the limits against the size.
+  if (const Json* layers = member("layers")) {
+    int64_t n = 0;
+    if (readInteger(*layers).status == IntegerValue::Status::not_a_number)
+      typeError(sub("layers"), "an integer (array layers; cubes when \"cube\" is true)", *layers);
+    else if (std::string why =
+                 integerInRange(*layers, "layers", 1, 2048, n, {}, " (GL_MAX_ARRAY_TEXTURE_LAYERS in OpenGL 4.5)");
+             !why.empty())
+      error(DiagCode::config_schema, at(sub("layers")), why);
+    else
+      t.layers = static_cast<uint32_t>(n);
+  }
+  if (const Json* cube = member("cube")) {
+    if (cube->is_boolean())
+      t.cube = cube->get<bool>();
+    else
+      typeError(sub("cube"), "true or false", *cube);
   }
 
   if (const Json* clear = member("clear")) checkClear(*clear, sub("clear"), formatOk, t);

@@ -29,8 +29,9 @@ using VersionResources = std::unordered_map<std::string_view, size_t>;
 
 // One "inputs"/"outputs" entry that holds a usable name.
 struct Binding {
-  std::string name;
+  std::string name;     // the resource or version, without its subresource
   std::string pointer;  // of the string value
+  Subresource sub;      // ".mip[2]", ".layer[3]", ".face[+x]": whole when none
 };
 
 struct PassInfo {
@@ -89,6 +90,8 @@ class Builder {
   void checkPasses(const Json& passes);
   void checkPass(const Json& pass, PassInfo& info, std::map<std::string, std::string>& names, PassDecl& decl,
                  ParamSet& params);
+  void loadedPart(const Binding& in, const Binding& out, const std::string& slot, const std::string& passName,
+                  Subresource& sub);
   void readBindings(const Json* object, const std::string& pointer, PassInfo& info, const std::string& passName,
                     bool inputs);
   void checkSlotName(const std::string& slot, const std::string& pointer, bool inInputs, PassInfo& info,

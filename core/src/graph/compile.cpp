@@ -58,7 +58,6 @@ void Compiler::run() {
     lifetimesAndAliasing();
   }
   finish();
-  assert(checkPlanContract(plan_).empty());  // rgraph/graph.h: what the plan promises its readers
 }
 
 Diagnostic& Compiler::diag(DiagCode code, std::string message, std::string_view pass, std::string_view slot,
@@ -152,8 +151,8 @@ void Compiler::finish() {
 }  // namespace graph_detail
 
 Plan compile(const GraphDesc& desc, const CompileOptions& options) {
-  Plan plan;
-  graph_detail::Compiler(desc, options, plan).run();
+  Plan plan = graph_detail::compileSubresources(desc, options);
+  assert(checkPlanContract(plan).empty());  // rgraph/graph.h: what the plan promises its readers
   return plan;
 }
 

@@ -48,8 +48,10 @@ void Compiler::lifetimesAndAliasing() {
   for (uint32_t i = 0; i < plan_.order.size(); ++i) {
     const uint32_t p = plan_.order[i].value();
     for (uint32_t f = useBegin_[p]; f < useBegin_[p + 1]; ++f) {
-      const int r = u_[f].res;
-      if (r < 0) continue;
+      if (u_[f].res < 0) continue;
+      // A lowered description (subresources): every cell of a texture lives
+      // and is aliased as its unit's first cell.
+      const int r = units_ ? static_cast<int>(units_->rep[units_->of[u_[f].res]]) : u_[f].res;
       Res& rs = r_[r];
       if (rs.first < 0) {
         rs.first = static_cast<int>(i);
@@ -100,14 +102,21 @@ void Compiler::lifetimesAndAliasing() {
         pt.extent = rs.extent;
         pt.mips = rs.mips;
         pt.samples = rs.samples;
+        pt.layers = rs.layers;
+        pt.cube = rs.cube;
       }
       plan_.allocatedBytes += pt.bytes;
     }
-    plan_.physical[phys].resources.push_back(ResourceIndex(r));
+    plan_.physical[phys].resources.push_back(ResourceIndex(units_ ? units_->of[r] : r));
     rs.physical = phys;
     if (pool) pool->busy.push({rs.last, phys});
   }
   peakLiveBytes(byFirst);
+  if (units_)
+    for (uint32_t r = 0; r < nRes_; ++r) {
+      const Res& rep = r_[units_->rep[units_->of[r]]];
+      r_[r].first = rep.first, r_[r].last = rep.last, r_[r].physical = rep.physical;
+    }
 }
 
 // Bytes live at each pass of the order (a whole-frame resource at all of

@@ -56,14 +56,15 @@ void Compiler::resolve() {
       }
     if (base) {
       const Res& b = r_[base->res];
+      const Extent be = attachedExtent(base->res);
       for (const Att& a : attachments) {
         if (&a == base || !r_[a.res].valid) continue;
         const Res& rs = r_[a.res];
         const bool out = u_[a.flat].write;
-        if (rs.extent != b.extent)
+        if (const Extent ae = attachedExtent(a.res); ae != be)
           useDiag(DiagCode::attachment_size_mismatch,
-                  slotLabel(a.flat) + " (" + boundName(a.flat) + ") is " + extentString(rs.extent) + " but " +
-                      slotLabel(base->flat) + " (" + boundName(base->flat) + ") is " + extentString(b.extent) +
+                  slotLabel(a.flat) + " (" + boundName(a.flat) + ") is " + extentString(ae) + " but " +
+                      slotLabel(base->flat) + " (" + boundName(base->flat) + ") is " + extentString(be) +
                       "; all attachments of a pass must have the same size",
                   a.flat, boundVersion(a.flat), out);
         if (rs.samples != b.samples)

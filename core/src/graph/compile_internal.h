@@ -14,6 +14,7 @@
 //                          what culling follows, whole-frame lifetimes.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -39,9 +40,18 @@ inline std::string q(std::string_view s) {
   return out;
 }
 
+// A lowered description (compile_subresources.cpp) compiles cells of the
+// caller's textures as resources: `of` maps each to the caller's resource
+// (its unit), `rep` each unit to its first cell, `mip` each cell to its first
+// mip level (attachment sizes are those of the level).
+struct CellUnits {
+  std::vector<uint32_t> of, rep, mip;
+};
+
 class Compiler {
  public:
-  Compiler(const GraphDesc& d, const CompileOptions& o, Plan& p) : d_(d), o_(o), plan_(p) {}
+  Compiler(const GraphDesc& d, const CompileOptions& o, Plan& p, const CellUnits* units = nullptr)
+      : d_(d), o_(o), plan_(p), units_(units) {}
 
   void run();
 
@@ -61,7 +71,8 @@ class Compiler {
   struct Res {
     Extent extent;
     uint64_t bytes = 0;
-    uint32_t mips = 1, samples = 1;
+    uint32_t mips = 1, samples = 1, layers = 1;
+    bool cube = false;
     int first = -1, last = -1, physical = -1;
     Format format = Format::rgba8;
     ResourceKind kind = ResourceKind::texture;
@@ -129,6 +140,12 @@ class Compiler {
     const std::string& n = u.write ? u.ru->output : u.ru->input;
     return n.empty() && u.res >= 0 ? resName_[u.res] : std::string_view(n);
   }
+  // The size a resource is attached at: its mip level's, for a cell of a lowered description.
+  Extent attachedExtent(int r) const {
+    const uint32_t m = units_ ? units_->mip[r] : 0;
+    const Extent e = r_[r].extent;
+    return {std::max<uint32_t>(1, e.width >> m), std::max<uint32_t>(1, e.height >> m)};
+  }
   std::string boundName(uint32_t f) const {
     const std::string_view n = boundVersion(f);
     if (u_[f].res < 0 || n == resName_[u_[f].res]) return q(n);
@@ -140,6 +157,8 @@ class Compiler {
   void resources();
   void output();
   void outputDescriptor();
+  template <class Invalid>
+  void shape(const ResourceDecl& rd, Extent e, Invalid& invalid);
   // compile_versions.cpp
   void sweep();
   void inPlaceWrite(uint32_t f);
@@ -172,6 +191,7 @@ class Compiler {
   const GraphDesc& d_;
   const CompileOptions& o_;
   Plan& plan_;
+  const CellUnits* units_ = nullptr;
   uint32_t nRes_ = 0, nPass_ = 0, nUses_ = 0;
   std::vector<uint32_t> useBegin_;
   std::vector<uint8_t> passFlags_;
@@ -199,5 +219,8 @@ class Compiler {
   int outputVer_ = -1;  // the version "output" names
   bool cyclic_ = false;
 };
+
+// compile(): lowers subresource bindings (compile_subresources.cpp) around the Compiler.
+Plan compileSubresources(const GraphDesc& desc, const CompileOptions& options);
 
 }  // namespace rgraph::graph_detail

@@ -99,9 +99,32 @@ void Compiler::resources() {
       invalid("texture " + q(rd.name) + " asks for " + std::to_string(td.mips) + " mip levels, but a " +
               extentString(e) + " texture has at most " + std::to_string(full));
     rs.mips = td.mips == 0 ? full : std::min(td.mips, full);
-    rs.bytes = textureBytes(td.format, e, td.mips, td.samples);
+    shape(rd, e, invalid);
+    rs.layers = std::max<uint32_t>(td.layers, 1);
+    rs.cube = td.cube;
+    rs.bytes = textureBytes(td.format, e, td.mips, td.samples, arrayLayers(td));
     if (bad) rs.valid = false;
   }
+}
+
+// Arrays and cube maps: layer counts within what every OpenGL 4.5 device
+// holds, cubes square, neither multisampled.
+template <class Invalid>
+void Compiler::shape(const ResourceDecl& rd, Extent e, Invalid& invalid) {
+  const TextureDesc& td = rd.texture;
+  // GL_MAX_ARRAY_TEXTURE_LAYERS is at least 2048 in OpenGL 4.5; a cube array counts six per cube.
+  constexpr uint32_t kMaxLayers = 2048;
+  if (td.layers == 0)
+    invalid("texture " + q(rd.name) + " has 0 layers; an array texture has at least 1");
+  else if (arrayLayers(td) > kMaxLayers || td.layers > kMaxLayers)
+    invalid("texture " + q(rd.name) + " has " + std::to_string(td.layers) + (td.cube ? " cubes (" : " layers (") +
+            std::to_string(uint64_t{td.layers} * (td.cube ? 6u : 1u)) +
+            " array layers), more than the 2048 every OpenGL 4.5 device holds (GL_MAX_ARRAY_TEXTURE_LAYERS)");
+  if (td.cube && e.width != e.height && e.width > 0)
+    invalid("texture " + q(rd.name) + " is a cube map of " + extentString(e) + "; a cube map's faces are square");
+  if (td.samples > 1 && (td.cube || td.layers > 1))
+    invalid("texture " + q(rd.name) + " is multisampled (" + std::to_string(td.samples) + " samples) and " +
+            (td.cube ? "a cube map" : "an array") + "; only single 2D textures may be multisampled");
 }
 
 void Compiler::output() {

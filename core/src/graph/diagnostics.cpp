@@ -26,6 +26,8 @@ std::string_view diagCodeName(DiagCode c) {
     case DiagCode::output_size: return "output_size";
     case DiagCode::history_error:
       return "history_error";
+    case DiagCode::subresource_range:
+      return "subresource_range";
     case DiagCode::json_syntax: return "json_syntax";
     case DiagCode::file_not_found: return "file_not_found";
     case DiagCode::config_schema: return "config_schema";
