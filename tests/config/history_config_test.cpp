@@ -104,7 +104,7 @@ TEST(HistoryConfig, OmittedKeysComeFromTheSourceGivenOnesMustMatch) {
             "h.json:6:22: error: /resources/resolved_prev: history resource 'resolved_prev' (rgba16f, scale 0.5 "
             "(640x360), 1 sample, 1 mip level) does not match its source 'resolved' (rgba16f, output size "
             "(1280x720), 1 sample, 1 mip level); a history holds its source's previous content and must have the "
-            "same format, size, samples and mips (leave them out to take the source's)");
+            "same format, size, samples, mips and layers (leave them out to take the source's)");
 }
 
 TEST(HistoryConfig, ErrorsPointAtTheHistoryOfValue) {

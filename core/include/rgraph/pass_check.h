@@ -33,8 +33,12 @@ struct CheckedSlot {
   std::optional<Format> format;  // unknown for a buffer or a binding the graph could not resolve
   ResourceKind kind = ResourceKind::texture;
   uint64_t bufferBytes = 0;      // a buffer's buffer_bytes (0: a texture or unresolved)
-  Extent extent;                 // at the plan's output size; 0x0 when unknown
+  Extent extent;                 // at the plan's output size, of the level bound; 0x0 when unknown
   uint32_t samples = 1;
+  // The part of the texture bound (BoundUse::sub, resolved) and its shape.
+  Subresource sub;
+  uint32_t layers = 1;  // TextureDesc::layers
+  bool cube = false;
   bool loads = false;    // a writing slot that also loads its previous version
   // A history resource (ResourceDecl::historyOf): the resource whose previous
   // frame it holds; empty for anything else.

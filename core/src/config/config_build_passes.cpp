@@ -267,8 +267,8 @@ void Builder::loadedPart(const Binding& in, const Binding& out, const std::strin
     return;
   }
   Diagnostic& d = error(DiagCode::config_schema, at(out.pointer),
-                        "slot '" + slot + "' loads " + subresourceLabel(in.name, in.sub) + " but writes " +
-                            subresourceLabel(out.name, out.sub) +
+                        "slot '" + slot + "' loads '" + subresourceLabel(in.name, in.sub) + "' but writes '" +
+                            subresourceLabel(out.name, out.sub) + "'" +
                             "; a slot that loads a version writes the same part of it (name the part once, or alike)");
   d.pass = passName;
   d.slot = slot;

@@ -195,7 +195,7 @@ bool Builder::checkResource(const Json& res, const std::string& pointer, Resourc
     if (readInteger(*layers).status == IntegerValue::Status::not_a_number)
       typeError(sub("layers"), "an integer (array layers; cubes when \"cube\" is true)", *layers);
     else if (std::string why =
-                 integerInRange(*layers, "layers", 1, 2048, n, {}, " (GL_MAX_ARRAY_TEXTURE_LAYERS in OpenGL 4.5)");
+                 integerInRange(*layers, "layers", 1, 2048, n, {}, " (array layers, or cubes; OpenGL 4.5 guarantees 2048)");
              !why.empty())
       error(DiagCode::config_schema, at(sub("layers")), why);
     else

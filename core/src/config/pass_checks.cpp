@@ -90,7 +90,13 @@ std::vector<CheckedSlot> planSlots(const GraphDesc& g, const Plan& plan, size_t 
       if (rd.kind == ResourceKind::texture) {
         s.format = rd.texture.format;
         s.samples = std::max<uint32_t>(1, rd.texture.samples);
-        s.extent = plan.resource(bu->resource).extent;
+        const Extent e = plan.resource(bu->resource).extent;
+        const uint32_t level = bu->sub.mipCount == Subresource::kAll ? 0 : bu->sub.mipBegin;
+        s.extent = e.width == 0 ? e
+                                : Extent{std::max<uint32_t>(1, e.width >> level), std::max<uint32_t>(1, e.height >> level)};
+        s.sub = bu->sub;
+        s.layers = rd.texture.layers;
+        s.cube = rd.texture.cube;
       }
     }
     out.push_back(std::move(s));

@@ -44,7 +44,9 @@ std::string Compiler::descriptorString(uint32_t r) const {
   return std::string(formatName(t.format)) + ", " + sizeString(t.size, rs.extent) + ", " + std::to_string(t.samples) +
          (t.samples == 1 ? " sample, " : " samples, ") +
          (t.mips == 0 ? std::string("a full mip chain")
-                      : std::to_string(t.mips) + (t.mips == 1 ? " mip level" : " mip levels"));
+                      : std::to_string(t.mips) + (t.mips == 1 ? " mip level" : " mip levels")) +
+         (t.cube ? (t.layers > 1 ? ", " + std::to_string(t.layers) + " cubes" : std::string(", a cube map"))
+                 : (t.layers > 1 ? ", " + std::to_string(t.layers) + " layers" : std::string()));
 }
 
 // Runs after output() (it needs the output's resource and the version chains).
@@ -113,10 +115,11 @@ void Compiler::history() {
     }
     if (r_[h].valid && r_[s].valid &&
         (hd.texture.format != sd.texture.format || !sameSize(hd.texture.size, sd.texture.size) ||
-         hd.texture.samples != sd.texture.samples || hd.texture.mips != sd.texture.mips)) {
+         hd.texture.samples != sd.texture.samples || hd.texture.mips != sd.texture.mips ||
+         hd.texture.layers != sd.texture.layers || hd.texture.cube != sd.texture.cube)) {
       fail(" (" + descriptorString(h) + ") does not match its source " + q(sd.name) + " (" + descriptorString(s) +
-               "); a history holds its source's previous content and must have the same format, size, samples and "
-               "mips (leave them out to take the source's)",
+               "); a history holds its source's previous content and must have the same format, size, samples, "
+               "mips and layers (leave them out to take the source's)",
            hd.where);
       continue;
     }
