@@ -289,3 +289,34 @@ TEST(TestingInline, CycleIsReportedAndEveryQueryStillAnswers) {
   }
   EXPECT_NE(p.describe().find("cycle.json:"), std::string::npos) << p.describe();
 }
+
+// A mip chain in a user's test: the part each slot binds, and culling per level.
+TEST(TestingInline, SubresourceBindingsAndPerLevelCulling) {
+  const std::string text = R"({
+  "version": 1,
+  "resources": {
+    "a": { "format": "rgba8", "mips": 3 },
+    "output": { "format": "rgba8" }
+  },
+  "passes": [
+    { "name": "fill", "type": "fullscreen", "params": { "shader": "gradient.frag" }, "outputs": { "color": "a.mip[0]" } },
+    { "name": "half", "type": "fullscreen", "params": { "shader": "invert.frag" }, "inputs": { "input0": "a.mip[0]" }, "outputs": { "color": "a.mip[1]" } },
+    { "name": "quarter", "type": "fullscreen", "params": { "shader": "invert.frag" }, "inputs": { "input0": "a.mip[1]" }, "outputs": { "color": "a.mip[2]" } },
+    { "name": "show", "type": "present", "inputs": { "src": "a.mip[1]" }, "outputs": { "dst": "output" } }
+  ],
+  "output": "output"
+})";
+  rt::Options o = small();
+  o.passChecks = false;  // present wants equal sizes; this test is about the plan
+  const rt::CompiledPipeline p = rt::compileText(text, o);
+  ASSERT_TRUE(p.ok()) << p.describe();
+  EXPECT_EQ(p.order(), (std::vector<std::string>{"fill", "half", "show"}));
+  EXPECT_EQ(p.culledPasses(), (std::vector<std::string>{"quarter"}));
+  const auto src = p.binding("half", "input0");
+  ASSERT_TRUE(src.has_value());
+  EXPECT_EQ(src->resource, "a");
+  EXPECT_EQ(src->readVersion, "a");
+  EXPECT_EQ(src->sub, (rgraph::Subresource{0, 1, 0, 1}));
+  EXPECT_EQ(p.binding("half", "color")->sub, (rgraph::Subresource{1, 1, 0, 1}));
+  EXPECT_EQ(p.binding("show", "dst")->sub, (rgraph::Subresource{0, 1, 0, 1}));
+}

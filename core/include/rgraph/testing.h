@@ -107,6 +107,7 @@ struct Binding {
   std::string resource;      // the declared resource
   std::string readVersion;   // the version read ("" for a fresh write)
   std::string writeVersion;  // the version written ("" for a read)
+  Subresource sub;           // the levels and layers bound, resolved (every one for a whole texture)
 };
 
 // A compiled pipeline (or one that failed to load), and the questions a test

@@ -186,6 +186,7 @@ std::vector<Binding> CompiledPipeline::bindings(std::string_view pass) const {
     if (u.resource.valid() && u.resource.value() < plan_.resources.size()) b.resource = plan_.resource(u.resource).name;
     b.readVersion = u.readVersion;
     b.writeVersion = u.writeVersion;
+    b.sub = u.sub;
     out.push_back(std::move(b));
   }
   return out;
