@@ -326,14 +326,16 @@ Plan Lowering::compileAndFold() {
 
 // Whole bindings of textures: every level and layer, counted.
 void resolveWholeRanges(const GraphDesc& d, const CompileOptions& o, Plan& plan) {
-  for (size_t pi = 0; pi < plan.bindings.size(); ++pi)
-    for (BoundUse& bu : plan.bindings[pi]) {
-      if (!bu.resource.valid() || bu.sub.mipCount != Subresource::kAll) continue;
-      const ResourceDecl& rd = d.resources[bu.resource.value()];
-      if (rd.kind != ResourceKind::texture) continue;
-      bu.sub = {0, mipLevels(rd.texture, resolveSize(rd.texture.size, o.output)), 0,
-                std::max<uint32_t>(1, arrayLayers(rd.texture))};
-    }
+  std::vector<Subresource> whole(d.resources.size());  // kAll: a buffer
+  for (size_t r = 0; r < d.resources.size(); ++r) {
+    const ResourceDecl& rd = d.resources[r];
+    if (rd.kind == ResourceKind::texture)
+      whole[r] = {0, mipLevels(rd.texture, resolveSize(rd.texture.size, o.output)), 0,
+                  std::max<uint32_t>(1, arrayLayers(rd.texture))};
+  }
+  for (auto& uses : plan.bindings)
+    for (BoundUse& bu : uses)
+      if (bu.resource.valid() && bu.sub.mipCount == Subresource::kAll) bu.sub = whole[bu.resource.value()];
 }
 
 }  // namespace
