@@ -57,7 +57,8 @@ void Builder::checkSamplerOverrides(const Json& samplers, const std::string& poi
       for (const auto& s : info.type->slots)
         if (s.access == Access::sampled) names.push_back(s.name);
       std::string hint = didYouMean(it.key(), names);
-      if (hint.empty()) hint = names.empty() ? "; it has no sampled slots" : "; its sampled slots are " + quotedList(names);
+      if (hint.empty())
+        hint = names.empty() ? "; it has no sampled slots" : "; its sampled slots are " + quotedList(names);
       Diagnostic& d = error(DiagCode::unknown_slot, keyAt(vp), info.label + " has no slot '" + it.key() + "'" + hint);
       d.pass = passName;
       d.slot = it.key();

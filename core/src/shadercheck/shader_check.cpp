@@ -162,7 +162,9 @@ void collectDeclaredSamplers(const glslang::TIntermediate* interm, const ShaderS
         const size_t end = std::min(src.text.find('\n', pos), src.text.size());
         const std::string_view l(src.text.data() + pos, end - pos);
         const size_t at = l.find(name);
-        if (l.find("uniform") != std::string_view::npos && l.find("sampler") != std::string_view::npos && at != std::string_view::npos &&
+        const bool declares =
+            l.find("uniform") != std::string_view::npos && l.find("sampler") != std::string_view::npos;
+        if (declares && at != std::string_view::npos &&
             (at + name.size() == l.size() || !std::isalnum(static_cast<unsigned char>(l[at + name.size()]))))
           line = static_cast<int>(n);
         pos = end + 1;
@@ -523,9 +525,9 @@ void checkSamplerShape(const SamplerUniform& s, const SamplerSlot& m, const Boun
   const std::string input = "input '" + m.slot + "' (" + b.resource + ")";
   if (b.format) {
     const BoundShape shape = boundShape(b);
-    const bool fits = s.dim == SamplerUniform::Dim::d2   ? shape == (s.arrayed ? BoundShape::array2d : BoundShape::tex2d)
-                      : s.dim == SamplerUniform::Dim::cube ? shape == (s.arrayed ? BoundShape::cube_array : BoundShape::cube)
-                                                           : false;
+    bool fits = false;  // 1D, 3D, rect and buffer samplers read no graph texture
+    if (s.dim == SamplerUniform::Dim::d2) fits = shape == (s.arrayed ? BoundShape::array2d : BoundShape::tex2d);
+    if (s.dim == SamplerUniform::Dim::cube) fits = shape == (s.arrayed ? BoundShape::cube_array : BoundShape::cube);
     if (!fits) {
       std::string what = shapeName(shape);
       if (!b.sub.whole()) what += " (the subresource " + subresourceLabel(b.resource, b.sub, b.cube) + ")";
