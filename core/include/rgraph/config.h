@@ -15,10 +15,21 @@
 #include "rgraph/diagnostics.h"
 #include "rgraph/graph.h"
 #include "rgraph/params.h"
+#include "rgraph/sampler_state.h"
 
 namespace rgraph {
 
 class PassRegistry;
+struct SlotDecl;
+
+// A pass's "samplers" entry for one sampled slot: the slot's declared state
+// (SlotDecl::sampler, or SamplerState{} when it declares none) with the keys
+// the config gives applied.
+struct SamplerOverride {
+  std::string slot;
+  SamplerState state;
+  SourceLocation where;  // the slot's key in "samplers"
+};
 
 struct PipelineConfig {
   std::string file;
@@ -30,7 +41,16 @@ struct PipelineConfig {
   uint32_t jitterPhases = 0;
   GraphDesc graph;                 // passes in config order
   std::vector<ParamSet> params;    // one per graph.passes entry, defaults filled in
+  // One per graph.passes entry (may be shorter: no overrides): the pass's
+  // "samplers" overrides.
+  std::vector<std::vector<SamplerOverride>> samplers;
 };
+
+// The sampler state pass `pass` samples `slot` with: its config override,
+// else the slot's declared state; nullopt: the texture's own parameters.
+// `where` (optional) is set to the override's location, or left alone.
+std::optional<SamplerState> slotSamplerState(const PipelineConfig& pipeline, size_t pass, const SlotDecl& slot,
+                                             SourceLocation* where = nullptr);
 
 class ConfigDocument {
  public:

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "rgraph/graph.h"
 #include "rgraph/params.h"
 #include "rgraph/pass_check.h"
+#include "rgraph/sampler_state.h"
 
 namespace rgraph {
 
@@ -36,6 +38,14 @@ struct SlotDecl {
   // bench) counts the resources bound to such slots. Core knows no pass type
   // by name; the pass type says which of its slots hold the G-buffer.
   bool gbufferTarget = false;
+  // Sampled slots: how the slot's texture is filtered, wrapped and compared
+  // (rgraph/sampler_state.h). Unset: with the texture's own parameters
+  // (linear, clamped to the edge, trilinear over a mip chain) through
+  // sampler 0, as before sampler states existed. A pass in the config may
+  // override it ("samplers": {"SLOT": {...}}, applied on top of this state,
+  // or of SamplerState{} when unset). A depth slot sampled through a shadow
+  // sampler (sampler2DShadow, ...) needs a state with a compare mode.
+  std::optional<SamplerState> sampler;
 };
 
 class PassContext;

@@ -36,7 +36,18 @@
 //        spec binds its slot to (without layout(binding), the executor sets
 //        the sampler uniform to that unit); an integer sampler (isampler/usampler) on a
 //        float/normalized texture; a multisample sampler on a single-sample
-//        texture or the reverse; a shadow sampler on a colour texture.
+//        texture or the reverse; a shadow sampler on a colour texture;
+//      - a sampler whose GLSL type does not fit the shape of what the slot
+//        binds: sampler2D* reads a 2D texture or one layer or face of an
+//        array or cube (a subresource with one layer), sampler2DArray* more
+//        layers, samplerCube* a whole cube (6 faces), samplerCubeArray* a
+//        cube array; 1D, 3D, rect and buffer samplers read no graph texture;
+//      - a shadow sampler (sampler2DShadow, samplerCubeShadow, ...) on a slot
+//        whose sampler state has no compare mode (SlotDecl::sampler, the
+//        config's "samplers"), or a compare mode on a slot a non-shadow
+//        sampler reads (GL leaves both undefined).
+//      These name the sampler's declaration (shader FILE:LINE) in the message
+//      and point at the slot's binding in the config.
 //    Warnings:
 //      - an output with more components than its attachment's format (the
 //        extra components are dropped: legal, but usually a wrong format);
@@ -194,6 +205,13 @@ struct SamplerUniform {
   bool multisample = false;
   bool shadow = false;
   bool integer = false;  // isampler / usampler
+  // The texture shape it reads: 2D (also 2D multisample), cube, or another
+  // (1D, 3D, rect, buffer), and whether it is an array sampler.
+  enum class Dim { d2, cube, other } dim = Dim::d2;
+  bool arrayed = false;
+  std::string type;  // the GLSL type, e.g. "sampler2DArrayShadow"
+  std::string file;  // where it is declared (display path), "" when unknown
+  int line = 0;
 };
 
 // One program, compiled, linked and reflected.
@@ -214,6 +232,16 @@ struct BoundSlot {
   std::string resource;           // the resource (or version) name, for messages
   std::optional<Format> format;   // unknown when the graph could not resolve it
   uint32_t samples = 1;
+  // The texture's shape (TextureDesc::layers, ::cube) and the part the slot
+  // binds: known with the format.
+  uint32_t layers = 1;
+  bool cube = false;
+  Subresource sub;
+  // The state the slot samples with (rgraph::slotSamplerState); nullopt: the
+  // texture's own parameters (no compare). `samplerWhere`: the config's
+  // override, when there is one.
+  std::optional<SamplerState> sampler;
+  SourceLocation samplerWhere;
   SourceLocation where;           // the binding in the config
 };
 

@@ -15,7 +15,7 @@ namespace rgraph::config_detail {
 namespace {
 
 const std::vector<std::string> kPassKeys = {"name",   "type",    "description", "enabled", "side_effect",
-                                            "inputs", "outputs", "params",      "jitter"};
+                                            "inputs", "outputs", "params",      "jitter",  "samplers"};
 
 }  // namespace
 
@@ -120,6 +120,7 @@ void Builder::checkPass(const Json& pass, PassInfo& info, std::map<std::string, 
     else if (info.type)
       checkParams(*ps, p + "/params", info, decl.name, params);
   }
+  if (const Json* ss = member("samplers")) checkSamplerOverrides(*ss, p + "/samplers", info, decl.name);
 }
 
 // Reads "inputs" or "outputs": slot -> resource/version name.

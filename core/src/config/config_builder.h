@@ -6,7 +6,8 @@
 //                               ConfigDocument::build;
 //   config_build_resources.cpp  resource declarations (type, format, size,
 //                               samples, mips, clear, buffer size);
-//   config_build_passes.cpp     passes, their bindings, slots and parameters.
+//   config_build_passes.cpp     passes, their bindings, slots and parameters;
+//   config_build_samplers.cpp   a pass's "samplers" (sampler-state overrides).
 #pragma once
 
 #include <cstddef>
@@ -101,6 +102,17 @@ class Builder {
                    ParamSet& params);
   std::optional<ParamValue> checkParam(const ParamDecl& decl, const Json& v, const std::string& pointer,
                                        const PassInfo& info, const std::string& passName);
+
+  // config_build_samplers.cpp: the pass key "samplers" (config_.samplers)
+  void checkSamplerOverrides(const Json& samplers, const std::string& pointer, const PassInfo& info,
+                             const std::string& passName);
+  void readSamplerState(const Json& object, const std::string& pointer, const PassInfo& info,
+                        const std::string& passName, SamplerState& s);
+  void readSamplerWrap(const Json& v, const std::string& pointer, const std::string& passName, SamplerState& s);
+  bool readSamplerBorder(const Json& v, const std::string& pointer, const std::string& passName, SamplerState& s);
+  template <class E, class Parse>
+  bool samplerChoice(const Json& v, const std::string& pointer, const std::string& what,
+                     const std::vector<std::string>& names, Parse parse, E& out, const std::string& passName);
 
   const ConfigDocument& doc_;
   const Json& root_;

@@ -339,6 +339,7 @@ void Executor::Impl::createRuns() {
       RequestRecorder record(shaders, builtPrograms, run->name);
       run->programs.build(run->name, *run->type, run->paramSet, shaders);
       run->programs.resolveSlots(*run);
+      run->programs.resolveSamplers(pipeline, run->decl.value(), *run->type, samplerCache);
       run->instance->setup(*run);
     } catch (const RuntimeError& e) {
       // Where the pass is in the config, when it came from one.
@@ -547,6 +548,7 @@ void Executor::renderFrame() {
     try {
       RequestRecorder record(im.shaders, im.builtPrograms, run.name);
       run.instance->execute(run);
+      run.programs.unbindSamplers();
       im.dirtyState |= run.instance->changedState();
       if (im.stateChecks) im.checkState(run);
     } catch (const RuntimeError& e) {

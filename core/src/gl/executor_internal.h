@@ -187,6 +187,7 @@ struct Executor::Impl {
   // runs (resize, rebuild), so that no result lands on another pass list.
   std::unique_ptr<gl::TimerQueryRing> queryRing;
   std::vector<uint32_t> slotUnits;  // texture units passes' slots are bound to: cleared after a frame
+  gl::SamplerCache samplerCache;    // the sampler objects of the slots' sampler states (sampler_cache.h)
   std::vector<BuiltProgram> builtPrograms;  // what passes asked the ShaderLibrary for, in order
   uint32_t frameEndBarrier = 0;  // glMemoryBarrier bits after the last pass
 
@@ -212,6 +213,7 @@ struct Executor::Impl {
     timingsFrame.reset();
     queryRing.reset();
     slotUnits.clear();
+    samplerCache.clear();
     builtPrograms.clear();
     frameEndBarrier = 0;
     historyCopies.clear();

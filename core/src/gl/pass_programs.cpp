@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <exception>
 
+#include "rgraph/config.h"
 #include "rgraph/error.h"
 
 namespace rgraph {
@@ -76,9 +77,27 @@ void PassPrograms::resolveSlots(const PassContext& ctx) {
   for (Unit& u : units_) u.texture = ctx.texture(u.slot);
 }
 
+void PassPrograms::resolveSamplers(const PipelineConfig& pipeline, size_t pass, const PassTypeDesc& type,
+                                   gl::SamplerCache& cache) {
+  for (Unit& u : units_) {
+    if (!u.read) continue;  // bindSlots skips it: no sampler object for it either
+    const SlotDecl* slot = type.findSlot(u.slot);
+    const std::optional<SamplerState> state = slot ? slotSamplerState(pipeline, pass, *slot) : std::nullopt;
+    u.sampler = state ? cache.get(*state) : 0;
+  }
+}
+
 void PassPrograms::bindSlots() const {
+  for (const Unit& u : units_) {
+    if (!u.read) continue;
+    glBindTextureUnit(u.unit, u.texture);
+    if (u.sampler) glBindSampler(u.unit, u.sampler);
+  }
+}
+
+void PassPrograms::unbindSamplers() const {
   for (const Unit& u : units_)
-    if (u.read) glBindTextureUnit(u.unit, u.texture);
+    if (u.read && u.sampler) glBindSampler(u.unit, 0);
 }
 
 std::vector<uint32_t> PassPrograms::units() const {

@@ -12,8 +12,11 @@
 #include "rgraph/gl/executor.h"
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/pass.h"
+#include "sampler_cache.h"
 
 namespace rgraph {
+
+struct PipelineConfig;
 
 class PassPrograms {
  public:
@@ -29,11 +32,21 @@ class PassPrograms {
   // Takes the textures of the sampled slots the specs name, once per build
   // (texture 0 for an unbound slot), so that a frame looks up no slot names.
   void resolveSlots(const PassContext& ctx);
+  // The sampler objects of the slots with a sampler state (declared by the
+  // type or overridden by pass `pass` of the pipeline), from `cache`, once
+  // per build. Slots without one keep sampler 0 (the texture's parameters).
+  void resolveSamplers(const PipelineConfig& pipeline, size_t pass, const PassTypeDesc& type,
+                       gl::SamplerCache& cache);
   // Binds them to their units: those a program reads (a sampler the
-  // compiler dropped is not bound). Nothing unbinds them after the pass: the
-  // next pass binds its own units, the executor clears every slot unit at
-  // the end of the frame (units()).
+  // compiler dropped is not bound), with their sampler objects. Nothing
+  // unbinds the textures after the pass: the next pass binds its own units,
+  // the executor clears every slot unit at the end of the frame (units()).
   void bindSlots() const;
+  // Puts sampler 0 back on the units bindSlots() gave a sampler object, after
+  // the pass: between passes every unit samples with its texture's own
+  // parameters, so that a pass binding textures itself needs no sampler call
+  // and slots without a state need none either.
+  void unbindSamplers() const;
   std::vector<uint32_t> units() const;
 
  private:
@@ -43,6 +56,7 @@ class PassPrograms {
     std::string slot;
     bool read = false;     // an active sampler uniform in one of the programs
     uint32_t texture = 0;  // resolveSlots
+    uint32_t sampler = 0;  // resolveSamplers; 0: the texture's own parameters
   };
   std::vector<Unit> units_;  // each unit once
 };

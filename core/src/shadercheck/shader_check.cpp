@@ -10,6 +10,7 @@
 #include <glslang/Public/ShaderLang.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -123,8 +124,10 @@ std::string baseName(const std::string& reflected) {
   return b == std::string::npos ? reflected : reflected.substr(0, b);
 }
 
-// Every sampler a stage declares (used or not), from its linker objects.
-void collectDeclaredSamplers(const glslang::TIntermediate* interm, std::vector<SamplerUniform>& out) {
+// Every sampler a stage declares (used or not), from its linker objects,
+// located in the original file through the stage's line table.
+void collectDeclaredSamplers(const glslang::TIntermediate* interm, const ShaderSource& src,
+                             std::vector<SamplerUniform>& out) {
   if (!interm || !interm->getTreeRoot()) return;
   glslang::TIntermAggregate* root = interm->getTreeRoot()->getAsAggregate();
   if (!root) return;
@@ -147,6 +150,32 @@ void collectDeclaredSamplers(const glslang::TIntermediate* interm, std::vector<S
       u.multisample = s.isMultiSample();
       u.shadow = s.isShadow();
       u.integer = s.getBasicType() == glslang::EbtInt || s.getBasicType() == glslang::EbtUint;
+      u.dim = s.dim == glslang::Esd2D ? SamplerUniform::Dim::d2
+              : s.dim == glslang::EsdCube ? SamplerUniform::Dim::cube
+                                          : SamplerUniform::Dim::other;
+      u.arrayed = s.isArrayed();
+      u.type = s.getString().c_str();
+      int line = sym->getLoc().line;  // of the expanded text: no #line directives
+      // Linker objects often carry no location: the first expanded line that
+      // declares a sampler of this name.
+      for (size_t pos = 0, n = 1; line <= 0 && pos < src.text.size(); ++n) {
+        const size_t end = std::min(src.text.find('\n', pos), src.text.size());
+        const std::string_view l(src.text.data() + pos, end - pos);
+        const size_t at = l.find(name);
+        const bool declares =
+            l.find("uniform") != std::string_view::npos && l.find("sampler") != std::string_view::npos;
+        if (declares && at != std::string_view::npos &&
+            (at + name.size() == l.size() || !std::isalnum(static_cast<unsigned char>(l[at + name.size()]))))
+          line = static_cast<int>(n);
+        pos = end + 1;
+      }
+      if (line > 0 && static_cast<size_t>(line) <= src.lines.size()) {
+        const auto [file, fileLine] = src.lines[static_cast<size_t>(line) - 1];
+        if (file >= 0 && static_cast<size_t>(file) < src.files.size()) {
+          u.file = src.files[static_cast<size_t>(file)];
+          u.line = fileLine;
+        }
+      }
       out.push_back(std::move(u));
     }
   }
@@ -244,7 +273,7 @@ const ProgramCheck& ShaderChecker::program(const ShaderProgramSpec& spec) {
         std::sort(pc.outputs.begin(), pc.outputs.end(),
                   [](const FragmentOutput& a, const FragmentOutput& b) { return a.location < b.location; });
       }
-      for (auto& st : stages) collectDeclaredSamplers(program.getIntermediate(st.lang), pc.samplers);
+      for (auto& st : stages) collectDeclaredSamplers(program.getIntermediate(st.lang), st.src, pc.samplers);
       for (int i = 0; i < program.getNumUniformVariables(); ++i) {
         const std::string name = baseName(program.getUniform(i).name);
         for (auto& s : pc.samplers)
@@ -458,6 +487,75 @@ void checkOutputFormats(const ShaderProgramSpec& spec, const std::vector<Fragmen
   }
 }
 
+// The shape a slot binds: the layers of its subresource (one layer or face:
+// a 2D image), a whole cube, a cube array, or a 2D array.
+enum class BoundShape { tex2d, array2d, cube, cube_array };
+
+BoundShape boundShape(const BoundSlot& b) {
+  const uint32_t total = std::max<uint32_t>(1, b.layers) * (b.cube ? 6u : 1u);
+  const uint32_t begin = std::min(b.sub.layerBegin, total);
+  const uint32_t count = b.sub.layerCount == Subresource::kAll ? total - begin : b.sub.layerCount;
+  if (count <= 1) return BoundShape::tex2d;
+  if (b.cube && begin % 6 == 0 && count % 6 == 0) return count == 6 ? BoundShape::cube : BoundShape::cube_array;
+  return BoundShape::array2d;
+}
+
+const char* shapeName(BoundShape s) {
+  switch (s) {
+    case BoundShape::tex2d: return "a 2D texture (sampler2D)";
+    case BoundShape::array2d: return "a 2D array (sampler2DArray)";
+    case BoundShape::cube: return "a cube map (samplerCube)";
+    case BoundShape::cube_array: return "a cube-map array (samplerCubeArray)";
+  }
+  return "";
+}
+
+std::string locationText(const SourceLocation& w) {
+  return w.file + ":" + std::to_string(w.line) + ":" + std::to_string(w.column);
+}
+
+// A sampler's type against the bound shape, and a shadow sampler against the
+// slot's compare mode. The message names the declaration; the diagnostic
+// points at the binding.
+void checkSamplerShape(const SamplerUniform& s, const SamplerSlot& m, const BoundSlot& b, const std::string& shader,
+                       PassFindings& f) {
+  const SourceLocation& at = b.where.known() ? b.where : f.passWhere;
+  const std::string declared = s.file.empty() ? shader : s.file + ":" + std::to_string(s.line);
+  const std::string sampler = s.type + " '" + m.uniform + "' (" + declared + ")";
+  const std::string input = "input '" + m.slot + "' (" + b.resource + ")";
+  if (b.format) {
+    const BoundShape shape = boundShape(b);
+    bool fits = false;  // 1D, 3D, rect and buffer samplers read no graph texture
+    if (s.dim == SamplerUniform::Dim::d2) fits = shape == (s.arrayed ? BoundShape::array2d : BoundShape::tex2d);
+    if (s.dim == SamplerUniform::Dim::cube) fits = shape == (s.arrayed ? BoundShape::cube_array : BoundShape::cube);
+    if (!fits) {
+      std::string what = shapeName(shape);
+      if (!b.sub.whole()) what += " (the subresource " + subresourceLabel(b.resource, b.sub, b.cube) + ")";
+      else if (b.layers > 1 || b.cube) what += " (" + std::to_string(b.layers) + (b.cube ? " cube" : " layer") +
+                                               (b.layers == 1 ? "" : "s") + ")";
+      f.add(Severity::error,
+            f.who + ": " + sampler + " cannot read " + input + ", which binds " + what +
+                ": the sampler's type must match the bound texture's shape",
+            at, m.slot, b.resource);
+    }
+  }
+  const bool compares = b.sampler && b.sampler->compare != SamplerState::Compare::none;
+  const std::string stateFrom =
+      b.samplerWhere.known() ? "its \"samplers\" entry at " + locationText(b.samplerWhere) : std::string("its slot declaration");
+  if (s.shadow && !compares)
+    f.add(Severity::error,
+          f.who + ": shadow sampler " + sampler + " reads " + input + " but the slot's sampler state has no compare " +
+              "mode (" + (b.sampler ? "from " + stateFrom : std::string("the slot declares no sampler state")) +
+              "): give it one, e.g. \"samplers\": {\"" + m.slot + "\": {\"compare\": \"less_equal\"}}",
+          at, m.slot, b.resource);
+  if (!s.shadow && compares)
+    f.add(Severity::error,
+          f.who + ": " + sampler + " is not a shadow sampler but " + input + " samples with compare mode " +
+              std::string(compareName(b.sampler->compare)) + " (from " + stateFrom +
+              "): use a shadow sampler (" + s.type + "Shadow) or set \"compare\": \"none\"",
+          at, m.slot, b.resource);
+}
+
 // Samplers the spec maps to sampled slots: given a unit, bound when read, on
 // the unit the spec names, and of a kind the bound texture can be sampled with.
 void checkMappedSamplers(const ProgramCheck& pc, const ShaderProgramSpec& spec,
@@ -517,6 +615,7 @@ void checkMappedSamplers(const ProgramCheck& pc, const ShaderProgramSpec& spec,
             f.who + ": sampler '" + m.uniform + "' in " + shader + " is a shadow sampler but input '" + m.slot + "' (" +
                 b->resource + ", " + std::string(formatName(*b->format)) + ") has no depth",
             where, m.slot, b->resource);
+    checkSamplerShape(*s, m, *b, shader, f);
   }
 }
 
@@ -608,8 +707,13 @@ Diagnostics ShaderChecker::checkPipeline(const PipelineConfig& pipeline, const P
         if (rd.kind == ResourceKind::texture) {
           b.format = rd.texture.format;
           b.samples = std::max<uint32_t>(1, rd.texture.samples);
+          b.layers = rd.texture.layers;
+          b.cube = rd.texture.cube;
+          b.sub = ru.sub;
         }
       }
+      if (const SlotDecl* sd = type->findSlot(ru.slot); sd && ru.access == Access::sampled)
+        b.sampler = slotSamplerState(pipeline, p, *sd, &b.samplerWhere);
       bound.push_back(std::move(b));
     }
     Diagnostics d = checkPass(pd.name, *type, params, bound, pd.where);

@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bumped when the entry format or the key's contents change.
-constexpr const char* kCacheVersion = "rgraph-shadercheck-cache-2";
+constexpr const char* kCacheVersion = "rgraph-shadercheck-cache-3";
 
 // Two unrelated 64-bit hashes of the key text: the first names the entry, the
 // second is stored in it and checked, so a collision of one is not enough.
@@ -79,14 +79,15 @@ void appendPipeline(std::ostringstream& k, const PipelineConfig& pipeline) {
   k << "file " << pipeline.file << "\n";
   for (const auto& r : g.resources)
     k << "resource " << r.name << ' ' << static_cast<int>(r.kind) << ' ' << formatName(r.texture.format) << ' '
-      << r.texture.samples << ' ' << r.imported << "\n";
+      << r.texture.samples << ' ' << r.imported << ' ' << r.texture.layers << ' ' << r.texture.cube << "\n";
   for (size_t p = 0; p < g.passes.size(); ++p) {
     const PassDecl& pd = g.passes[p];
     k << "pass " << pd.name << ' ' << pd.type << ' ' << pd.enabled;
     appendLocation(k, pd.where);
     k << "\n";
     for (const auto& u : pd.uses) {
-      k << " use " << u.slot << ' ' << static_cast<int>(u.access) << ' ' << u.input << ' ' << u.output;
+      k << " use " << u.slot << ' ' << static_cast<int>(u.access) << ' ' << u.input << ' ' << u.output << ' '
+        << subresourceLabel("", u.sub);
       appendLocation(k, u.inputWhere);
       appendLocation(k, u.outputWhere);
       k << "\n";
@@ -109,6 +110,16 @@ void appendPrograms(std::ostringstream& k, const PipelineConfig& pipeline, const
     if (!type) continue;
     origins.insert(type->origin);
     if (!type->programs) continue;
+    // The sampler states the checks compare with shadow samplers (declared
+    // by the type or overridden by the pass, located).
+    for (const SlotDecl& slot : type->slots) {
+      SourceLocation w;
+      if (std::optional<SamplerState> st = slotSamplerState(pipeline, p, slot, &w)) {
+        k << " sampler " << slot.name << ": " << describeSampler(*st);
+        appendLocation(k, w);
+        k << "\n";
+      }
+    }
     ParamSet params = defaultParams(type->params);
     if (p < pipeline.params.size())
       for (const auto& [name, value] : pipeline.params[p].values()) params.set(name, value);
