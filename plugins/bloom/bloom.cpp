@@ -13,15 +13,15 @@
 //
 // Every intermediate texture is a slot the config binds to a transient
 // resource, so the graph sees their lifetimes and aliases them (e.g. with
-// G-buffer targets that are dead after lighting). The passes own framebuffers
-// only (the blur renders into each of its two targets in turn).
+// G-buffer targets that are dead after lighting). The passes own no GL
+// objects: the blur renders into each of its two targets in turn through
+// the executor's framebuffers (PassContext::framebuffer).
 #include <GL/glcorearb.h>
 
 #include "bloom_chain.h"
 #include "bloom_chain_layout.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/fullscreen.h"
-#include "rgraph/gl/objects.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/plugin.h"
 
@@ -29,18 +29,6 @@ namespace {
 using namespace rgraph;
 
 const std::vector<Format> kHdrFormats = {Format::rgba16f, Format::rgba32f, Format::r11g11b10f};
-
-// A framebuffer with one colour attachment, for passes that draw into
-// several targets in turn.
-gl::Framebuffer singleTargetFbo(uint32_t texture, const std::string& what) {
-  gl::Framebuffer fbo = gl::createFramebuffer();
-  glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, texture, 0);
-  glNamedFramebufferDrawBuffer(fbo.id(), GL_COLOR_ATTACHMENT0);
-  GLenum status = glCheckNamedFramebufferStatus(fbo.id(), GL_DRAW_FRAMEBUFFER);
-  if (status != GL_FRAMEBUFFER_COMPLETE)
-    throw RuntimeError(what + ": framebuffer incomplete (status 0x" + std::to_string(status) + ")");
-  return fbo;
-}
 
 // ------------------------------------------------------------ bloom_bright
 
@@ -57,23 +45,17 @@ class BrightPass final : public gl::FullscreenPass {
 // ------------------------------------------------------------ bloom_blur
 
 class GaussianBlur final : public gl::FullscreenPass {
-  void prepare(PassContext& ctx) override {
-    dstFbo_ = singleTargetFbo(ctx.texture("dst"), "bloom_blur pass '" + ctx.passName() + "' target 'dst'");
-    tempFbo_ = singleTargetFbo(ctx.texture("temp"), "bloom_blur pass '" + ctx.passName() + "' target 'temp'");
-  }
-
-  // Draws into its two targets in turn, through framebuffers of its own.
+  // Draws into its two targets in turn, through the executor's framebuffers of each.
   void execute(PassContext& ctx) override {
     const ParamSet& p = ctx.params();
     const int iterations = static_cast<int>(p.getInt("iterations", 5));
     const float radius = static_cast<float>(p.getNumber("radius", 1.0));
     const Extent size = ctx.extent("dst");
-    glUseProgram(program());
-    glViewport(0, 0, static_cast<GLsizei>(size.width), static_cast<GLsizei>(size.height));
+    gl::useProgram(ctx, program());
     targetTexel_.set(1.0f / static_cast<float>(size.width), 1.0f / static_cast<float>(size.height));
     // One blur direction from `source` into `fbo`; taps `radius` source texels apart.
-    auto direction = [&](uint32_t source, Extent sourceSize, const gl::Framebuffer& fbo, bool horizontal) {
-      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo.id());
+    auto direction = [&](uint32_t source, Extent sourceSize, std::string_view target, bool horizontal) {
+      gl::bindPassFramebuffer(ctx, {{target}});
       glBindTextureUnit(0, source);  // the ping-pong reads a different target each draw
       step_.set(horizontal ? radius / static_cast<float>(sourceSize.width) : 0.0f,
                 horizontal ? 0.0f : radius / static_cast<float>(sourceSize.height));
@@ -82,14 +64,13 @@ class GaussianBlur final : public gl::FullscreenPass {
     // src -> temp -> dst, then dst -> temp -> dst for every further iteration.
     for (int i = 0; i < iterations; ++i) {
       if (i == 0)
-        direction(ctx.texture("src"), ctx.extent("src"), tempFbo_, true);
+        direction(ctx.texture("src"), ctx.extent("src"), "temp", true);
       else
-        direction(ctx.texture("dst"), size, tempFbo_, true);
-      direction(ctx.texture("temp"), size, dstFbo_, false);
+        direction(ctx.texture("dst"), size, "temp", true);
+      direction(ctx.texture("temp"), size, "dst", false);
     }
   }
 
-  gl::Framebuffer dstFbo_, tempFbo_;
   ProgramUniform targetTexel_{this, "u_targetTexel"}, step_{this, "u_step"};
 };
 
@@ -146,7 +127,7 @@ void checkBlur(const PassCheckContext& ctx, PassChecks& checks) {
 // gaussian: one program; mip_chain: the downsample then the upsample (bloom_chain.cpp's order).
 std::function<std::vector<ShaderProgramSpec>(const ParamSet&)> blurPrograms(const PluginHost& host) {
   ShaderProgramSpec gaussian = gl::fullscreenProgram(host.shaderPath("bloom_blur.frag"), {{"src", "u_image", 0}});
-  gaussian.drawsToAttachments = false;  // draws into dst and temp in turn through framebuffers of its own
+  gaussian.drawsToAttachments = false;  // draws into dst and temp in turn (PassContext::framebuffer)
   std::vector<ShaderProgramSpec> chain;
   for (const char* frag : {"bloom_down.frag", "bloom_up.frag"}) {
     ShaderProgramSpec s = gl::fullscreenProgram(host.shaderPath(frag));

@@ -15,21 +15,10 @@
 #include "bloom_chain_layout.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/fullscreen.h"
-#include "rgraph/gl/objects.h"
 #include "rgraph/gl/uniform.h"
 
 namespace rgraph::bloom {
 namespace {
-
-gl::Framebuffer targetFbo(uint32_t texture, const std::string& what) {
-  gl::Framebuffer fbo = gl::createFramebuffer();
-  glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, texture, 0);
-  glNamedFramebufferDrawBuffer(fbo.id(), GL_COLOR_ATTACHMENT0);
-  const GLenum status = glCheckNamedFramebufferStatus(fbo.id(), GL_DRAW_FRAMEBUFFER);
-  if (status != GL_FRAMEBUFFER_COMPLETE)
-    throw RuntimeError(what + ": framebuffer incomplete (status 0x" + std::to_string(status) + ")");
-  return fbo;
-}
 
 // The uniforms both chain programs share (bloom_chain.glsl).
 struct RectUniforms {
@@ -50,9 +39,8 @@ class ChainBlur final : public PassInstance {
     downRects_ = RectUniforms(down_), upRects_ = RectUniforms(up_);
     karis_ = gl::Uniform(down_, "u_karis");
     radius_ = gl::Uniform(up_, "u_radius"), scale_ = gl::Uniform(up_, "u_scale");
-    const std::string what = "bloom_blur pass '" + ctx.passName() + "'";
-    tempFbo_ = targetFbo(ctx.texture("temp"), what + " target 'temp'");
-    dstFbo_ = targetFbo(ctx.texture("dst"), what + " target 'dst'");
+    tempFbo_ = ctx.framebuffer({{"temp"}}).id;
+    dstFbo_ = ctx.framebuffer({{"dst"}}).id;
     triangle_ = std::make_unique<gl::FullscreenTriangle>();
   }
 
@@ -65,7 +53,7 @@ class ChainBlur final : public PassInstance {
     auto viewport = [](const Rect& r) { glViewport(GLint(r.x), GLint(r.y), GLsizei(r.width), GLsizei(r.height)); };
 
     // Down: src -> level 1 (Karis's average when asked) -> level 2 -> ...
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, tempFbo_.id());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, tempFbo_);
     glUseProgram(down_);
     for (int k = 0; k < levels; ++k) {
       const bool first = k == 0;
@@ -95,7 +83,7 @@ class ChainBlur final : public PassInstance {
     }
     glDisable(GL_BLEND);
     glTextureBarrier();
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, dstFbo_.id());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, dstFbo_);
     upRects_.set(temp, rects[0], Rect{0, 0, dst.width, dst.height});
     scale_.set(1.0f / float(levels));
     viewport(Rect{0, 0, dst.width, dst.height});
@@ -106,7 +94,7 @@ class ChainBlur final : public PassInstance {
   uint32_t down_ = 0, up_ = 0;
   RectUniforms downRects_, upRects_;
   gl::Uniform karis_, radius_, scale_;
-  gl::Framebuffer tempFbo_, dstFbo_;
+  uint32_t tempFbo_ = 0, dstFbo_ = 0;  // the executor's (PassContext::framebuffer)
   std::unique_ptr<gl::FullscreenTriangle> triangle_;
 };
 
