@@ -7,7 +7,7 @@
 //                    `iterations` times horizontal + vertical, ping-ponging
 //                    between its two targets; method "mip_chain": Jimenez's
 //                    downsample/upsample chain (bloom_chain.h), its levels
-//                    side by side in 'temp'
+//                    in the mip levels of 'temp'
 //   bloom_composite  HDR + intensity * blurred -> a new HDR image (or added
 //                    into the HDR target it loads)
 //
@@ -19,7 +19,6 @@
 #include <GL/glcorearb.h>
 
 #include "bloom_chain.h"
-#include "bloom_chain_layout.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/pass_decl.h"
@@ -107,21 +106,22 @@ class CompositePass final : public gl::FullscreenPass {
 
 bool chainMethod(const ParamSet& p) { return p.getString("method", "gaussian") == "mip_chain"; }
 
-// mip_chain: temp holds every level of the source's chain side by side
-// (bloom_chain_layout.h). (That dst and temp have one size, the graph checks:
-// they are a pass's attachments.)
+// mip_chain: temp's level k holds the chain's level k, half the source's
+// size k times, so temp has the source's size (that dst and temp have one
+// size, the graph checks: they are a pass's attachments). Its mip count is
+// checked at setup (the levels exist), where the texture is known.
 void checkBlur(const PassCheckContext& ctx, PassChecks& checks) {
   if (!chainMethod(ctx.params())) return;
   const Extent src = ctx.extent("src"), temp = ctx.extent("temp");
   if (src.width == 0 || temp.width == 0) return;  // unresolved: reported elsewhere
   const int levels = int(ctx.params().getInt("levels", 6));
-  const Extent need = bloom::chainExtent(src, levels);
-  if (temp.width < need.width || temp.height < need.height)
-    checks.slotError("temp", "method 'mip_chain' keeps its " + std::to_string(levels) + " levels side by side in 'temp': "
-                     "it needs at least " + std::to_string(need.width) + "x" + std::to_string(need.height) +
-                     " texels for a " + std::to_string(src.width) + "x" + std::to_string(src.height) +
-                     " source, and is " + std::to_string(temp.width) + "x" + std::to_string(temp.height) +
-                     " (give it the source's size)");
+  if (temp != src)
+    checks.slotError("temp", "method 'mip_chain' draws its " + std::to_string(levels) +
+                     " levels into temp's mip levels 1.." + std::to_string(levels) + ", halving the source's size: " +
+                     "temp must have the source's size, " + std::to_string(src.width) + "x" +
+                     std::to_string(src.height) + ", and is " + std::to_string(temp.width) + "x" +
+                     std::to_string(temp.height) + " (give it the source's size and \"mips\": " +
+                     std::to_string(levels + 1) + ")");
 }
 
 // gaussian: one program; mip_chain: the downsample then the upsample (bloom_chain.cpp's order).
@@ -131,7 +131,7 @@ std::function<std::vector<ShaderProgramSpec>(const ParamSet&)> blurPrograms(cons
   std::vector<ShaderProgramSpec> chain;
   for (const char* frag : {"bloom_down.frag", "bloom_up.frag"}) {
     ShaderProgramSpec s = gl::fullscreenProgram(host.shaderPath(frag));
-    s.ownSamplers = {"u_image"};  // src or the atlas in 'temp', bound by the pass for each draw
+    s.ownSamplers = {"u_image"};  // src or one level of 'temp', bound by the pass for each draw
     s.drawsToAttachments = false;
     chain.push_back(s);
   }
@@ -178,14 +178,14 @@ void registerBloom(PluginHost& host) {
     PassTypeDesc d;
     d.name = "bloom_blur";
     d.description = "Bloom 2/3: a Gaussian ping-pong between 'temp' and 'dst' (LearnOpenGL), or a mip chain "
-                    "(Jimenez 2014) kept in 'temp'";
+                    "(Jimenez 2014) in the mip levels of 'temp'";
     d.slots = {
         slot("src", Access::sampled, true, SlotDecl::Load::never, "image to blur (e.g. bloom_bright's output)",
              kHdrFormats),
         slot("dst", Access::color_attachment, true, SlotDecl::Load::never, "the blurred image (temp's size)", kHdrFormats),
         slot("temp", Access::color_attachment, true, SlotDecl::Load::never,
-             "scratch: gaussian, dst's twin (the other half of the ping-pong); mip_chain, the chain's levels side by "
-             "side (the source's size holds them)",
+             "scratch: gaussian, dst's twin (the other half of the ping-pong); mip_chain, the chain's levels in its "
+             "mip levels 1..levels (the source's size, \"mips\": levels + 1)",
              kHdrFormats),
     };
     d.params = {
@@ -203,7 +203,8 @@ void registerBloom(PluginHost& host) {
               "mip_chain: weight the first downsample's boxes by 1 / (1 + luma) against fireflies"),
     };
     d.programs = blurPrograms(host);
-    d.rules = {PassRule{"method \"mip_chain\" keeps its levels side by side in temp: give temp the size of src",
+    d.rules = {PassRule{"method \"mip_chain\" draws its levels into temp's mip levels: give temp the size of src and "
+                        "\"mips\": levels + 1",
                         checkBlur}};
     d.create = [] { return std::make_unique<BlurPass>(); };
     host.addPassType(std::move(d));
