@@ -3,9 +3,7 @@
 // stencil) with nearest filtering.
 #include <GL/glcorearb.h>
 
-#include "rgraph/error.h"
 #include "rgraph/gl/format.h"
-#include "rgraph/gl/objects.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/registry.h"
 
@@ -14,41 +12,30 @@ using namespace rgraph;
 
 class BlitPass final : public PassInstance {
  public:
+  // The source as read framebuffer, the destination as draw framebuffer:
+  // both from the executor's cache (a depth image at its depth point with no
+  // colour buffers), so that passes drawing into the same images share them.
   void setup(PassContext& ctx) override {
     Format sf = ctx.format("src"), df = ctx.format("dst");
     srcExtent_ = ctx.extent("src");
     dstExtent_ = ctx.extent("dst");
-    const bool sd = gl::isDepth(sf);
-    read_ = gl::createFramebuffer();
-    draw_ = gl::createFramebuffer();
-    if (sd) {
+    if (gl::isDepth(sf)) {
       mask_ = GL_DEPTH_BUFFER_BIT;
       if (gl::hasStencil(sf) && gl::hasStencil(df)) mask_ |= GL_STENCIL_BUFFER_BIT;
       filter_ = GL_NEAREST;
-      glNamedFramebufferTexture(read_.id(), gl::attachmentPoint(sf), ctx.texture("src"), 0);
-      glNamedFramebufferTexture(draw_.id(), gl::attachmentPoint(df), ctx.texture("dst"), 0);
-      glNamedFramebufferReadBuffer(read_.id(), GL_NONE);
-      glNamedFramebufferDrawBuffer(draw_.id(), GL_NONE);
     } else {
       mask_ = GL_COLOR_BUFFER_BIT;
       filter_ = ctx.params().getString("filter", "linear") == "nearest" ? GL_NEAREST : GL_LINEAR;
-      glNamedFramebufferTexture(read_.id(), GL_COLOR_ATTACHMENT0, ctx.texture("src"), 0);
-      glNamedFramebufferTexture(draw_.id(), GL_COLOR_ATTACHMENT0, ctx.texture("dst"), 0);
-      glNamedFramebufferReadBuffer(read_.id(), GL_COLOR_ATTACHMENT0);
-      glNamedFramebufferDrawBuffer(draw_.id(), GL_COLOR_ATTACHMENT0);
     }
     // Same format: a raw copy. Otherwise sRGB images are decoded/encoded.
     rawCopy_ = sf == df;
-    GLenum rs = glCheckNamedFramebufferStatus(read_.id(), GL_READ_FRAMEBUFFER);
-    GLenum ds = glCheckNamedFramebufferStatus(draw_.id(), GL_DRAW_FRAMEBUFFER);
-    if (rs != GL_FRAMEBUFFER_COMPLETE || ds != GL_FRAMEBUFFER_COMPLETE)
-      throw RuntimeError("blit pass '" + ctx.passName() + "': framebuffer incomplete (read status 0x" + hex(rs) +
-                         ", draw status 0x" + hex(ds) + ")");
+    read_ = ctx.framebuffer({{"src"}}).id;
+    draw_ = ctx.framebuffer({{"dst"}}).id;
   }
 
   void execute(PassContext& ctx) override {
     if (rawCopy_) glDisable(GL_FRAMEBUFFER_SRGB);
-    glBlitNamedFramebuffer(read_.id(), draw_.id(), 0, 0, static_cast<GLint>(srcExtent_.width),
+    glBlitNamedFramebuffer(read_, draw_, 0, 0, static_cast<GLint>(srcExtent_.width),
                            static_cast<GLint>(srcExtent_.height), 0, 0, static_cast<GLint>(dstExtent_.width),
                            static_cast<GLint>(dstExtent_.height), mask_, filter_);
     if (rawCopy_) glEnable(GL_FRAMEBUFFER_SRGB);
@@ -56,12 +43,7 @@ class BlitPass final : public PassInstance {
   uint32_t changedState() const override { return 0; }  // sRGB put back
 
  private:
-  static std::string hex(GLenum v) {
-    char b[16];
-    std::snprintf(b, sizeof b, "%04x", v);
-    return b;
-  }
-  gl::Framebuffer read_, draw_;
+  uint32_t read_ = 0, draw_ = 0;  // the executor's
   Extent srcExtent_, dstExtent_;
   GLbitfield mask_ = GL_COLOR_BUFFER_BIT;
   GLenum filter_ = GL_LINEAR;

@@ -7,21 +7,20 @@
 //                    `iterations` times horizontal + vertical, ping-ponging
 //                    between its two targets; method "mip_chain": Jimenez's
 //                    downsample/upsample chain (bloom_chain.h), its levels
-//                    side by side in 'temp'
+//                    in the mip levels of 'temp'
 //   bloom_composite  HDR + intensity * blurred -> a new HDR image (or added
 //                    into the HDR target it loads)
 //
 // Every intermediate texture is a slot the config binds to a transient
 // resource, so the graph sees their lifetimes and aliases them (e.g. with
-// G-buffer targets that are dead after lighting). The passes own framebuffers
-// only (the blur renders into each of its two targets in turn).
+// G-buffer targets that are dead after lighting). The passes own no GL
+// objects: the blur renders into each of its two targets in turn through
+// the executor's framebuffers (PassContext::framebuffer).
 #include <GL/glcorearb.h>
 
 #include "bloom_chain.h"
-#include "bloom_chain_layout.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/fullscreen.h"
-#include "rgraph/gl/objects.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/plugin.h"
 
@@ -29,18 +28,6 @@ namespace {
 using namespace rgraph;
 
 const std::vector<Format> kHdrFormats = {Format::rgba16f, Format::rgba32f, Format::r11g11b10f};
-
-// A framebuffer with one colour attachment, for passes that draw into
-// several targets in turn.
-gl::Framebuffer singleTargetFbo(uint32_t texture, const std::string& what) {
-  gl::Framebuffer fbo = gl::createFramebuffer();
-  glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, texture, 0);
-  glNamedFramebufferDrawBuffer(fbo.id(), GL_COLOR_ATTACHMENT0);
-  GLenum status = glCheckNamedFramebufferStatus(fbo.id(), GL_DRAW_FRAMEBUFFER);
-  if (status != GL_FRAMEBUFFER_COMPLETE)
-    throw RuntimeError(what + ": framebuffer incomplete (status 0x" + std::to_string(status) + ")");
-  return fbo;
-}
 
 // ------------------------------------------------------------ bloom_bright
 
@@ -57,23 +44,17 @@ class BrightPass final : public gl::FullscreenPass {
 // ------------------------------------------------------------ bloom_blur
 
 class GaussianBlur final : public gl::FullscreenPass {
-  void prepare(PassContext& ctx) override {
-    dstFbo_ = singleTargetFbo(ctx.texture("dst"), "bloom_blur pass '" + ctx.passName() + "' target 'dst'");
-    tempFbo_ = singleTargetFbo(ctx.texture("temp"), "bloom_blur pass '" + ctx.passName() + "' target 'temp'");
-  }
-
-  // Draws into its two targets in turn, through framebuffers of its own.
+  // Draws into its two targets in turn, through the executor's framebuffers of each.
   void execute(PassContext& ctx) override {
     const ParamSet& p = ctx.params();
     const int iterations = static_cast<int>(p.getInt("iterations", 5));
     const float radius = static_cast<float>(p.getNumber("radius", 1.0));
     const Extent size = ctx.extent("dst");
-    glUseProgram(program());
-    glViewport(0, 0, static_cast<GLsizei>(size.width), static_cast<GLsizei>(size.height));
+    gl::useProgram(ctx, program());
     targetTexel_.set(1.0f / static_cast<float>(size.width), 1.0f / static_cast<float>(size.height));
     // One blur direction from `source` into `fbo`; taps `radius` source texels apart.
-    auto direction = [&](uint32_t source, Extent sourceSize, const gl::Framebuffer& fbo, bool horizontal) {
-      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo.id());
+    auto direction = [&](uint32_t source, Extent sourceSize, std::string_view target, bool horizontal) {
+      gl::bindPassFramebuffer(ctx, {{target}});
       glBindTextureUnit(0, source);  // the ping-pong reads a different target each draw
       step_.set(horizontal ? radius / static_cast<float>(sourceSize.width) : 0.0f,
                 horizontal ? 0.0f : radius / static_cast<float>(sourceSize.height));
@@ -82,14 +63,13 @@ class GaussianBlur final : public gl::FullscreenPass {
     // src -> temp -> dst, then dst -> temp -> dst for every further iteration.
     for (int i = 0; i < iterations; ++i) {
       if (i == 0)
-        direction(ctx.texture("src"), ctx.extent("src"), tempFbo_, true);
+        direction(ctx.texture("src"), ctx.extent("src"), "temp", true);
       else
-        direction(ctx.texture("dst"), size, tempFbo_, true);
-      direction(ctx.texture("temp"), size, dstFbo_, false);
+        direction(ctx.texture("dst"), size, "temp", true);
+      direction(ctx.texture("temp"), size, "dst", false);
     }
   }
 
-  gl::Framebuffer dstFbo_, tempFbo_;
   ProgramUniform targetTexel_{this, "u_targetTexel"}, step_{this, "u_step"};
 };
 
@@ -126,31 +106,32 @@ class CompositePass final : public gl::FullscreenPass {
 
 bool chainMethod(const ParamSet& p) { return p.getString("method", "gaussian") == "mip_chain"; }
 
-// mip_chain: temp holds every level of the source's chain side by side
-// (bloom_chain_layout.h). (That dst and temp have one size, the graph checks:
-// they are a pass's attachments.)
+// mip_chain: temp's level k holds the chain's level k, half the source's
+// size k times, so temp has the source's size (that dst and temp have one
+// size, the graph checks: they are a pass's attachments). Its mip count is
+// checked at setup (the levels exist), where the texture is known.
 void checkBlur(const PassCheckContext& ctx, PassChecks& checks) {
   if (!chainMethod(ctx.params())) return;
   const Extent src = ctx.extent("src"), temp = ctx.extent("temp");
   if (src.width == 0 || temp.width == 0) return;  // unresolved: reported elsewhere
   const int levels = int(ctx.params().getInt("levels", 6));
-  const Extent need = bloom::chainExtent(src, levels);
-  if (temp.width < need.width || temp.height < need.height)
-    checks.slotError("temp", "method 'mip_chain' keeps its " + std::to_string(levels) + " levels side by side in 'temp': "
-                     "it needs at least " + std::to_string(need.width) + "x" + std::to_string(need.height) +
-                     " texels for a " + std::to_string(src.width) + "x" + std::to_string(src.height) +
-                     " source, and is " + std::to_string(temp.width) + "x" + std::to_string(temp.height) +
-                     " (give it the source's size)");
+  if (temp != src)
+    checks.slotError("temp", "method 'mip_chain' draws its " + std::to_string(levels) +
+                     " levels into temp's mip levels 1.." + std::to_string(levels) + ", halving the source's size: " +
+                     "temp must have the source's size, " + std::to_string(src.width) + "x" +
+                     std::to_string(src.height) + ", and is " + std::to_string(temp.width) + "x" +
+                     std::to_string(temp.height) + " (give it the source's size and \"mips\": " +
+                     std::to_string(levels + 1) + ")");
 }
 
 // gaussian: one program; mip_chain: the downsample then the upsample (bloom_chain.cpp's order).
 std::function<std::vector<ShaderProgramSpec>(const ParamSet&)> blurPrograms(const PluginHost& host) {
   ShaderProgramSpec gaussian = gl::fullscreenProgram(host.shaderPath("bloom_blur.frag"), {{"src", "u_image", 0}});
-  gaussian.drawsToAttachments = false;  // draws into dst and temp in turn through framebuffers of its own
+  gaussian.drawsToAttachments = false;  // draws into dst and temp in turn (PassContext::framebuffer)
   std::vector<ShaderProgramSpec> chain;
   for (const char* frag : {"bloom_down.frag", "bloom_up.frag"}) {
     ShaderProgramSpec s = gl::fullscreenProgram(host.shaderPath(frag));
-    s.ownSamplers = {"u_image"};  // src or the atlas in 'temp', bound by the pass for each draw
+    s.ownSamplers = {"u_image"};  // src or one level of 'temp', bound by the pass for each draw
     s.drawsToAttachments = false;
     chain.push_back(s);
   }
@@ -197,14 +178,14 @@ void registerBloom(PluginHost& host) {
     PassTypeDesc d;
     d.name = "bloom_blur";
     d.description = "Bloom 2/3: a Gaussian ping-pong between 'temp' and 'dst' (LearnOpenGL), or a mip chain "
-                    "(Jimenez 2014) kept in 'temp'";
+                    "(Jimenez 2014) in the mip levels of 'temp'";
     d.slots = {
         slot("src", Access::sampled, true, SlotDecl::Load::never, "image to blur (e.g. bloom_bright's output)",
              kHdrFormats),
         slot("dst", Access::color_attachment, true, SlotDecl::Load::never, "the blurred image (temp's size)", kHdrFormats),
         slot("temp", Access::color_attachment, true, SlotDecl::Load::never,
-             "scratch: gaussian, dst's twin (the other half of the ping-pong); mip_chain, the chain's levels side by "
-             "side (the source's size holds them)",
+             "scratch: gaussian, dst's twin (the other half of the ping-pong); mip_chain, the chain's levels in its "
+             "mip levels 1..levels (the source's size, \"mips\": levels + 1)",
              kHdrFormats),
     };
     d.params = {
@@ -222,7 +203,8 @@ void registerBloom(PluginHost& host) {
               "mip_chain: weight the first downsample's boxes by 1 / (1 + luma) against fireflies"),
     };
     d.programs = blurPrograms(host);
-    d.rules = {PassRule{"method \"mip_chain\" keeps its levels side by side in temp: give temp the size of src",
+    d.rules = {PassRule{"method \"mip_chain\" draws its levels into temp's mip levels: give temp the size of src and "
+                        "\"mips\": levels + 1",
                         checkBlur}};
     d.create = [] { return std::make_unique<BlurPass>(); };
     host.addPassType(std::move(d));

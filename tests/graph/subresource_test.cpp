@@ -366,3 +366,24 @@ TEST(SubresourceGraph, FullMipChainsResolveAgainstTheSize) {
 }
 
 }  // namespace
+
+namespace {
+
+// Only textures of one shape share memory: an array never aliases a 2D
+// texture, nor a cube an array of six layers.
+TEST(SubresourceShapes, AliasingKeepsShapesApart) {
+  GraphDesc d;
+  d.resources = {shaped("flat", 32, 1), shaped("arr", 32, 1, 6), shaped("cube", 32, 1, 1, true),
+                 shaped("flat2", 32, 1), tex("out")};
+  d.passes = {pass("a", {wr("color", "flat")}), pass("b", {rd("s", "flat"), wr("color", "arr")}),
+              pass("c", {rd("s", "arr"), wr("color", "cube")}), pass("d", {rd("s", "cube"), wr("color", "flat2")}),
+              pass("o", {rd("s", "flat2"), wr("color", "out")})};
+  d.output = "out";
+  const Plan plan = compile(d);
+  ASSERT_TRUE(plan.ok()) << messages(plan);
+  EXPECT_EQ(plan.physical.size(), 3u);  // flat and flat2 share; arr and cube each their own
+  EXPECT_EQ(res(plan, "flat").physical, res(plan, "flat2").physical);
+  EXPECT_NE(res(plan, "arr").physical, res(plan, "cube").physical);
+}
+
+}  // namespace

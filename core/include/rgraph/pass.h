@@ -4,8 +4,10 @@
 
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -49,6 +51,26 @@ struct SlotDecl {
 };
 
 class PassContext;
+
+// One image of a framebuffer a pass asks for (PassContext::framebuffer): mip
+// level `mip` of the texture bound to `slot`, and one array layer (a cube's
+// face: 6 * cube + face, in +x -x +y -y +z -z order) or, with kAllLayers,
+// every layer it binds (a layered attachment: the shader picks the layer with
+// gl_Layer; a 2D texture's one image). Levels and layers count from the first
+// the slot binds (a slot bound to "bloom.mip[2..4]" has mip 0 = level 2).
+struct AttachmentRef {
+  static constexpr uint32_t kAllLayers = Subresource::kAll;
+  std::string_view slot;
+  uint32_t mip = 0;
+  uint32_t layer = kAllLayers;
+};
+
+// A framebuffer from the executor's cache and the extent to draw it with
+// (the smallest of its attachments' at their levels).
+struct PassFramebuffer {
+  uint32_t id = 0;
+  Extent extent;
+};
 
 // What a scene needs, so that a pipeline models no more than that: derived
 // from the scene (rgraph::sceneFeatures) and handed to each pass type's
@@ -207,9 +229,27 @@ class PassContext {
   virtual const ParamSet& params() const = 0;
   virtual Extent outputExtent() const = 0;
 
-  // Slots: bound or not, GL texture name (0 for unbound or buffers), format, size.
+  // Slots: bound or not, GL texture name (0 for unbound or buffers), format,
+  // size. A sampled slot bound to part of a texture (e.g. "bloom.mip[2]")
+  // gives the name to sample that part through: a texture view whose level 0
+  // and layer 0 are the part's first, or the texture itself with its base and
+  // max level set to the part's levels while the pass runs (the executor
+  // chooses; either way textureSize(s, 0) and texelFetch(s, p, 0) see the
+  // part's first level). extent() is that first level's size.
   virtual bool bound(std::string_view slot) const = 0;
   virtual uint32_t texture(std::string_view slot) const = 0;
+  // The texture bound to `slot`, only `sub` of it (levels and layers counted
+  // from the first the slot binds; kAll: to its end), to sample in this pass:
+  // for passes that sample some levels of a texture while drawing into
+  // others (a mip chain reads level k, writes k + 1). A whole-texture `sub`
+  // is texture(slot). Promises: what it returns samples `sub` alone, as
+  // texture(slot) describes, until the pass's next texture(slot, ...) call for
+  // the same slot (the executor may narrow the texture's own level range
+  // rather than make a view: bind the name before the next call, and do not
+  // keep it past execute()); views are made once per plan and never deleted
+  // by the pass. 0 for an unbound or buffer slot. Throws RuntimeError naming
+  // the pass and slot when `sub` leaves what the slot binds.
+  virtual uint32_t texture(std::string_view /*slot*/, const Subresource& /*sub*/) { return 0; }
   virtual uint32_t buffer(std::string_view slot) const = 0;
   virtual Format format(std::string_view slot) const = 0;
   virtual Extent extent(std::string_view slot) const = 0;
@@ -229,6 +269,22 @@ class PassContext {
   // 0 when the pass has no attachments. Its size is framebufferExtent().
   virtual uint32_t framebuffer() const = 0;
   virtual Extent framebufferExtent() const = 0;
+  // A framebuffer attaching exactly these images, for a pass that draws into
+  // several targets (or levels, or layers) in turn, or reads one (a blit's
+  // source): colour ones in the order given at GL_COLOR_ATTACHMENT0.. with a
+  // draw buffer each and the first as read buffer, a depth/stencil one at its
+  // attachment point. Promises: every pass asking for the same images gets
+  // the same framebuffer (the pass's own framebuffer() included), made and
+  // checked the first time (in setup() or execute()) and kept until the plan
+  // is rebuilt: never delete it, and ask again after a setup() rather than
+  // keep it. Throws RuntimeError naming the pass: a slot not bound to a
+  // texture, a level or layer outside what it binds, two depth images, an
+  // incomplete framebuffer (its status by name, the attachments listed).
+  // Bind it with gl::bindPassFramebuffer(ctx, {...}).
+  virtual PassFramebuffer framebuffer(std::span<const AttachmentRef> /*attachments*/) { return {}; }
+  PassFramebuffer framebuffer(std::initializer_list<AttachmentRef> attachments) {
+    return framebuffer(std::span<const AttachmentRef>(attachments.begin(), attachments.size()));
+  }
 
   // Program `index` of the pass type's programs(params), in their order,
   // built by the executor before setup(). Throws RuntimeError naming the pass

@@ -57,7 +57,10 @@
 // 4: CheckedSlot::kind and bufferBytes (check hooks see a buffer's size);
 // PassTypeDesc::rules (PassRule: a check with the sentence `rgraph passes` prints);
 // PassInstance::changedState, PassContext::emptyVertexArray and bindings().
-#define RGRAPH_PLUGIN_ABI_VERSION 4u
+// 5: PassContext::framebuffer(attachments) and texture(slot, sub) (the
+// executor's framebuffer cache and texture views), gl::bindPassFramebuffer
+// with attachments; textures of every shape (layers, cubes).
+#define RGRAPH_PLUGIN_ABI_VERSION 5u
 
 #define RGRAPH_PLUGIN_ABI_SYMBOL "rgraph_plugin_abi_version"
 #define RGRAPH_PLUGIN_REGISTER_SYMBOL "rgraph_plugin_register"

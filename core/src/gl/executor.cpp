@@ -28,25 +28,6 @@ using exec_detail::SlotBinding;
 
 namespace {
 
-std::string statusName(GLenum s) {
-  switch (s) {
-    case GL_FRAMEBUFFER_COMPLETE: return "GL_FRAMEBUFFER_COMPLETE";
-    case GL_FRAMEBUFFER_UNDEFINED: return "GL_FRAMEBUFFER_UNDEFINED";
-    case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
-    case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT";
-    case GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER: return "GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER";
-    case GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER: return "GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER";
-    case GL_FRAMEBUFFER_UNSUPPORTED: return "GL_FRAMEBUFFER_UNSUPPORTED";
-    case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE: return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
-    case GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS: return "GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS";
-    default: {
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "status 0x%04x", s);
-      return buf;
-    }
-  }
-}
-
 float linearToSrgb(float c) {
   c = std::clamp(c, 0.0f, 1.0f);
   return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
@@ -64,13 +45,14 @@ bool isSoftwareRenderer() {
 
 
 exec_detail::SharedTexture Executor::Impl::takeTexture(Format format, Extent extent, uint32_t mips, uint32_t samples,
-                                                       bool reuse) {
+                                                       uint32_t layers, bool cube, bool reuse) {
   auto same = std::find_if(reusable.begin(), reusable.end(), [&](const SharedTexture& t) {
-    return t.texture && t.format == format && t.extent == extent && t.mips == mips && t.samples == samples;
+    return t.texture && t.format == format && t.extent == extent && t.mips == mips && t.samples == samples &&
+           t.layers == layers && t.cube == cube;
   });
   if (reuse && same != reusable.end()) return std::exchange(*same, SharedTexture{});
-  return SharedTexture{std::make_shared<gl::Texture>(gl::createTexture2D(format, extent, mips, samples)), format,
-                       extent, mips, samples};
+  return SharedTexture{std::make_shared<gl::Texture>(gl::createTexture(format, extent, mips, samples, layers, cube)),
+                       format, extent, mips, samples, layers, cube};
 }
 
 // The plan is ok: every resource a pass uses has a physical or is imported
@@ -79,10 +61,19 @@ void Executor::Impl::createResources() {
   physicalTextures.resize(plan.physical.size());
   physicalBuffers.resize(plan.physical.size());
   const std::vector<bool> kept = keptPhysicals(plan);
+  const auto& decls = pipeline.graph.resources;
   for (size_t i = 0; i < plan.physical.size(); ++i) {
     const PhysicalTexture& p = plan.physical[i];
     if (p.kind == ResourceKind::texture) {
-      physicalTextures[i] = takeTexture(p.format, p.extent, p.mips, p.samples, !kept[i]);
+      // The shape: the physical's, or (a compiler that does not fill layers
+      // and cube yet) its resources' declarations'.
+      uint32_t layers = std::max<uint32_t>(1, p.layers);
+      bool cube = p.cube;
+      for (ResourceIndex r : p.resources) {
+        layers = std::max(layers, decls[r.value()].texture.layers);
+        cube = cube || decls[r.value()].texture.cube;
+      }
+      physicalTextures[i] = takeTexture(p.format, p.extent, p.mips, p.samples, layers, cube, !kept[i]);
     } else {
       physicalBuffers[i] = gl::createBuffer();
       glNamedBufferStorage(physicalBuffers[i].id(), static_cast<GLsizeiptr>(std::max<uint64_t>(p.bytes, 4)), nullptr,
@@ -90,7 +81,6 @@ void Executor::Impl::createResources() {
     }
   }
 
-  const auto& decls = pipeline.graph.resources;
   resources.resize(plan.resources.size());
   for (uint32_t r = 0; r < plan.resources.size(); ++r) {
     const PlannedResource& pr = plan.resources[r];
@@ -103,9 +93,14 @@ void Executor::Impl::createResources() {
       obj.format = decl.texture.format;
       obj.samples = std::max<uint32_t>(1, decl.texture.samples);
       obj.mips = decl.texture.mips;
+      obj.layers = std::max<uint32_t>(1, decl.texture.layers);
+      obj.cube = decl.texture.cube;
       if (pr.physical.valid()) {
         const PhysicalTexture& p = plan.physicalTexture(pr.physical);
-        obj.texture = physicalTextures[pr.physical.value()].id();
+        const SharedTexture& t = physicalTextures[pr.physical.value()];
+        obj.texture = t.id();
+        obj.layers = t.layers;
+        obj.cube = t.cube;
         obj.format = p.format;
         obj.extent = p.extent;
         obj.samples = std::max<uint32_t>(1, p.samples);
@@ -116,7 +111,7 @@ void Executor::Impl::createResources() {
           if (!mismatch.empty()) throw RuntimeError(mismatch);
           obj.texture = it->second;
         } else {
-          obj.ownTexture = takeTexture(obj.format, obj.extent, obj.mips, obj.samples);
+          obj.ownTexture = takeTexture(obj.format, obj.extent, obj.mips, obj.samples, obj.layers, obj.cube);
           obj.texture = obj.ownTexture.id();
         }
       }
@@ -156,6 +151,8 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(PassIndex pass, Extent output
   run->frameCounter = &frame;
   run->emptyVao = emptyVao.id();
   run->bindingRecord = &bound;
+  run->cache = &cache;
+  run->sampling = sampling;
   run->output = output;
   run->jitter = pd.jitter;
   run->paramSet = defaultParams(type->params);
@@ -180,9 +177,13 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(PassIndex pass, Extent output
     b.texture = obj.texture;
     b.buffer = obj.buffer;
     b.format = obj.format;
-    b.extent = obj.extent;
+    b.textureExtent = b.extent = obj.extent;
     b.samples = obj.samples;
     b.mips = obj.mips;
+    b.arrayLayers = obj.layers * (obj.cube ? 6 : 1);
+    b.cube = obj.cube;
+    b.target = gl::textureTarget(obj.samples, obj.layers, obj.cube);
+    if (obj.texture) resolveSubresource(*run, b, u.sub);
     run->slots.push_back(std::move(b));
   }
   std::stable_sort(run->slots.begin(), run->slots.end(),
@@ -193,73 +194,8 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(PassIndex pass, Extent output
       run->clearSlots.push_back(i);
   }
 
-  // Framebuffer: colour attachments in slot-declaration order, then depth.
-  std::vector<GLenum> drawBuffers;
-  SlotBinding* depth = nullptr;
-  bool any = false;
-  for (auto& s : run->slots) {
-    if (s.access == Access::color_attachment) {
-      s.colorIndex = static_cast<int>(drawBuffers.size());
-      drawBuffers.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(drawBuffers.size()));
-      any = true;
-    } else if (s.access == Access::depth_attachment || s.access == Access::depth_attachment_read) {
-      if (depth) throw RuntimeError("pass '" + pd.name + "': more than one depth attachment ('" + depth->slot +
-                                    "' and '" + s.slot + "')");
-      depth = &s;
-      s.depthAttachment = true;
-      run->readOnlyDepth = s.access == Access::depth_attachment_read;
-      any = true;
-    }
-  }
-  if (any) {
-    GLint maxDraw = 8;
-    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDraw);
-    if (static_cast<GLint>(drawBuffers.size()) > maxDraw)
-      throw RuntimeError("pass '" + pd.name + "': " + std::to_string(drawBuffers.size()) +
-                         " colour attachments, the GL allows " + std::to_string(maxDraw));
-    // Passes that draw into the same textures share one framebuffer (a
-    // chain ping-ponging between aliased targets binds two, not one per pass).
-    std::vector<uint32_t> key;
-    for (const auto& s : run->slots)
-      if (s.colorIndex >= 0 || s.depthAttachment)
-        key.insert(key.end(), {s.depthAttachment ? gl::attachmentPoint(s.format) : GL_COLOR_ATTACHMENT0 + s.colorIndex,
-                               s.texture});
-    std::shared_ptr<gl::Framebuffer>& shared = framebuffers[key];
-    const bool fresh = !shared;
-    if (fresh) shared = std::make_shared<gl::Framebuffer>(gl::createFramebuffer());
-    run->fbo = shared;
-    bool extentSet = false;
-    for (const auto& s : run->slots) {
-      if (s.colorIndex < 0 && !s.depthAttachment) continue;
-      GLenum point = s.depthAttachment ? gl::attachmentPoint(s.format) : GL_COLOR_ATTACHMENT0 + s.colorIndex;
-      if (fresh) glNamedFramebufferTexture(run->fbo->id(), point, s.texture, 0);
-      if (!extentSet) {
-        run->fbExtent = s.extent;
-        extentSet = true;
-      } else {
-        run->fbExtent.width = std::min(run->fbExtent.width, s.extent.width);
-        run->fbExtent.height = std::min(run->fbExtent.height, s.extent.height);
-      }
-    }
-    if (fresh && drawBuffers.empty()) {
-      glNamedFramebufferDrawBuffer(run->fbo->id(), GL_NONE);
-      glNamedFramebufferReadBuffer(run->fbo->id(), GL_NONE);
-    } else if (fresh) {
-      glNamedFramebufferDrawBuffers(run->fbo->id(), static_cast<GLsizei>(drawBuffers.size()), drawBuffers.data());
-      glNamedFramebufferReadBuffer(run->fbo->id(), GL_COLOR_ATTACHMENT0);
-    }
-    GLenum status = glCheckNamedFramebufferStatus(run->fbo->id(), GL_DRAW_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE) {
-      std::string atts;
-      for (const auto& s : run->slots)
-        if (s.colorIndex >= 0 || s.depthAttachment)
-          atts += (atts.empty() ? "" : ", ") + s.slot + "=" + std::string(formatName(s.format)) + " " +
-                  std::to_string(s.extent.width) + "x" + std::to_string(s.extent.height) +
-                  (s.samples > 1 ? " x" + std::to_string(s.samples) : "");
-      throw RuntimeError("pass '" + pd.name + "' (type '" + pd.type + "'): framebuffer incomplete: " +
-                         statusName(status) + " (attachments: " + atts + ")");
-    }
-  }
+  attachPassFramebuffer(*run);
+  bindSampledSubresources(*run);
 
   if (!type->create) throw RuntimeError("pass type '" + pd.type + "' has no factory");
   run->instance = type->create();
@@ -321,7 +257,7 @@ void Executor::Impl::build(Extent output) {
 // are now (again after an import changes a texture).
 void Executor::Impl::createRuns() {
   runs.clear();
-  framebuffers.clear();
+  cache.clear();
   if (!emptyVao) emptyVao = gl::createVertexArray();
   builtPrograms.clear();
   slotUnits.clear();
@@ -417,9 +353,9 @@ void Executor::Impl::applyClears(PassRun& run) {
       GLint stencil = c.size() > 1 ? static_cast<GLint>(c[1]) : 0;
       if (s.depthAttachment) {
         if (gl::hasStencil(s.format))
-          glClearNamedFramebufferfi(run.fbo->id(), GL_DEPTH_STENCIL, 0, d, stencil);
+          glClearNamedFramebufferfi(run.fbo, GL_DEPTH_STENCIL, 0, d, stencil);
         else
-          glClearNamedFramebufferfv(run.fbo->id(), GL_DEPTH, 0, &d);
+          glClearNamedFramebufferfv(run.fbo, GL_DEPTH, 0, &d);
       } else {
         for (uint32_t level = 0; level < s.mips; ++level) {
           if (gl::hasStencil(s.format)) {
@@ -438,7 +374,7 @@ void Executor::Impl::applyClears(PassRun& run) {
       float v[4] = {0.0f, 0.0f, 0.0f, 1.0f};
       for (size_t i = 0; i < 4 && i < c.size(); ++i) v[i] = c[i];
       if (s.colorIndex >= 0) {
-        glClearNamedFramebufferfv(run.fbo->id(), GL_COLOR, s.colorIndex, v);
+        glClearNamedFramebufferfv(run.fbo, GL_COLOR, s.colorIndex, v);
       } else {
         if (gl::isSrgb(s.format))
           for (int i = 0; i < 3; ++i) v[i] = linearToSrgb(v[i]);
@@ -539,19 +475,23 @@ void Executor::renderFrame() {
     // The pass's framebuffer before its inputs: a pass usually reads what the
     // one before drew into, and binding that texture while its framebuffer is
     // still bound costs the driver a flush more.
-    if (run.fbo && im.bound.drawFramebuffer != run.fbo->id()) {
-      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, run.fbo->id());
-      im.bound.drawFramebuffer = run.fbo->id();
+    if (run.fbo && im.bound.drawFramebuffer != run.fbo) {
+      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, run.fbo);
+      im.bound.drawFramebuffer = run.fbo;
     }
     im.applyClears(run);
+    run.applyLevelRanges();
     run.programs.bindSlots();
     try {
       RequestRecorder record(im.shaders, im.builtPrograms, run.name);
       run.instance->execute(run);
       run.programs.unbindSamplers();
+      run.restoreLevels();
       im.dirtyState |= run.instance->changedState();
       if (im.stateChecks) im.checkState(run);
     } catch (const RuntimeError& e) {
+      run.programs.unbindSamplers();
+      run.restoreLevels();
       if (ring) ring->endPass(i);
       std::string message = std::string(e.what()) + "\n  (in pass '" + run.name + "' of type '" + run.typeName + "')";
       if (dynamic_cast<const LocatedError*>(&e)) throw LocatedError(message);

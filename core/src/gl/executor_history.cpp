@@ -45,6 +45,8 @@ void Executor::Impl::planHistory() {
     c.extent = to.extent;
     c.mips = std::min(to.mips, from.mips);
     c.samples = to.samples;
+    c.target = gl::textureTarget(to.samples, to.layers, to.cube);
+    c.arrayLayers = to.layers * (to.cube ? 6 : 1);
     historyCopies.push_back(c);
   }
   // An import that replaced either texture (Executor::importTexture) leaves
@@ -78,12 +80,12 @@ void Executor::Impl::beginHistory() {
 
 void Executor::Impl::endHistory() {
   for (const HistoryCopy& c : historyCopies) {
-    const GLenum target = c.samples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+    const GLenum target = c.target;
     for (uint32_t level = 0; level < c.mips; ++level) {
       const auto w = static_cast<GLsizei>(std::max(1u, c.extent.width >> level));
       const auto h = static_cast<GLsizei>(std::max(1u, c.extent.height >> level));
       glCopyImageSubData(c.from, target, static_cast<GLint>(level), 0, 0, 0, c.to, target, static_cast<GLint>(level), 0,
-                         0, 0, w, h, 1);
+                         0, 0, w, h, static_cast<GLsizei>(c.arrayLayers));
     }
   }
   historyHeld = true;

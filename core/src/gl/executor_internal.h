@@ -13,6 +13,7 @@
 
 #include "imported_texture.h"
 #include "pass_programs.h"
+#include "rgraph/gl/framebuffer_cache.h"
 #include "rgraph/gl/context_identity.h"
 #include "rgraph/gl/executor.h"
 #include "rgraph/gl/gpu_scene.h"
@@ -32,6 +33,8 @@ struct SharedTexture {
   Format format = Format::rgba8;
   Extent extent;
   uint32_t mips = 1, samples = 1;
+  uint32_t layers = 1;  // TextureDesc::layers (cubes when `cube`)
+  bool cube = false;
   uint32_t id() const { return texture ? texture->id() : 0; }
   explicit operator bool() const { return texture != nullptr; }
 };
@@ -44,6 +47,24 @@ struct HistoryCopy {
   Format format = Format::rgba8;
   Extent extent;
   uint32_t mips = 1, samples = 1;
+  unsigned target = 0;     // GL texture target
+  uint32_t arrayLayers = 1;  // layers copied (6 per cube)
+};
+
+// How a sampled slot bound to part of a texture (and PassContext::texture(slot,
+// sub)) shows the pass only that part: a texture view (made once per plan), or
+// the texture itself with its base and max level set before the pass and put
+// back after (levels only: a layer range is always a view). One switch for the
+// executor, so that both can be measured on one pipeline (docs/performance.md).
+enum class SubresourceSampling { views, levels };
+// RGRAPH_SUBRESOURCE_SAMPLING=levels|views (unset: the default, views).
+SubresourceSampling subresourceSamplingFromEnvironment();
+
+// A texture whose base and max level a pass's sampling changed (levels mode):
+// put back after the pass.
+struct LevelRestore {
+  uint32_t texture = 0;
+  int base = 0, max = 1000;
 };
 
 struct SlotBinding {
@@ -52,9 +73,21 @@ struct SlotBinding {
   ResourceIndex resource;
   uint32_t texture = 0, buffer = 0;
   Format format = Format::rgba8;
-  Extent extent;
+  Extent extent;         // of the bound part's first level (sub.mipBegin)
+  Extent textureExtent;  // the texture's level 0
   uint32_t samples = 1;
-  uint32_t mips = 1;
+  uint32_t mips = 1;     // the texture's levels
+  uint32_t arrayLayers = 1;  // the texture's array layers (6 per cube)
+  bool cube = false;
+  unsigned target = 0;   // the texture's GL target
+  // The part bound, resolved against the texture (counts never kAll; whole
+  // when the plan says kAll).
+  Subresource sub;
+  // A sampled slot bound to part of a texture: what its unit gets (a view, or
+  // the texture with `levels` set around the pass).
+  uint32_t sampled = 0;
+  bool levelRange = false;
+  bool immutable = true;  // immutable storage: views can be made of it
   bool loads = false;
   bool firstWrite = false;
   bool history = false;  // bound to a history resource (ResourceDecl::historyOf)
@@ -69,6 +102,8 @@ struct ResourceObject {
   Format format = Format::rgba8;
   Extent extent;
   uint32_t samples = 1, mips = 1;
+  uint32_t layers = 1;  // TextureDesc::layers (cubes when `cube`)
+  bool cube = false;
 };
 
 class PassRun final : public PassContext {
@@ -79,8 +114,12 @@ class PassRun final : public PassContext {
   ParamSet paramSet;
   std::vector<SlotBinding> slots;
   std::vector<size_t> clearSlots;  // slots first written here whose resource has a clear value
-  std::shared_ptr<gl::Framebuffer> fbo;  // shared by passes with the same attachments
+  uint32_t fbo = 0;  // from the executor's cache: shared by passes with the same attachments
   Extent fbExtent;
+  gl::FramebufferCache* cache = nullptr;  // Executor::Impl::cache
+  SubresourceSampling sampling = SubresourceSampling::views;
+  // Levels mode: what execute() changed, put back after it (restoreLevels).
+  std::vector<LevelRestore> levelRestores;
   std::unique_ptr<PassInstance> instance;
   ShaderLibrary* shaderLib = nullptr;
   const Scene* scenePtr = nullptr;
@@ -102,6 +141,11 @@ class PassRun final : public PassContext {
       if (s.slot == slot) return &s;
     return nullptr;
   }
+  // "pass 'NAME' (type 'TYPE')", how messages name the pass.
+  std::string who() const { return "pass '" + name + "' (type '" + typeName + "')"; }
+  // Levels mode: base and max level of `texture` set to [base, max], what
+  // it had before recorded for restoreLevels().
+  void setLevels(uint32_t texture, uint32_t base, uint32_t max);
 
   const std::string& passName() const override { return name; }
   const ParamSet& params() const override { return paramSet; }
@@ -109,8 +153,15 @@ class PassRun final : public PassContext {
   bool bound(std::string_view slot) const override { return find(slot) != nullptr; }
   uint32_t texture(std::string_view slot) const override {
     const SlotBinding* s = find(slot);
-    return s ? s->texture : 0;
+    return s ? (s->sampled ? s->sampled : s->texture) : 0;
   }
+  uint32_t texture(std::string_view slot, const Subresource& sub) override;
+  using PassContext::framebuffer;
+  PassFramebuffer framebuffer(std::span<const AttachmentRef> attachments) override;
+  // Sets each levels-mode sampled slot's base and max level (before
+  // execute), and puts back what execute() and they changed (after).
+  void applyLevelRanges();
+  void restoreLevels();
   uint32_t buffer(std::string_view slot) const override {
     const SlotBinding* s = find(slot);
     return s ? s->buffer : 0;
@@ -136,7 +187,7 @@ class PassRun final : public PassContext {
     return s && s->history && historyHeld && *historyHeld;
   }
   uint64_t frameIndex() const override { return frameCounter ? *frameCounter : 0; }
-  uint32_t framebuffer() const override { return fbo ? fbo->id() : 0; }
+  uint32_t framebuffer() const override { return fbo; }
   Extent framebufferExtent() const override { return fbExtent; }
   ShaderLibrary& shaders() override { return *shaderLib; }
   const Scene* scene() const override { return scenePtr; }
@@ -178,8 +229,9 @@ struct Executor::Impl {
   std::vector<exec_detail::ResourceObject> resources;
   std::map<std::string, ResourceIndex, std::less<>> byName;  // resource and version names
   std::vector<std::unique_ptr<exec_detail::PassRun>> runs;      // execution order
-  // The passes' framebuffers, by attachments (point, texture, ...).
-  std::map<std::vector<uint32_t>, std::shared_ptr<gl::Framebuffer>> framebuffers;
+  // Every pass's framebuffers and texture views, by what they attach or show.
+  gl::FramebufferCache cache;
+  exec_detail::SubresourceSampling sampling = exec_detail::subresourceSamplingFromEnvironment();
   gl::VertexArray emptyVao;  // PassContext::emptyVertexArray, made with the runs
   std::vector<PassTiming> timings;  // named in createRuns(), timed per frame
   std::optional<uint64_t> timingsFrame;  // the frame `timings` belong to (Executor::timingsFrame)
@@ -203,7 +255,7 @@ struct Executor::Impl {
 
   void teardown() {
     runs.clear();  // pass instances first: they may hold GL objects of their own
-    framebuffers.clear();
+    cache.clear();
     emptyVao = {};
     resources.clear();
     physicalTextures.clear();
@@ -239,7 +291,15 @@ struct Executor::Impl {
   bool queryTimed() const { return !software || gpuTimerQueries; }
   void takeQueryTimes();
   // A reusable texture of this description (unless !reuse), else a new one.
-  SharedTexture takeTexture(Format format, Extent extent, uint32_t mips, uint32_t samples, bool reuse = true);
+  SharedTexture takeTexture(Format format, Extent extent, uint32_t mips, uint32_t samples, uint32_t layers, bool cube,
+                            bool reuse = true);
+  // The slot's default framebuffer (createRun): every attachment slot at its bound level and layers.
+  void attachPassFramebuffer(exec_detail::PassRun& run);
+  // A slot's part of its texture: `sub` resolved (kAll counts to the end; a
+  // part outside the texture throws), its first level's extent.
+  void resolveSubresource(exec_detail::PassRun& run, exec_detail::SlotBinding& b, const Subresource& sub) const;
+  // Sampled slots bound to part of a texture: a view, or a level range set around the pass.
+  void bindSampledSubresources(exec_detail::PassRun& run);
   gl::TextureShape declaredShape(ResourceIndex r) const;
   // Before each frame: every caller's texture still a texture of its
   // declaration (not deleted or redefined since importTexture); throws

@@ -55,7 +55,7 @@ void Executor::releaseTexture(const std::string& resource) {
   const ResourceIndex r = im.resourceIndex(resource);
   if (!r.valid()) return;
   ResourceObject& obj = im.resources[r.value()];
-  obj.ownTexture = im.takeTexture(obj.format, obj.extent, obj.mips, obj.samples);
+  obj.ownTexture = im.takeTexture(obj.format, obj.extent, obj.mips, obj.samples, obj.layers, obj.cube);
   obj.texture = obj.ownTexture.id();
   im.rebuildRuns();
 }
@@ -114,8 +114,8 @@ std::vector<float> Executor::readTextureRGBA32F(const std::string& name) const {
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   if (gl::isDepth(obj.format)) {
     std::vector<float> depth(w * h);
-    glGetTextureImage(obj.texture, 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(depth.size() * sizeof(float)),
-                      depth.data());
+    glGetTextureSubImage(obj.texture, 0, 0, 0, 0, static_cast<GLsizei>(w), static_cast<GLsizei>(h), 1,
+                         GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(depth.size() * sizeof(float)), depth.data());
     for (size_t i = 0; i < w * h; ++i) {
       data[i * 4 + 0] = depth[i];
       data[i * 4 + 1] = 0.0f;
@@ -123,7 +123,9 @@ std::vector<float> Executor::readTextureRGBA32F(const std::string& name) const {
       data[i * 4 + 3] = 1.0f;
     }
   } else {
-    glGetTextureImage(obj.texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(data.size() * sizeof(float)), data.data());
+    // Level 0 of layer 0 (a cube's +x face) of any shape.
+    glGetTextureSubImage(obj.texture, 0, 0, 0, 0, static_cast<GLsizei>(w), static_cast<GLsizei>(h), 1, GL_RGBA,
+                         GL_FLOAT, static_cast<GLsizei>(data.size() * sizeof(float)), data.data());
   }
   flipRows(data, w * 4, h);
   return data;
@@ -158,7 +160,7 @@ size_t Executor::ownedObjects() const {
   for (const auto& t : impl_->physicalTextures) n += own(t);
   for (const auto& b : impl_->physicalBuffers) n += b ? 1 : 0;
   for (const auto& r : impl_->resources) n += own(r.ownTexture) + (r.ownBuffer ? 1 : 0);
-  n += impl_->framebuffers.size() + (impl_->emptyVao ? 1 : 0);
+  n += impl_->cache.framebuffers() + impl_->cache.views() + (impl_->emptyVao ? 1 : 0);
   if (impl_->queryRing) n += impl_->queryRing->queryCount();
   return n;
 }

@@ -29,6 +29,24 @@ void bindPassFramebuffer(PassContext& ctx) {
   b.viewportHeight = e.height;
 }
 
+PassFramebuffer bindPassFramebuffer(PassContext& ctx, std::initializer_list<AttachmentRef> attachments,
+                                    FramebufferTarget target) {
+  const PassFramebuffer fb = ctx.framebuffer(attachments);
+  if (target == FramebufferTarget::read) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fb.id);
+    return fb;
+  }
+  GlBindings none;
+  GlBindings& b = ctx.bindings() ? *ctx.bindings() : none;
+  if (b.drawFramebuffer != fb.id) glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fb.id);
+  b.drawFramebuffer = fb.id;
+  if (b.viewportWidth != fb.extent.width || b.viewportHeight != fb.extent.height)
+    glViewport(0, 0, static_cast<GLsizei>(fb.extent.width), static_cast<GLsizei>(fb.extent.height));
+  b.viewportWidth = fb.extent.width;
+  b.viewportHeight = fb.extent.height;
+  return fb;
+}
+
 void useProgram(PassContext& ctx, uint32_t program) {
   GlBindings* b = ctx.bindings();
   if (b && b->program == program) return;

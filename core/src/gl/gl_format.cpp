@@ -50,23 +50,45 @@ uint32_t fullMipCount(Extent e) {
 }
 
 Texture createTexture2D(Format f, Extent e, uint32_t mips, uint32_t samples) {
+  return createTexture(f, e, mips, samples, 1, false);
+}
+
+unsigned textureTarget(uint32_t samples, uint32_t layers, bool cube) {
+  if (samples > 1) return layers > 1 ? GL_TEXTURE_2D_MULTISAMPLE_ARRAY : GL_TEXTURE_2D_MULTISAMPLE;
+  if (cube) return layers > 1 ? GL_TEXTURE_CUBE_MAP_ARRAY : GL_TEXTURE_CUBE_MAP;
+  return layers > 1 ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D;
+}
+
+Texture createTexture(Format f, Extent e, uint32_t mips, uint32_t samples, uint32_t layers, bool cube) {
   if (e.width == 0 || e.height == 0)
     throw RuntimeError("cannot create a " + std::string(formatName(f)) + " texture of size 0");
-  GlFormat g = glFormat(f);
+  if (cube && samples > 1) throw RuntimeError("cannot create a multisampled cube map");
+  if (cube && e.width != e.height)
+    throw RuntimeError("cannot create a cube map of " + std::to_string(e.width) + "x" + std::to_string(e.height) +
+                       " texels: its faces are square");
+  layers = std::max<uint32_t>(1, layers);
+  const GlFormat g = glFormat(f);
+  const unsigned target = textureTarget(samples, layers, cube);
+  const auto w = static_cast<GLsizei>(e.width), h = static_cast<GLsizei>(e.height);
+  const auto depth = static_cast<GLsizei>(cube ? 6 * layers : layers);
+  Texture t = createTexture(target);
   if (samples > 1) {
-    Texture t = createTexture(GL_TEXTURE_2D_MULTISAMPLE);
-    glTextureStorage2DMultisample(t.id(), static_cast<GLsizei>(samples), g.internalFormat,
-                                  static_cast<GLsizei>(e.width), static_cast<GLsizei>(e.height), GL_TRUE);
+    if (layers > 1)
+      glTextureStorage3DMultisample(t.id(), static_cast<GLsizei>(samples), g.internalFormat, w, h, depth, GL_TRUE);
+    else
+      glTextureStorage2DMultisample(t.id(), static_cast<GLsizei>(samples), g.internalFormat, w, h, GL_TRUE);
     return t;
   }
   uint32_t levels = mips == 0 ? fullMipCount(e) : std::min(mips, fullMipCount(e));
-  Texture t = createTexture(GL_TEXTURE_2D);
-  glTextureStorage2D(t.id(), static_cast<GLsizei>(levels), g.internalFormat, static_cast<GLsizei>(e.width),
-                     static_cast<GLsizei>(e.height));
+  if (target == GL_TEXTURE_2D || target == GL_TEXTURE_CUBE_MAP)
+    glTextureStorage2D(t.id(), static_cast<GLsizei>(levels), g.internalFormat, w, h);
+  else
+    glTextureStorage3D(t.id(), static_cast<GLsizei>(levels), g.internalFormat, w, h, depth);
   glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
   glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  if (cube) glTextureParameteri(t.id(), GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
   return t;
 }
 

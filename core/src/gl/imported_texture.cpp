@@ -27,6 +27,18 @@ std::string formatOfInternal(GLint internal) {
   return buf;
 }
 
+std::string targetName(GLenum target) {
+  switch (target) {
+    case GL_TEXTURE_2D: return "GL_TEXTURE_2D";
+    case GL_TEXTURE_2D_ARRAY: return "GL_TEXTURE_2D_ARRAY";
+    case GL_TEXTURE_CUBE_MAP: return "GL_TEXTURE_CUBE_MAP";
+    case GL_TEXTURE_CUBE_MAP_ARRAY: return "GL_TEXTURE_CUBE_MAP_ARRAY";
+    case GL_TEXTURE_2D_MULTISAMPLE: return "GL_TEXTURE_2D_MULTISAMPLE";
+    case GL_TEXTURE_2D_MULTISAMPLE_ARRAY: return "GL_TEXTURE_2D_MULTISAMPLE_ARRAY";
+    default: return "target " + std::to_string(target);
+  }
+}
+
 }  // namespace
 
 TextureShape declaredShape(const ResourceDecl& decl, Extent planned) {
@@ -35,6 +47,8 @@ TextureShape declaredShape(const ResourceDecl& decl, Extent planned) {
   shape.extent = planned;
   shape.samples = std::max<uint32_t>(1, decl.texture.samples);
   shape.mips = decl.texture.mips;
+  shape.layers = std::max<uint32_t>(1, decl.texture.layers);
+  shape.cube = decl.texture.cube;
   return shape;
 }
 
@@ -61,12 +75,11 @@ std::string checkImportedTexture(const std::string& resource, const TextureShape
   if (texture == 0 || !glIsTexture(texture))
     return head + "is not a texture name in the current GL context (create it with glCreateTextures)";
   const uint32_t samples = declared.samples > 1 ? declared.samples : 1;
-  const GLenum wantTarget = samples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+  const GLenum wantTarget = textureTarget(samples, declared.layers, declared.cube);
   GLint target = 0;
   glGetTextureParameteriv(texture, GL_TEXTURE_TARGET, &target);
   if (static_cast<GLenum>(target) != wantTarget)
-    return head + "has the wrong target: the resource needs " +
-           (samples > 1 ? "GL_TEXTURE_2D_MULTISAMPLE" : "GL_TEXTURE_2D") + " (" +
+    return head + "has the wrong target: the resource needs " + targetName(wantTarget) + " (" +
            describe(std::string(formatName(declared.format)), declared.extent, samples, 1, false) + ")";
 
   GLint internal = 0, width = 0, height = 0, texSamples = 0, immutable = 0, levels = 1;
@@ -74,6 +87,9 @@ std::string checkImportedTexture(const std::string& resource, const TextureShape
   glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_WIDTH, &width);
   glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_HEIGHT, &height);
   glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_SAMPLES, &texSamples);
+  GLint depth = 1;  // array layers (6 per cube of a cube array); the target said the rest
+  if (declared.layers > 1) glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_DEPTH, &depth);
+  const uint32_t wantDepth = declared.layers > 1 ? declared.layers * (declared.cube ? 6 : 1) : 1;
   glGetTextureParameteriv(texture, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
   if (immutable) glGetTextureParameteriv(texture, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
   const uint32_t gotSamples = texSamples > 1 ? static_cast<uint32_t>(texSamples) : 1;
@@ -89,13 +105,18 @@ std::string checkImportedTexture(const std::string& resource, const TextureShape
   const bool same = internal == static_cast<GLint>(glFormat(declared.format).internalFormat) &&
                     static_cast<uint32_t>(width) == declared.extent.width &&
                     static_cast<uint32_t>(height) == declared.extent.height && gotSamples == samples &&
+                    static_cast<uint32_t>(depth) == wantDepth &&
                     (!checkLevels || static_cast<uint32_t>(levels) == wantLevels);
   if (same) return {};
+  const auto layerText = [&](uint32_t n) {
+    return declared.layers > 1 ? ", " + std::to_string(n) + (n == 1 ? " layer" : " layers") : std::string();
+  };
   return head + "does not match its declaration: the resource is " +
          describe(std::string(formatName(declared.format)), declared.extent, samples, wantLevels, checkLevels) +
-         "; the texture is " +
+         layerText(wantDepth) + "; the texture is " +
          describe(formatOfInternal(internal), Extent{static_cast<uint32_t>(width), static_cast<uint32_t>(height)},
-                  gotSamples, static_cast<uint32_t>(levels), checkLevels);
+                  gotSamples, static_cast<uint32_t>(levels), checkLevels) +
+         layerText(static_cast<uint32_t>(depth));
 }
 
 }  // namespace rgraph::gl

@@ -16,6 +16,8 @@ struct TextureShape {
   Extent extent;
   uint32_t samples = 1;
   uint32_t mips = 1;  // 0: a full chain
+  uint32_t layers = 1;  // array layers, or cubes when `cube` (TextureDesc::layers)
+  bool cube = false;
 };
 
 // What a texture resource declaration asks for at its planned extent.

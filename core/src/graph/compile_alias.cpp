@@ -18,11 +18,12 @@ namespace {
 struct PoolKey {
   ResourceKind kind;
   Format format;
-  uint32_t width, height, mips, samples;
+  uint32_t width, height, mips, samples, layers;
+  bool cube;
   uint64_t bytes;  // buffers
   bool operator==(const PoolKey& o) const {
     return kind == o.kind && format == o.format && width == o.width && height == o.height && mips == o.mips &&
-           samples == o.samples && bytes == o.bytes;
+           samples == o.samples && layers == o.layers && cube == o.cube && bytes == o.bytes;
   }
 };
 struct PoolKeyHash {
@@ -33,6 +34,7 @@ struct PoolKeyHash {
     mix(k.width);
     mix(k.height);
     mix((uint64_t{k.mips} << 32) | k.samples);
+    mix((uint64_t{k.layers} << 1) | (k.cube ? 1u : 0u));
     mix(k.bytes);
     return static_cast<size_t>(h);
   }
@@ -72,9 +74,9 @@ void Compiler::lifetimesAndAliasing() {
     if (rs.imported || !rs.valid) continue;
     plan_.naiveBytes += rs.bytes;
     const bool own = wholeFrame(r);  // a live history or its source: never aliased
-    PoolKey key{rs.kind, Format::rgba8, 0, 0, 0, 0, 0};
+    PoolKey key{rs.kind, Format::rgba8, 0, 0, 0, 0, 0, false, 0};
     if (rs.kind == ResourceKind::texture)
-      key = {rs.kind, rs.format, rs.extent.width, rs.extent.height, rs.mips, rs.samples, 0};
+      key = {rs.kind, rs.format, rs.extent.width, rs.extent.height, rs.mips, rs.samples, rs.layers, rs.cube, 0};
     else
       key.bytes = rs.bytes;
     int phys = -1;

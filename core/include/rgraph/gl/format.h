@@ -29,4 +29,14 @@ uint32_t fullMipCount(Extent e);
 // clamp-to-edge, so it samples with texture() and texelFetch().
 Texture createTexture2D(Format f, Extent e, uint32_t mips = 1, uint32_t samples = 1);
 
+// The GL target of a texture of this shape (rgraph/graph.h TextureDesc):
+// GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY (layers > 1), GL_TEXTURE_CUBE_MAP (cube),
+// GL_TEXTURE_CUBE_MAP_ARRAY (cube, layers > 1 cubes),
+// GL_TEXTURE_2D_MULTISAMPLE(_ARRAY) (samples > 1).
+unsigned textureTarget(uint32_t samples, uint32_t layers, bool cube);
+// An immutable-storage texture of any shape (layers: array layers, or cubes
+// when `cube`: 6 layer-faces each), sampled as createTexture2D's; immutable
+// so that texture views of its levels and layers can be made.
+Texture createTexture(Format f, Extent e, uint32_t mips, uint32_t samples, uint32_t layers, bool cube);
+
 }  // namespace rgraph::gl

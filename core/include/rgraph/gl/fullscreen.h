@@ -33,6 +33,16 @@ class FullscreenTriangle {
 // bound; a pass that binds only through them may leave kGlStateBindings out
 // of its changedState().
 void bindPassFramebuffer(PassContext& ctx);
+// Where a framebuffer is bound by bindPassFramebuffer(ctx, attachments, ...).
+enum class FramebufferTarget { draw, read };
+// Binds ctx.framebuffer(attachments) (the executor's cached framebuffer of
+// exactly those images) and returns it. As the draw framebuffer (through
+// ctx.bindings(), like the one above), with the viewport at (0, 0) and the
+// extent of those images at their level; as the read framebuffer (for
+// glReadPixels, glCopyTexSubImage*), leaving the viewport alone. Throws what
+// ctx.framebuffer throws.
+PassFramebuffer bindPassFramebuffer(PassContext& ctx, std::initializer_list<AttachmentRef> attachments,
+                                    FramebufferTarget target = FramebufferTarget::draw);
 void useProgram(PassContext& ctx, uint32_t program);
 void bindVertexArray(PassContext& ctx, uint32_t vertexArray);
 
