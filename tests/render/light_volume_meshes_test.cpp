@@ -60,6 +60,7 @@ TEST(LightRadii, ThresholdRadiiAreCappedAtTheSceneAndNegativeWithoutCutoff) {
   s.primitives.push_back(p);
   PointLight near, bright;
   near.position = {0.0f, 0.0f, 0.0f};
+  near.intensity = 0.05f;  // reaches 5/256 at ~0.76, inside the cube's bounds
   bright.position = {3.0f, 0.0f, 0.0f};
   bright.intensity = 1000.0f;
   s.pointLights = {near, bright};
