@@ -44,6 +44,8 @@
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/objects.h"
 #include "rgraph/gl/shader_library.h"
+#include "rgraph/passes/light_radii.h"
+#include "rgraph/passes/light_volume_meshes.h"
 #include "rgraph/pipeline_load.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
@@ -208,7 +210,8 @@ void setUpDefault(World& w, Case& c) {
   glProgramUniform1i(ambient, uniform(ambient, "u_hasAo"), 0);
   const GLint firstLightLoc = uniform(volumes, "u_firstLight"), spotVolumesLoc = uniform(volumes, "u_spotVolumes");
   const GLint volumeScaleLoc = uniform(volumes, "u_volumeScale");
-  const float icosphereScale = gpu.icosphereScale();
+  const light_volumes::Meshes& meshes = light_volumes::Meshes::of(gpu);
+  const float icosphereScale = meshes.icosphereScale();
   glProgramUniform1f(markers, uniform(markers, "u_markerSize"), 0.125f);
   glProgramUniform1f(tonemap, uniform(tonemap, "u_exposure"), 1.0f);
   glProgramUniform1i(tonemap, uniform(tonemap, "u_operator"), 2);  // "none"
@@ -220,11 +223,11 @@ void setUpDefault(World& w, Case& c) {
 
   c.hand = [&c, &gpu, size, lights, threshold, gPosition, gNormal, gAlbedo, hdr, gbufferFbo, hdrFbo, volumesFbo,
             depthCopyFbo, markersFbo, outputFbo, depthReadFbo, geometry, ambient, volumes, markers, tonemap, firstLightLoc,
-            spotVolumesLoc, volumeScaleLoc, icosphereScale] {
+            spotVolumesLoc, volumeScaleLoc, icosphereScale, &meshes] {
     FrameMotion motion;
     motion.frame = c.handFrame++;
     gpu.updateFrame(size, gpu.scene().camera, motion);  // binds the Frame block
-    gpu.bindPointLights(threshold);
+    lighting::bindPointLights(gpu, threshold);
     glViewport(0, 0, static_cast<GLsizei>(size.width), static_cast<GLsizei>(size.height));
     // gbuffer
     const float zero[4] = {0, 0, 0, 0}, black[4] = {0, 0, 0, 1}, one = 1.0f;
@@ -260,7 +263,7 @@ void setUpDefault(World& w, Case& c) {
     glEnable(GL_DEPTH_CLAMP);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
-    gpu.drawIcosphere(lights);
+    meshes.drawIcosphere(nullptr, lights);
     glDisable(GL_BLEND);
     glDisable(GL_DEPTH_CLAMP);
     glDepthMask(GL_TRUE);
@@ -273,7 +276,7 @@ void setUpDefault(World& w, Case& c) {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, markersFbo);
     glUseProgram(markers);
     glCullFace(GL_BACK);
-    gpu.drawCube(lights);
+    meshes.drawCube(nullptr, lights);
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST);
     // tonemap

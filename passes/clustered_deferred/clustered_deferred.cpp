@@ -29,6 +29,7 @@
 #include "rgraph/passes/far_field.h"
 #include "rgraph/passes/invocation_order.h"
 #include "rgraph/passes/light_bins.h"
+#include "rgraph/passes/light_radii.h"
 #include "rgraph/passes/lighting_options.h"
 #include "rgraph/registry.h"
 
@@ -99,7 +100,7 @@ class ClusteredDeferredPass final : public PassInstance {
     GpuScene& scene = *ctx.gpuScene();
     const Extent size = ctx.extent("color");
     const int lights = ctx.params().getBool("point_lights", true) ? static_cast<int>(scene.pointLightCount()) : 0;
-    scene.bindPointLights(lighting::threshold(ctx.params()));
+    lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
     if (buffer_) {
       bins_.build(lights, size);  // what the list build (and the far field) culls
       builder_.build(scene, buffer_, clusters::grid(ctx.params()), size, lights, lighting::threshold(ctx.params()),

@@ -5,6 +5,7 @@
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/passes/invocation_order.h"
+#include "rgraph/passes/light_radii.h"
 #include "rgraph/passes/lighting_options.h"
 
 namespace rgraph::clusters {
@@ -94,7 +95,7 @@ void Builder::build(GpuScene& scene, uint32_t buffer, const Grid& g, Extent size
   glNamedBufferSubData(buffer, 0, sizeof header, header);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBinding, buffer);
   if (lights <= 0) return;
-  scene.bindPointLights(threshold);
+  lighting::bindPointLights(scene, threshold);
   glUseProgram(program_);
   lightCount_.set(lights);
   glDispatchCompute((size.width + g.tileSize - 1) / g.tileSize, (size.height + g.tileSize - 1) / g.tileSize, 1);

@@ -6,6 +6,7 @@
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/passes/cluster_lists.h"
+#include "rgraph/passes/light_radii.h"
 #include "rgraph/passes/lighting_options.h"
 #include "rgraph/passes/velocity.h"
 #include "rgraph/scene.h"
@@ -29,7 +30,7 @@ void SurfaceDrawer::draw(PassContext& ctx, bool blended) const {
   GpuScene& scene = *ctx.gpuScene();
   const GpuScene::Filter filter = blended ? GpuScene::Filter::blend : GpuScene::Filter::opaque;
   if (scene.primitiveCount(filter) == 0) return;
-  scene.bindPointLights(lighting::threshold(ctx.params()));
+  lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
   const uint32_t prog = program_;
   gl::useProgram(ctx, prog);
   pointLightCount_.set(static_cast<int>(scene.pointLightCount()));

@@ -7,6 +7,7 @@
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/light_radii.h"
 #include "rgraph/passes/lighting_options.h"
 #include "rgraph/registry.h"
 
@@ -21,7 +22,7 @@ class DeferredLightingPass final : public gl::FullscreenPass {
     ambientAndSun_.set(1);
     // Optional ambient occlusion (e.g. the ssao plugin's output) scales the ambient term.
     hasAo_.set(ctx.bound("ao"));
-    scene.bindPointLights(lighting::threshold(ctx.params()));
+    lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
   }
   uint32_t changedState() const override { return 0; }  // uniforms and the scene's buffers only
   ProgramUniform pointLightCount_{this, "u_pointLightCount"}, ambientAndSun_{this, "u_ambientAndSun"};

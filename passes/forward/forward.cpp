@@ -11,6 +11,8 @@
 #include "rgraph/pass_decl.h"
 #include "rgraph/passes/cluster_lists.h"
 #include "rgraph/passes/forward_shading.h"
+#include "rgraph/passes/light_radii.h"
+#include "rgraph/passes/light_volume_meshes.h"
 #include "rgraph/passes/lighting_options.h"
 #include "rgraph/registry.h"
 
@@ -34,13 +36,13 @@ class ForwardPass final : public PassInstance {
     GpuScene& scene = *ctx.gpuScene();
     gl::bindPassFramebuffer(ctx);
     if (markers_ && scene.pointLightCount() > 0) {
-      scene.bindPointLights(lighting::threshold(ctx.params()));  // (the executor bound the Frame block)
+      lighting::bindPointLights(scene, lighting::threshold(ctx.params()));  // (the executor bound the Frame block)
       gl::useProgram(ctx, markerProgram_);
       markerSize_.set(static_cast<float>(ctx.params().getNumber("marker_size", 0.125)));
       glEnable(GL_DEPTH_TEST);  // function GL_LESS and writes on, as every pass starts (rgraph/pass.h)
       glEnable(GL_CULL_FACE);
       glCullFace(GL_BACK);
-      scene.drawCube(scene.pointLightCount());
+      light_volumes::Meshes::of(scene).drawCube(ctx.bindings(), scene.pointLightCount());
       glDisable(GL_CULL_FACE);
       glDisable(GL_DEPTH_TEST);
     }

@@ -10,6 +10,8 @@
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/light_radii.h"
+#include "rgraph/passes/light_volume_meshes.h"
 #include "rgraph/passes/lighting_options.h"
 #include "rgraph/registry.h"
 
@@ -29,7 +31,7 @@ class LightVolumesPass final : public PassInstance {
     GpuScene& scene = *ctx.gpuScene();
     gl::bindPassFramebuffer(ctx);
     gl::useProgram(ctx, program_);
-    scene.bindPointLights(lighting::threshold(ctx.params()));  // (the executor bound the Frame block)
+    lighting::bindPointLights(scene, lighting::threshold(ctx.params()));  // (the executor bound the Frame block)
 
     const std::string cull = ctx.params().getString("cull", "front");
     glEnable(GL_CULL_FACE);
@@ -49,15 +51,16 @@ class LightVolumesPass final : public PassInstance {
     glBlendFunc(GL_ONE, GL_ONE);
     // The buffer lists the point lights, then the spot lights.
     const uint32_t spots = scene.spotLightCount(), points = scene.pointLightCount() - spots;
-    volumeScale_.set(scene.icosphereScale());
+    const light_volumes::Meshes& meshes = light_volumes::Meshes::of(scene);
+    volumeScale_.set(meshes.icosphereScale());
     firstLight_.set(0);
     spotVolumes_.set(0);
-    scene.drawIcosphere(points);
+    meshes.drawIcosphere(ctx.bindings(), points);
     if (spots > 0) {
-      volumeScale_.set(scene.spotVolumeScale());
+      volumeScale_.set(meshes.spotVolumeScale());
       firstLight_.set(static_cast<int>(points));
       spotVolumes_.set(1);
-      scene.drawSpotVolume(spots);
+      meshes.drawSpotVolume(ctx.bindings(), spots);
     }
     glDisable(GL_BLEND);
     glDisable(GL_DEPTH_CLAMP);

@@ -22,6 +22,7 @@
 #include "rgraph/passes/far_field.h"
 #include "rgraph/passes/invocation_order.h"
 #include "rgraph/passes/light_bins.h"
+#include "rgraph/passes/light_radii.h"
 #include "rgraph/passes/lighting_options.h"
 #include "rgraph/registry.h"
 
@@ -109,7 +110,7 @@ class TiledDeferredPass final : public PassInstance {
     const Extent size = ctx.extent("color");
     const bool points = ctx.params().getBool("point_lights", true);
     const int lights = points ? static_cast<int>(scene.pointLightCount()) : 0;
-    scene.bindPointLights(lighting::threshold(ctx.params()));
+    lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
     bins_.build(lights, size);
     glUseProgram(program_);
     pointLightCount_.set(lights);

@@ -78,37 +78,6 @@ TEST(Mesh, IcosphereIsClosedAndOutward) {
   EXPECT_THROW(makeIcosphere(8), RuntimeError);
 }
 
-// The spot-light volume: closed (every edge used twice, once each way),
-// convex and wound outward, so that front-face culling draws exactly its far
-// side; apex at the origin, rings at z = 1 and 2 on the unit circle.
-TEST(Mesh, SpotVolumeIsClosedConvexAndOutward) {
-  const MeshData m = makeSpotVolume(16);
-  std::string why;
-  ASSERT_TRUE(m.valid(&why)) << why;
-  EXPECT_EQ(m.vertexCount(), 2u * 16u + 2u);
-  EXPECT_EQ(m.triangleCount(), 4u * 16u);
-  std::map<std::pair<uint32_t, uint32_t>, int> directed;
-  for (size_t t = 0; t < m.triangleCount(); ++t)
-    for (int k = 0; k < 3; ++k) ++directed[{m.indices[3 * t + k], m.indices[3 * t + (k + 1) % 3]}];
-  for (const auto& [edge, count] : directed) {
-    ASSERT_EQ(count, 1) << "edge " << edge.first << "-" << edge.second << " repeated";
-    ASSERT_EQ(directed.count({edge.second, edge.first}), 1u) << "edge " << edge.first << "-" << edge.second << " is open";
-  }
-  // Convex and outward: every vertex lies on or behind every face's plane,
-  // and an interior point strictly behind.
-  const glm::vec3 inside(0.0f, 0.0f, 1.2f);
-  for (size_t t = 0; t < m.triangleCount(); ++t) {
-    const glm::vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]], c = m.positions[m.indices[3 * t + 2]];
-    const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
-    ASSERT_LT(glm::dot(n, inside - a), -0.05f) << "triangle " << t << " faces inward";
-    for (const glm::vec3& p : m.positions) ASSERT_LE(glm::dot(n, p - a), 1e-5f) << "not convex at triangle " << t;
-  }
-  EXPECT_EQ(m.positions[0], glm::vec3(0.0f));
-  EXPECT_EQ(m.bounds.min.z, 0.0f);
-  EXPECT_EQ(m.bounds.max.z, 2.0f);
-  EXPECT_THROW(makeSpotVolume(2), RuntimeError);
-}
-
 // The inscribed icosphere is smaller than the sphere it approximates: a light volume
 // must be scaled by at least 1/min(distance of a face from the centre) to cover the radius.
 TEST(Mesh, IcosphereFaceDistance) {

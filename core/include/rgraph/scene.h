@@ -101,19 +101,13 @@ void computeFlatNormals(MeshData& mesh);
 MeshData makeCube(float halfExtent = 1.0f);  // 24 vertices, per-face normals, 12 triangles
 MeshData makeUvSphere(float radius = 1.0f, int segments = 32, int rings = 16);
 MeshData makePlane(float halfSizeX = 1.0f, float halfSizeZ = 1.0f, float uvScale = 1.0f);  // y = 0, facing +Y
-// A closed unit icosphere for light volumes: shared vertices (every edge used
+// A closed unit icosphere (the light_volumes pass draws point lights with it): shared vertices (every edge used
 // by exactly two triangles), outward CCW winding, normals = positions.
 // subdivisions 0 gives the icosahedron (12 vertices, 20 triangles); each level
 // multiplies the triangle count by 4. Valid range 0..7.
 MeshData makeIcosphere(int subdivisions);
-// A closed convex mesh for spot-light volumes, before light_volume.vert bends
-// it to each light's cone: a unit cone (apex at the origin, `segments` vertices
-// on the unit circle at z = 1) on a unit cylinder (z = 1..2) closed by a cap
-// at z = 2; outward CCW winding. The shader maps z = 1 to the distance
-// r cos(outer) along the axis at radius r sin(outer), and z = 2 to r, so that
-// the mesh holds the part of the light's sphere r within its cone. Normals
-// are placeholders. Valid range 3..1024.
-MeshData makeSpotVolume(int segments);
+// (The spot-light volume, makeSpotVolume, is the light_volumes pass's:
+// rgraph/passes/light_volume_meshes.h.)
 
 // ---------------------------------------------------------------- materials and textures
 
@@ -186,6 +180,9 @@ struct Primitive {
   glm::mat4 transform{1.0f};  // local -> world
   Bounds bounds;              // world space
   std::string name;           // node name, for diagnostics
+  // Drawn by shadow-map views (GpuScene::Filter::shadowCasters). No loader
+  // sets it yet: every primitive casts shadows unless code says otherwise.
+  bool castShadows = true;
 
   // A constant rotation over time (scene files' "spin"): `degreesPerSecond`
   // about the world-space `axis` (unit) through the world point `pivot` (the

@@ -1,11 +1,11 @@
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/pass.h"
+#include "frame_block.h"
 
 #include <GL/glcorearb.h>
 
 #include <algorithm>
 #include <cmath>
-#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -16,21 +16,7 @@
 namespace rgraph {
 namespace {
 
-// std140 mirror of shaders/include/frame.glsl (every member is 16-byte aligned).
-struct FrameBlock {
-  glm::mat4 view, proj, viewProj, invView, invProj;
-  glm::vec4 cameraPos;
-  glm::vec4 viewport;
-  glm::vec4 ambient;
-  glm::vec4 dirLightDir;
-  glm::vec4 dirLightColor;
-  glm::ivec4 counts;
-  // Motion and jitter (issue 13), appended so earlier offsets stay.
-  glm::mat4 prevViewProj, viewProjNoJitter;
-  glm::vec4 jitter;  // xy pixels, zw NDC
-  glm::ivec4 frame;  // x frame index (mod 2^31), y jitter phases
-};
-static_assert(sizeof(FrameBlock) == 7 * 64 + 8 * 16, "FrameBlock must match the std140 layout");
+using detail::FrameBlock;
 
 // std430 mirror of PointLight in frame.glsl (the meaning of each member is
 // documented there).
@@ -73,6 +59,16 @@ int mipLevels(int w, int h) {
 
 }  // namespace
 
+void detail::fillSceneMembers(FrameBlock& f, const Scene& scene) {
+  f.ambient = glm::vec4(scene.ambient, 0.0f);
+  if (!scene.directionalLights.empty()) {
+    const DirectionalLight& d = scene.directionalLights.front();
+    f.dirLightDir = glm::vec4(glm::normalize(d.direction), 1.0f);
+    f.dirLightColor = glm::vec4(d.color * d.intensity, 0.0f);
+  }
+  f.counts = glm::ivec4(static_cast<int>(scene.pointLights.size()), 0, 0, 0);
+}
+
 struct GpuScene::Locations {
   int model, prevModel, normalMatrix, baseColorFactor, metallicFactor, roughnessFactor, specular, normalScale,
       occlusionStrength, alphaCutoff, alphaMode, emissive, hasBaseColorTex, hasMetallicRoughnessTex, hasNormalTex,
@@ -84,25 +80,6 @@ GpuScene::GpuScene(const Scene& scene) : scene_(scene), uploadedIn_(gl::currentC
   meshes_.reserve(scene.meshes.size());
   hasTangents_ = scene.hasNormalMaps();
   for (const auto& m : scene.meshes) meshes_.push_back(upload(m, hasTangents_ && m.hasTangents()));
-  // Light volumes: subdivision 1 (80 triangles, scaled by 1/inradius = 1.07 to
-  // enclose the sphere). On llvmpipe, 1280 triangles (level 3) per light cost
-  // 2-3x more in setup than the 14% extra area costs in fragments, which
-  // light_volume.frag rejects by distance anyway (bench/render_methods.cpp).
-  const MeshData sphere = makeIcosphere(1);
-  float inradius = 1.0f;  // smallest distance from the centre to a face plane
-  for (size_t t = 0; t + 2 < sphere.indices.size(); t += 3) {
-    const glm::vec3 a = sphere.positions[sphere.indices[t]], b = sphere.positions[sphere.indices[t + 1]],
-                    c = sphere.positions[sphere.indices[t + 2]];
-    inradius = std::min(inradius, std::abs(glm::dot(glm::normalize(glm::cross(b - a, c - a)), a)));
-  }
-  icosphereScale_ = 1.0f / inradius;
-  icosphere_ = upload(sphere, false);
-  cube_ = upload(makeCube(1.0f), false);
-  // Spot volumes: 16 sides, scaled by 1/cos(pi/16) (4%) so that the flat
-  // sides enclose the round cone.
-  constexpr int kSpotSides = 16;
-  spotVolume_ = upload(makeSpotVolume(kSpotSides), false);
-  spotVolumeScale_ = 1.0f / std::cos(glm::pi<float>() / kSpotSides);
 
   images_.reserve(scene.images.size());
   for (const auto& img : scene.images) {
@@ -252,18 +229,13 @@ glm::mat4 GpuScene::writeFrame(Extent viewport, const Camera& cam, const FrameMo
   f.invProj = glm::inverse(f.proj);
   f.cameraPos = glm::vec4(cam.position, 1.0f);
   f.viewport = glm::vec4(w, h, 1.0f / w, 1.0f / h);
-  f.ambient = glm::vec4(scene_.ambient, 0.0f);
-  if (!scene_.directionalLights.empty()) {
-    const DirectionalLight& d = scene_.directionalLights.front();
-    f.dirLightDir = glm::vec4(glm::normalize(d.direction), 1.0f);
-    f.dirLightColor = glm::vec4(d.color * d.intensity, 0.0f);
-  }
-  f.counts = glm::ivec4(static_cast<int>(scene_.pointLights.size()), 0, 0, 0);
+  detail::fillSceneMembers(f, scene_);
   const glm::mat4 unjittered = f.viewProj;
   f.viewProjNoJitter = unjittered;
   f.prevViewProj = motion && motion->prevViewProj ? *motion->prevViewProj : unjittered;
   if (motion)
     f.frame = glm::ivec4(static_cast<int>(motion->frame & 0x7fffffffu), static_cast<int>(motion->jitterPhases), 0, 0);
+  frameIndex_ = f.frame;  // what views drawn this frame carry (drawView)
   glNamedBufferSubData(frameUnjittered_.id(), 0, sizeof(FrameBlock), &f);
 
   const glm::vec2 pixels = motion ? jitterPixels(motion->frame, motion->jitterPhases) : glm::vec2(0.0f);
@@ -293,27 +265,8 @@ void GpuScene::bindFrame() const {
   boundFrame_ = block;
 }
 
-std::vector<float> GpuScene::pointLightRadii(float threshold) const {
-  const Bounds bounds = scene_.bounds();
-  std::vector<float> radii;
-  radii.reserve(scene_.pointLights.size());
-  for (const auto& l : scene_.pointLights) {
-    if (threshold <= 0.0f) {
-      radii.push_back(-1.0f);
-      continue;
-    }
-    float r = lightRadius(l, threshold);
-    // Nothing lies farther than this, so a bigger volume only costs fill rate
-    // (and an infinite one, for a light with no falloff, cannot be drawn).
-    if (!bounds.empty()) r = std::min(r, glm::length(l.position - bounds.center()) + bounds.radius());
-    if (!std::isfinite(r)) r = 0.0f;
-    radii.push_back(std::max(r, 0.0f));
-  }
-  return radii;
-}
-
-uint32_t GpuScene::pointLightBuffer(float threshold) {
-  if (lightBuffers_.size() >= kLightBufferCacheSize && !lightBuffers_.count(threshold)) {
+uint32_t GpuScene::pointLightBuffer(float key, const LightRadii& radiiOf) {
+  if (lightBuffers_.size() >= kLightBufferCacheSize && !lightBuffers_.count(key)) {
     // A new threshold (a slider dragged, a param edited): the least recently
     // used one's buffer goes (its last draws are already recorded).
     auto oldest = std::min_element(lightBuffers_.begin(), lightBuffers_.end(),
@@ -321,10 +274,13 @@ uint32_t GpuScene::pointLightBuffer(float threshold) {
     lightBuffers_.erase(oldest);
     boundLights_ = 0;  // a deleted buffer's name may come back for a new one
   }
-  LightBuffer& slot = lightBuffers_[threshold];
+  LightBuffer& slot = lightBuffers_[key];
   slot.lastUse = ++lightBufferUses_;
   if (slot.buffer && slot.version == lightsVersion_) return slot.buffer.id();
-  const std::vector<float> radii = pointLightRadii(threshold);
+  std::vector<float> radii = radiiOf();
+  if (radii.size() != scene_.pointLights.size())
+    throw RuntimeError("GpuScene::pointLightBuffer: " + std::to_string(radii.size()) + " radii for " +
+                       std::to_string(scene_.pointLights.size()) + " lights");
   std::vector<GpuPointLight> lights;
   lights.reserve(std::max<size_t>(radii.size(), 1));
   // Point lights first, then spot lights (scene order within each): light
@@ -350,8 +306,8 @@ uint32_t GpuScene::pointLightBuffer(float threshold) {
   return slot.buffer.id();
 }
 
-void GpuScene::bindPointLights(float threshold) {
-  const uint32_t buffer = pointLightBuffer(threshold);
+void GpuScene::bindPointLights(float key, const LightRadii& radii) {
+  const uint32_t buffer = pointLightBuffer(key, radii);
   if (boundLights_ == buffer) return;
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer);
   boundLights_ = buffer;
@@ -414,25 +370,16 @@ void GpuScene::bindMaterial(uint32_t program, int materialIndex) const {
 
 size_t GpuScene::primitiveCount(Filter filter) const {
   size_t n = 0;
-  for (const auto& p : scene_.primitives) {
-    const bool blend = scene_.materials[p.material].alphaMode == AlphaMode::blend;
-    n += filter == Filter::all || (filter == Filter::blend) == blend;
-  }
+  for (size_t i = 0; i < scene_.primitives.size(); ++i) n += selects(filter, i);
   return n;
 }
 
 void GpuScene::drawPrimitives(uint32_t program, const DrawOptions& options) const {
-  std::vector<size_t> order;
-  for (size_t i = 0; i < scene_.primitives.size(); ++i) {
-    const auto& p = scene_.primitives[i];
-    const bool blend = scene_.materials[p.material].alphaMode == AlphaMode::blend;
-    if (options.filter == Filter::all || (options.filter == Filter::blend) == blend) order.push_back(i);
-  }
-  if (options.backToFront) {
-    const glm::vec3 eye = eye_;
-    auto dist = [&](size_t i) { return glm::length(scene_.primitives[i].bounds.center() - eye); };
-    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return dist(a) > dist(b); });
-  }
+  drawList(program, select(options.filter, options.backToFront, eye_), options.cullBackFaces ? Cull::back : Cull::none,
+           1);
+}
+
+void GpuScene::drawList(uint32_t program, const std::vector<size_t>& order, Cull cull, uint32_t instances) const {
   const Locations& loc = locations(program);
   bindProgram(program);
   for (size_t i : order) {
@@ -449,43 +396,23 @@ void GpuScene::drawPrimitives(uint32_t program, const DrawOptions& options) cons
     const glm::mat3 nm = moving ? glm::transpose(glm::inverse(glm::mat3(model))) : p.normalMatrix();
     glProgramUniformMatrix3fv(program, loc.normalMatrix, 1, GL_FALSE, glm::value_ptr(nm));
     bindMaterial(program, p.material);
-    if (options.cullBackFaces && !m.doubleSided) {
+    if (cull != Cull::none && !m.doubleSided) {
       glEnable(GL_CULL_FACE);
-      glCullFace(GL_BACK);
+      glCullFace(cull == Cull::front ? GL_FRONT : GL_BACK);
     } else {
       glDisable(GL_CULL_FACE);
     }
     glFrontFace(p.mirrored() ? GL_CW : GL_CCW);
     bindVertexArray(mesh.vao.id());
-    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.indexCount), GL_UNSIGNED_INT, nullptr);
+    if (instances <= 1)
+      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.indexCount), GL_UNSIGNED_INT, nullptr);
+    else
+      glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(mesh.indexCount), GL_UNSIGNED_INT, nullptr,
+                              static_cast<GLsizei>(instances));
   }
   glFrontFace(GL_CCW);
   glDisable(GL_CULL_FACE);
   for (GLuint unit = 0; unit < 5; ++unit) glBindSampler(unit, 0);
-  bindVertexArray(0);
-}
-
-void GpuScene::drawIcosphere(uint32_t instances) const {
-  if (instances == 0) return;
-  bindVertexArray(icosphere_.vao.id());
-  glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(icosphere_.indexCount), GL_UNSIGNED_INT, nullptr,
-                          static_cast<GLsizei>(instances));
-  bindVertexArray(0);
-}
-
-void GpuScene::drawSpotVolume(uint32_t instances) const {
-  if (instances == 0) return;
-  bindVertexArray(spotVolume_.vao.id());
-  glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(spotVolume_.indexCount), GL_UNSIGNED_INT, nullptr,
-                          static_cast<GLsizei>(instances));
-  bindVertexArray(0);
-}
-
-void GpuScene::drawCube(uint32_t instances) const {
-  if (instances == 0) return;
-  bindVertexArray(cube_.vao.id());
-  glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(cube_.indexCount), GL_UNSIGNED_INT, nullptr,
-                          static_cast<GLsizei>(instances));
   bindVertexArray(0);
 }
 

@@ -231,37 +231,3 @@ MeshData makeIcosphere(int subdivisions) {
 }
 
 }  // namespace rgraph
-
-namespace rgraph {
-
-MeshData makeSpotVolume(int segments) {
-  if (segments < 3 || segments > 1024)
-    throw RuntimeError("makeSpotVolume: segments must be in 3..1024, got " + std::to_string(segments));
-  MeshData m;
-  m.name = "spot-volume";
-  const uint32_t n = uint32_t(segments);
-  // Vertices: the apex (0), ring 1 at z = 1 (1..n), ring 2 at z = 2 (n+1..2n),
-  // the cap's centre (2n+1). Rings on the unit circle.
-  m.positions.push_back(glm::vec3(0.0f));
-  for (int z = 1; z <= 2; ++z)
-    for (uint32_t i = 0; i < n; ++i) {
-      const float a = 2.0f * glm::pi<float>() * float(i) / float(n);
-      m.positions.push_back(glm::vec3(std::cos(a), std::sin(a), float(z)));
-    }
-  m.positions.push_back(glm::vec3(0.0f, 0.0f, 2.0f));
-  const uint32_t apex = 0, cap = 2 * n + 1;
-  for (uint32_t i = 0; i < n; ++i) {
-    const uint32_t j = (i + 1) % n;
-    const uint32_t a1 = 1 + i, b1 = 1 + j, a2 = 1 + n + i, b2 = 1 + n + j;
-    // Counter-clockwise seen from outside: the ring runs counter-clockwise
-    // about +z, so the cone's side and the cylinder's face outward with
-    // (apex, b1, a1) and (a1, b1, b2), (a1, b2, a2); the cap faces +z.
-    m.indices.insert(m.indices.end(), {apex, b1, a1, a1, b1, b2, a1, b2, a2, a2, b2, cap});
-  }
-  m.normals.assign(m.positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
-  m.uv0.assign(m.positions.size(), glm::vec2(0.0f));
-  m.updateBounds();
-  return m;
-}
-
-}  // namespace rgraph

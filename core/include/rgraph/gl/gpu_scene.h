@@ -17,10 +17,13 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <typeindex>
+#include <typeinfo>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -104,48 +107,114 @@ class GpuScene {
   // nullptr (the default): no record.
   void useBindingRecord(GlBindings* record) const { record_ = record; }
 
-  // Point and spot lights with radii solved for `threshold` (LearnOpenGL: 5/256 of the
-  // brightest channel) and capped at the distance beyond which the scene has
-  // no geometry. threshold <= 0: no cut-off (radius -1). Cached for the
-  // kLightBufferCacheSize thresholds used last (passes with different
-  // thresholds, renderers sharing the scene), so that a threshold dragged
-  // through many values holds no more buffers than that.
-  // The buffer holds the point lights first, then the spot lights (its last
-  // spotLightCount() entries), each in scene order.
+  // The light buffer (frame.glsl's PointLight[]): the point lights first,
+  // then the spot lights (its last spotLightCount() entries), each in scene
+  // order, with the cut-off radius `radii()` gives each light (in scene
+  // order; negative: no cut-off). The lighting passes' radii are
+  // rgraph/passes/light_radii.h's, keyed by their threshold. Buffers are
+  // cached by `key` for the kLightBufferCacheSize keys used last (passes
+  // with different thresholds, renderers sharing the scene), so that a
+  // threshold dragged through many values holds no more buffers than that;
+  // radii() is called only when the key's buffer is (re)written: the first
+  // time, and after lightsChanged(). The same key must always mean the same
+  // radii.
+  using LightRadii = std::function<std::vector<float>()>;
   // Binds the buffer at shader storage binding 0, unless this scene's record
   // says it is bound there already (forgetBindings).
-  void bindPointLights(float threshold);
-  uint32_t pointLightBuffer(float threshold);
+  void bindPointLights(float key, const LightRadii& radii);
+  uint32_t pointLightBuffer(float key, const LightRadii& radii);
   uint32_t pointLightCount() const;  // every light in the buffer, spot lights included
   uint32_t spotLightCount() const;
-  // The radius each light gets for a threshold, in scene order.
-  std::vector<float> pointLightRadii(float threshold) const;
 
-  enum class Filter { opaque, blend, all };  // opaque includes alpha-mask materials
+  // What a pass library keeps with this upload, made once for every
+  // renderer sharing the scene (light volumes' meshes, say): the T of this
+  // scene, made with T() at the first call (in the upload context: check
+  // requireUploadContext first where that may not hold), deleted with the
+  // scene. One object per type.
+  template <class T>
+  T& extension() {
+    std::shared_ptr<void>& slot = extensions_[std::type_index(typeid(T))];
+    if (!slot) slot = std::make_shared<T>();
+    return *static_cast<T*>(slot.get());
+  }
+
+  // Which primitives a draw takes. opaque includes alpha-mask materials;
+  // shadowCasters: the opaque and mask ones whose Primitive::castShadows is
+  // set (a blended surface casts no shadow in the shipped shading).
+  enum class Filter { opaque, blend, all, shadowCasters };
   struct DrawOptions {
     Filter filter = Filter::opaque;
     bool backToFront = false;    // sort by distance of bounds centre (blended surfaces)
     bool cullBackFaces = true;   // per material: double-sided materials are never culled
   };
   // Draws every matching primitive with `program` (already in use or not):
-  // sets per-draw and material uniforms, binds textures and samplers.
+  // sets per-draw and material uniforms, binds textures and samplers. It
+  // draws with whatever Frame block is bound at uniform buffer 0: the
+  // camera's, which the executor binds before every pass.
   void drawPrimitives(uint32_t program, const DrawOptions& options) const;
   size_t primitiveCount(Filter filter) const;
+
+  // ---- Drawing from another view (a light, a cube-map face, a mirror)
+  //
+  // The camera's Frame block stays the default view: these calls write the
+  // view's own Frame block (same layout, frame.glsl) into a buffer of its own,
+  // bind it at uniform buffer 0 for their draws, and bind the camera's block
+  // back before they return (recordedFrameBinding() says so), so later draws
+  // of the pass and later passes see the camera as before. A pass calling
+  // them binds nothing it must declare: programs and vertex arrays go
+  // through the binding record, the viewport too (below).
+  enum class Cull { none, back, front };  // per material: double-sided materials are never culled
+  struct Viewport {
+    int32_t x = 0, y = 0;
+    uint32_t width = 0, height = 0;
+  };
+  struct View {
+    glm::mat4 view{1.0f};  // world -> view
+    glm::mat4 proj{1.0f};  // view -> clip (OpenGL clip space, depth -1..1)
+    // Set with glViewport for the draw (and left set, recorded in the binding
+    // record); none: the viewport already set (the bound framebuffer's, as
+    // gl::bindPassFramebuffer sets it), read back for u_viewport.
+    std::optional<Viewport> viewport;
+    Cull cull = Cull::back;
+    Filter filter = Filter::opaque;
+    bool backToFront = false;  // sort by distance of bounds centre to this view's eye
+    // The view's position (u_cameraPos, back-to-front sorting); none: the
+    // translation of inverse(view), which can differ from the position the
+    // view was made from in the last bits (give it to match a camera's block).
+    std::optional<glm::vec3> eye;
+  };
+  // Draws the `view.filter` primitives as drawPrimitives does, from `view`:
+  // the Frame block its shaders read has u_view, u_proj, their product and
+  // inverses, u_cameraPos (view.eye) and u_viewport of this view;
+  // no jitter and no camera motion (u_prevViewProj = u_viewProjNoJitter =
+  // u_viewProj, u_jitter 0); ambient, lights and u_frame are the frame's.
+  // Model matrices (and u_prevModel) are the frame's, as in drawPrimitives.
+  // Depth test, blending and the framebuffer are the caller's; face culling
+  // is set per material and left off, as drawPrimitives leaves it.
+  void drawView(uint32_t program, const View& view);
+  // Whether drawLayered works here: gl_Layer can be written from the vertex
+  // shader (GL_ARB_shader_viewport_layer_array or GL_AMD_vertex_shader_layer;
+  // llvmpipe, NVIDIA, AMD and Intel's Mesa drivers have one).
+  bool supportsLayeredDraw() const;
+  // One instanced draw per primitive writing views.size() layers of a layered
+  // framebuffer (a 2D array or cube map attached whole, depth too): instance
+  // i draws views[i] into layer firstLayer + i (a cube map's layers are its
+  // faces, +X -X +Y -Y +Z -Z). `program` must be scene.vert compiled with
+  // LAYERED (it reads each layer's view-projection from the LayerViews block,
+  // include/layer_views.glsl, uniform buffer 1, and sets gl_Layer); its
+  // fragment shader sees views[0]'s Frame block. Every view must have the
+  // first one's viewport, cull, filter and backToFront (else RuntimeError).
+  // RuntimeError without supportsLayeredDraw(). More than 32 views: one draw
+  // per primitive per 32. Uniform buffer 1 is left unbound.
+  void drawLayered(uint32_t program, const std::vector<View>& views, uint32_t firstLayer = 0);
+  // The same without gl_Layer, one draw per layer: for each i, bindLayer(i)
+  // (the caller attaches layer i and binds the framebuffer, e.g. with
+  // glNamedFramebufferTextureLayer), then drawView(program, views[i]). Works
+  // on any device, with any scene.vert program (not LAYERED).
+  void drawEachLayer(uint32_t program, const std::vector<View>& views, const std::function<void(size_t)>& bindLayer);
+
   // Whether vertex buffers carry tangents (only when the scene has normal maps).
   bool hasTangents() const { return hasTangents_; }
-
-  // Closed unit icosphere (light volumes) and unit cube (light markers), drawn
-  // `instances` times; vertex attribute 0 is the position.
-  void drawIcosphere(uint32_t instances) const;
-  // The icosphere's flat faces lie inside the unit sphere; scaling a light's
-  // volume by radius * icosphereScale() makes the mesh enclose the whole sphere.
-  float icosphereScale() const { return icosphereScale_; }
-  void drawCube(uint32_t instances) const;
-  // makeSpotVolume(16), drawn `instances` times (light_volume.vert bends it
-  // to each spot light's cone); scaling its radius by spotVolumeScale() makes
-  // its flat sides enclose the round cone.
-  void drawSpotVolume(uint32_t instances) const;
-  float spotVolumeScale() const { return spotVolumeScale_; }
 
  private:
   struct GpuMesh {
@@ -155,14 +224,21 @@ class GpuScene {
   };
   struct Locations;
   GpuMesh upload(const struct MeshData& mesh, bool tangents) const;
+  // The primitives a filter takes, in scene order or back to front from `eye`.
+  bool selects(Filter filter, size_t primitive) const;
+  std::vector<size_t> select(Filter filter, bool backToFront, glm::vec3 eye) const;
+  // Draws `order` with `program` (drawPrimitives' loop); instances > 1: instanced (drawLayered).
+  void drawList(uint32_t program, const std::vector<size_t>& order, Cull cull, uint32_t instances) const;
+  void ensureViewBuffers();
+  Viewport applyViewport(const View& view) const;
+  // Writes the next slot of views_ for `view` and binds it at uniform buffer 0.
+  void bindViewBlock(const View& view, Viewport viewport);
   const Locations& locations(uint32_t program) const;
   void bindMaterial(uint32_t program, int material) const;
 
   const Scene& scene_;
   gl::ContextIdentity uploadedIn_;
   std::vector<GpuMesh> meshes_;
-  GpuMesh icosphere_, cube_, spotVolume_;
-  float icosphereScale_ = 1.0f, spotVolumeScale_ = 1.0f;
   bool hasTangents_ = false;
   std::vector<gl::Texture> images_;
   std::vector<gl::Sampler> samplers_;  // one per SceneTexture
@@ -176,6 +252,12 @@ class GpuScene {
   // each pass, so a frame binds each once, as hand-written GL would.
   mutable uint32_t boundFrame_ = 0, boundLights_ = 0;
   mutable GlBindings* record_ = nullptr;  // useBindingRecord
+  // Views' Frame blocks and LayerViews blocks: rings of slots (drawView,
+  // drawLayered), made at the first such draw; u_frame of the last updateFrame.
+  gl::Buffer views_, layerViews_;
+  uint32_t viewStride_ = 0, layerStride_ = 0, nextView_ = 0, nextLayerSlot_ = 0;
+  glm::ivec4 frameIndex_{0};
+  mutable std::optional<bool> layeredSupport_;
   void bindProgram(uint32_t program) const;
   void bindVertexArray(uint32_t vertexArray) const;
   // Model matrices of the last updateFrame with motion (empty: draw with each
@@ -195,6 +277,7 @@ class GpuScene {
   uint64_t lightsVersion_ = 0;
   glm::vec3 eye_{0.0f};  // the camera of the current frame (back-to-front sorting)
   mutable std::map<uint32_t, std::unique_ptr<Locations>> locations_;
+  std::map<std::type_index, std::shared_ptr<void>> extensions_;  // extension<T>()
 };
 
 }  // namespace rgraph
