@@ -47,6 +47,14 @@ std::vector<std::string> ruleTexts(const PassTypeDesc& t) {
   return out;
 }
 
+// A declared sampler state under the names the config's "samplers" key takes.
+nlohmann::json samplerJson(const SamplerState& st) {
+  nlohmann::json wrap = nlohmann::json::array();
+  for (SamplerState::Wrap w : st.wrap) wrap.push_back(wrapName(w));
+  return {{"filter", filterName(st.filter)}, {"mip", mipFilterName(st.mip)}, {"wrap", wrap},
+          {"border", st.border}, {"compare", compareName(st.compare)}, {"anisotropy", st.anisotropy}};
+}
+
 nlohmann::json typeJson(const PassTypeDesc& t) {
   nlohmann::json slots = nlohmann::json::array();
   for (const auto& s : t.slots) {
@@ -59,7 +67,8 @@ nlohmann::json typeJson(const PassTypeDesc& t) {
                      {"load", loadName(s.load)},
                      {"formats", formats},
                      {"multisampled", s.acceptsMultisample},
-                     {"description", s.description}});
+                     {"description", s.description},
+                     {"sampler", s.sampler ? samplerJson(*s.sampler) : nlohmann::json()}});
   }
   nlohmann::json params = nlohmann::json::array();
   for (const auto& p : t.params) {
@@ -137,6 +146,7 @@ void printType(const PassTypeDesc& t, std::ostream& out) {
       out << "    " << padded(s.name, nameW) << padded(s.required ? "required" : "optional", 10)
           << padded(std::string(accessName(s.access)), accessW + 2) << slotAccepts(s) << "\n";
       if (!s.description.empty()) out << under << s.description << "\n";
+      if (s.sampler) out << under << "sampled " << describeSampler(*s.sampler) << "\n";
       if (s.load != SlotDecl::Load::never)
         out << under << (s.load == SlotDecl::Load::required ? "must" : "may")
             << " also be bound in inputs, to the version it draws over (load " << loadName(s.load) << ")\n";

@@ -217,7 +217,10 @@ void registerBloom(PluginHost& host) {
     d.slots = {
         slot("hdr", Access::sampled, false, SlotDecl::Load::never,
              "HDR image (same size as 'color'); leave unbound to add into a loaded 'color' instead", kHdrFormats),
-        slot("bloom", Access::sampled, true, SlotDecl::Load::never, "blurred bright image (any size)", kHdrFormats),
+        // Scaled up to the HDR image's size: bilinear.
+        sampledWith(slot("bloom", Access::sampled, true, SlotDecl::Load::never, "blurred bright image (any size)",
+                         kHdrFormats),
+                    bilinearClamped()),
         slot("color", Access::color_attachment, true, SlotDecl::Load::optional, "the HDR image with bloom",
              kHdrFormats),
     };

@@ -34,8 +34,10 @@ void registerFxaa(PluginHost& host) {
   d.name = "fxaa";
   d.description = "FXAA (3.11 quality-preset style): edge-directed blend of a tone-mapped image, same size out";
   d.slots = {
-      slot("input", Access::sampled, true, SlotDecl::Load::never, "tone-mapped image (rgba8 or srgb8_alpha8)",
-           kLdrFormats),
+      // The edge search and the final blend read between texel centres.
+      sampledWith(slot("input", Access::sampled, true, SlotDecl::Load::never,
+                       "tone-mapped image (rgba8 or srgb8_alpha8)", kLdrFormats),
+                  bilinearClamped()),
       slot("output", Access::color_attachment, true, SlotDecl::Load::never, "the filtered image (input's size)",
            kLdrFormats),
   };

@@ -62,8 +62,10 @@ void registerTaa(PluginHost& host) {
   d.description = "Temporal anti-aliasing: jittered frames accumulated through a reprojected, clipped history";
   d.slots = {
       slot("color", Access::sampled, true, SlotDecl::Load::never, "this frame's HDR image (jittered)", kHdrFormats),
-      slot("history", Access::sampled, true, SlotDecl::Load::never,
-           "last frame's output: a resource with \"history_of\" this pass's output", kHdrFormats),
+      // Reprojected: the bicubic history filter is built from bilinear taps.
+      sampledWith(slot("history", Access::sampled, true, SlotDecl::Load::never,
+                       "last frame's output: a resource with \"history_of\" this pass's output", kHdrFormats),
+                  bilinearClamped()),
       slot("velocity", Access::sampled, true, SlotDecl::Load::never,
            "motion vectors in UV units, uv_now - uv_prev (the geometry pass's velocity slot)", kVelocityFormats),
       slot("depth", Access::sampled, true, SlotDecl::Load::never,

@@ -31,14 +31,17 @@ const char* kFxaaOnly = R"({
 
 class Fxaa : public rtest::RenderTest {
  protected:
-  // `input` (rows top-down) through the fxaa pass.
-  Image filter(const Image& input) {
+  // `input` (rows top-down) through the fxaa pass; the imported texture's own
+  // filter is `ownFilter` (GL's default magnification filter is linear).
+  Image filter(const Image& input, GLenum ownFilter = GL_LINEAR) {
     const PipelineConfig cfg = loadPipelineTextOrThrow(kFxaaOnly, "fxaa-only.json");
     gl::Texture src = gl::createTexture(GL_TEXTURE_2D);
     const GLsizei w = static_cast<GLsizei>(input.extent.width), h = static_cast<GLsizei>(input.extent.height);
     glTextureStorage2D(src.id(), 1, GL_RGBA8, w, h);
     for (GLsizei row = 0; row < h; ++row)  // GL rows go bottom-up
       glTextureSubImage2D(src.id(), 0, 0, h - 1 - row, w, 1, GL_RGBA, GL_UNSIGNED_BYTE, input.at(0, row));
+    glTextureParameteri(src.id(), GL_TEXTURE_MIN_FILTER, static_cast<GLint>(ownFilter));
+    glTextureParameteri(src.id(), GL_TEXTURE_MAG_FILTER, static_cast<GLint>(ownFilter));
     Executor exec(cfg, PassRegistry::builtins(), *shaders);
     exec.importTexture("src", src.id());
     exec.resize(input.extent);
@@ -90,6 +93,19 @@ TEST_F(Fxaa, FlatAndBlackImagesAreUnchanged) {
     std::printf("[ measure  ] fxaa on %s: %s\n", name.c_str(), d.describe().c_str());
     EXPECT_EQ(d.maxDiff, 0) << name << ": " << d.describe() << " " << rtest::saveImage(out, "fxaa-" + name);
   }
+}
+
+// The input slot declares its sampler (bilinear, clamped): a caller's
+// texture set to nearest filtering is filtered as the pass's taps need, so
+// the result is the same as from a linearly filtered one. Without the
+// declaration the taps between texels would snap to one texel.
+TEST_F(Fxaa, TheInputsDeclaredSamplerOverridesTheTexturesOwnFilter) {
+  const Image aliased = makeImage(kSize, [](int x, int row) { return glm::ivec3(coverage(x, row) >= 0.5 ? 255 : 0); });
+  const Image linear = filter(aliased, GL_LINEAR);
+  const Image nearest = filter(aliased, GL_NEAREST);
+  ASSERT_GT(rtest::compareImages(linear, aliased, 0).maxDiff, 64) << "fxaa left the staircase alone";
+  const rtest::ImageDiff d = rtest::compareImages(nearest, linear, 0);
+  EXPECT_EQ(d.maxDiff, 0) << d.describe();
 }
 
 TEST_F(Fxaa, StaircaseEdgeMovesTowardsItsCoverage) {

@@ -23,6 +23,18 @@ inline SlotDecl slot(std::string name, Access access, bool required, SlotDecl::L
   return s;
 }
 
+// `s` sampled through `state`, whatever the bound texture's own parameters
+// (an imported texture's filter, a mip chain's trilinear default).
+inline SlotDecl sampledWith(SlotDecl s, SamplerState state) {
+  s.sampler = state;
+  return s;
+}
+
+// Bilinear within the base level, clamped to the edge texels: for a shader
+// whose taps fall between texel centres on purpose (a filter's weights, a
+// reprojected history, an image scaled up).
+inline SamplerState bilinearClamped() { return SamplerState{}; }
+
 inline ParamDecl param(std::string name, ParamType type, ParamValue defaultValue, std::string description,
                        std::vector<std::string> choices = {}) {
   ParamDecl p;

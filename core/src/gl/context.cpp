@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <map>
 #include <mutex>
 #include <vector>
@@ -430,6 +431,16 @@ std::string describeContext(const ContextDevice& d) {
   std::string s = d.renderer + ", OpenGL " + d.version + ", " + d.vendor + " (" + d.platform;
   if (d.eglDevice >= 0) s += " " + std::to_string(d.eglDevice) + ": " + d.eglDeviceDescription;
   return s + ")";
+}
+
+bool hasExtension(const char* name) {
+  GLint n = 0;
+  glGetIntegerv(GL_NUM_EXTENSIONS, &n);
+  for (GLint i = 0; i < n; ++i) {
+    const auto* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
+    if (e && std::strcmp(e, name) == 0) return true;
+  }
+  return false;
 }
 
 bool GlContext::isSoftware() const {

@@ -5,6 +5,8 @@
 
 #include <cstring>
 
+#include "rgraph/gl/context.h"
+
 namespace rgraph::gl {
 
 namespace {
@@ -13,15 +15,6 @@ namespace {
 constexpr GLenum kNvxCurrentAvailableKb = 0x9049;  // GL_GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX
 constexpr GLenum kAtiTextureFreeMemory = 0x87FC;   // GL_TEXTURE_FREE_MEMORY_ATI: 4 values, [0] the free KB
 
-bool hasExtension(const char* name) {
-  GLint count = 0;
-  glGetIntegerv(GL_NUM_EXTENSIONS, &count);
-  for (GLint i = 0; i < count; ++i) {
-    const auto* ext = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
-    if (ext && std::strcmp(ext, name) == 0) return true;
-  }
-  return false;
-}
 
 }  // namespace
 

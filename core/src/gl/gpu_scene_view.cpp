@@ -14,6 +14,7 @@
 
 #include "frame_block.h"
 #include "rgraph/error.h"
+#include "rgraph/gl/context.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/pass.h"
 #include "rgraph/scene.h"
@@ -35,13 +36,6 @@ glm::vec3 eyeOf(const GpuScene::View& v) { return v.eye ? *v.eye : glm::vec3(glm
 
 uint32_t alignUp(uint32_t bytes, uint32_t alignment) { return (bytes + alignment - 1) / alignment * alignment; }
 
-bool hasGlExtension(const char* name) {
-  GLint n = 0;
-  glGetIntegerv(GL_NUM_EXTENSIONS, &n);
-  for (GLint i = 0; i < n; ++i)
-    if (std::strcmp(reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i))), name) == 0) return true;
-  return false;
-}
 
 }  // namespace
 
@@ -83,7 +77,7 @@ void GpuScene::ensureViewBuffers() {
 
 bool GpuScene::supportsLayeredDraw() const {
   if (!layeredSupport_)
-    layeredSupport_ = hasGlExtension("GL_ARB_shader_viewport_layer_array") || hasGlExtension("GL_AMD_vertex_shader_layer");
+    layeredSupport_ = hasExtension("GL_ARB_shader_viewport_layer_array") || hasExtension("GL_AMD_vertex_shader_layer");
   return *layeredSupport_;
 }
 

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "rgraph/gl/context.h"
+
 namespace rgraph::gl {
 namespace {
 
@@ -43,15 +45,6 @@ GLenum compareFunc(SamplerState::Compare c) {
   return GL_NEVER;
 }
 
-bool hasExtension(const char* name) {
-  GLint n = 0;
-  glGetIntegerv(GL_NUM_EXTENSIONS, &n);
-  for (GLint i = 0; i < n; ++i) {
-    const auto* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
-    if (e && std::strcmp(e, name) == 0) return true;
-  }
-  return false;
-}
 
 }  // namespace
 

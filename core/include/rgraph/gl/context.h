@@ -33,6 +33,11 @@ struct ContextDevice {
 // One line: "RENDERER, OpenGL VERSION, VENDOR (PLATFORM[ N: DEVICE])".
 std::string describeContext(const ContextDevice& device);
 
+// Whether the current context lists the extension `name` (GL_NUM_EXTENSIONS,
+// glGetStringi): for the features a 4.5 core context may lack (anisotropic
+// filtering, gl_Layer from the vertex shader, memory queries).
+bool hasExtension(const char* name);
+
 class GlContext {
  public:
   // Throws rgraph::RuntimeError with the reason when no 4.5 core context can be made.
