@@ -129,7 +129,7 @@ CLI::App* addRender(CLI::App& app, Options& o) {
   cmd->add_option("--out,-o", r.out, "output PNG")->required()->check(kNotEmpty);
   cmd->add_option(
       "--scene", r.scene,
-      "scene file (.json), glTF (.gltf/.glb), learnopengl, learnopengl:overview (default), thin (thin edges that alias) or many-lights:N[:seed][:pillars]")
+      "scene file (.json), glTF (.gltf/.glb), learnopengl, learnopengl:overview (default), learnopengl:shadows, thin (thin edges that alias) or many-lights:N[:seed][:pillars]")
       ->check(kNotEmpty);
   cmd->add_option("--frames", r.frames, "frames to render (timings are medians)")->check(CLI::Range(1u, 100000u));
   cmd->add_option_function<std::string>(

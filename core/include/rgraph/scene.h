@@ -180,9 +180,10 @@ struct Primitive {
   glm::mat4 transform{1.0f};  // local -> world
   Bounds bounds;              // world space
   std::string name;           // node name, for diagnostics
-  // Drawn by shadow-map views (GpuScene::Filter::shadowCasters). No loader
-  // sets it yet: every primitive casts shadows unless code says otherwise.
-  bool castShadows = true;
+  // Whether shadow-map views draw it (GpuScene::Filter::shadowCasters):
+  // scene files' "cast_shadows". Unset: Scene::castsShadows's default (every
+  // primitive but those of a blend material: a glass pane lets light through).
+  std::optional<bool> castShadows;
 
   // A constant rotation over time (scene files' "spin"): `degreesPerSecond`
   // about the world-space `axis` (unit) through the world point `pivot` (the
@@ -215,6 +216,9 @@ struct DirectionalLight {
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit; the direction the light travels (shaders use -direction)
   glm::vec3 color{1.0f};
   float intensity = 1.0f;
+  // Whether a shadow pipeline gives it a shadow map (scene files' "shadows";
+  // a sun casts by default, glTF's directional lights too).
+  bool castShadows = true;
 };
 
 // Radiance at distance d: color * intensity / (constant + linear d + quadratic d^2),
@@ -237,6 +241,12 @@ struct PointLight {
   glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit: where the cone points (world)
   float innerConeDeg = 0.0f;               // glTF's default 0
   float outerConeDeg = 45.0f;              // glTF's default pi/4
+
+  // Whether a shadow pipeline gives it a shadow map (scene files' "shadows").
+  // Unset: spot lights cast and point lights do not (a point light's shadow
+  // is six maps: asked for, not assumed), glTF's lights likewise.
+  std::optional<bool> castShadows;
+  bool castsShadows() const { return castShadows.value_or(spot); }
 };
 
 // Distance at which the light falls to `threshold`: solves
@@ -299,6 +309,11 @@ struct Scene {
   // Any used material with a metallic-roughness texture, or metallic/roughness
   // factors that differ between used materials.
   bool hasMetallicRoughnessVariation() const;
+  // Whether `p` is drawn into shadow maps: its castShadows, else true unless
+  // its material blends.
+  bool castsShadows(const Primitive& p) const;
+  bool hasShadowCasters() const;         // some primitive casts
+  bool hasShadowCastingLights() const;   // some light casts (castsShadows / castShadows)
   size_t triangleCount() const;  // over primitives (a shared mesh counts per draw)
   size_t vertexCount() const;    // over primitives
   Bounds bounds() const;         // world space, over primitives
@@ -389,7 +404,8 @@ Scene parseSceneText(const std::string& text, const std::string& file, const std
 
 // "path.json" -> loadSceneFile; "path.gltf" / "path.glb" -> loadGltf + applySceneDefaults;
 // "learnopengl" -> makeLearnOpenGLScene(); "learnopengl:overview" -> the same
-// scene seen from above and behind, all 9 objects in view (rgraph render's default); "many-lights:N[:seed]" -> makeManyLightsScene(N, seed);
+// scene seen from above and behind, all 9 objects in view (rgraph render's default);
+// "learnopengl:shadows" -> makeLearnOpenGLShadowsScene(); "many-lights:N[:seed]" -> makeManyLightsScene(N, seed);
 // "many-lights:N[:seed]:pillars" -> makeManyLightsPillarsScene(N, seed);
 // "thin" -> makeThinScene().
 Scene loadSceneAny(const std::string& spec);
@@ -403,6 +419,14 @@ Scene loadSceneAny(const std::string& spec);
 // constant 1, linear 0.7, quadratic 1.8; camera at (0,0,5) looking down -Z, fov 45,
 // near 0.1, far 100; ambient 0.1; one material with a procedural albedo texture, specular 0.5.
 Scene makeLearnOpenGLScene();
+// The same scene seen from (0, 4.5, 9.5) towards (0, -0.75, 0): every object
+// and light in view (loadSceneAny "learnopengl:overview", rgraph render's default).
+Scene makeLearnOpenGLOverviewScene();
+// The same 9 objects and 32 point lights (which cast no shadows: the
+// default for point lights) seen as learnopengl:overview is, standing on a
+// floor ("floor", 20 x 20 at y = -1, where the objects' shadows land) under
+// a shadow-casting sun from above-front-left: loadSceneAny "learnopengl:shadows".
+Scene makeLearnOpenGLShadowsScene();
 
 // A field of cubes and spheres on a floor plane with n point lights (0..kMaxSceneLights)
 // spread over it from a seeded PRNG. The field grows with n; each light's

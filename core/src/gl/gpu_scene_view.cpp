@@ -46,7 +46,7 @@ bool GpuScene::selects(Filter filter, size_t primitive) const {
     case Filter::all: return true;
     case Filter::opaque: return !blend;
     case Filter::blend: return blend;
-    case Filter::shadowCasters: return !blend && p.castShadows;
+    case Filter::shadowCasters: return scene_.castsShadows(p);
   }
   return false;
 }

@@ -161,6 +161,39 @@ Scene makeLearnOpenGLScene() {
   return s;
 }
 
+Scene makeLearnOpenGLOverviewScene() {
+  // The chapter's start camera (0, 0, 5) sees 5 of the 9 objects; this one
+  // stands back and above so the whole 3x3 grid and its lights are in view.
+  Scene s = makeLearnOpenGLScene();
+  s.source = "learnopengl:overview";
+  s.camera.position = {0.0f, 4.5f, 9.5f};
+  s.camera.target = {0.0f, -0.75f, 0.0f};
+  return s;
+}
+
+Scene makeLearnOpenGLShadowsScene() {
+  Scene s = makeLearnOpenGLOverviewScene();
+  s.source = "learnopengl:shadows";
+  const int plane = int(s.meshes.size());
+  s.meshes.push_back(makePlane(10.0f, 10.0f, 5.0f));
+  Material floor;
+  floor.name = "floor";
+  floor.baseColorFactor = glm::vec4(0.55f, 0.55f, 0.6f, 1.0f);
+  floor.metallicFactor = 0.0f;
+  floor.roughnessFactor = 0.8f;
+  floor.specular = 0.2f;
+  s.materials.push_back(floor);
+  // The objects stand on it: their bottoms are at y = -0.5 - 0.5.
+  addDraw(s, plane, int(s.materials.size()) - 1, glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -1.0f, 0.0f)), "floor");
+  DirectionalLight sun;
+  sun.direction = glm::normalize(glm::vec3(0.45f, -1.0f, -0.35f));
+  sun.color = glm::vec3(1.0f, 0.95f, 0.85f);
+  sun.intensity = 0.6f;
+  sun.castShadows = true;
+  s.directionalLights.push_back(sun);
+  return s;
+}
+
 // ---------------------------------------------------------------- many lights
 
 Scene makeManyLightsScene(int n, uint32_t seed) {

@@ -209,6 +209,23 @@ bool Scene::hasMetallicRoughnessVariation() const {
   return false;
 }
 
+bool Scene::castsShadows(const Primitive& p) const {
+  if (p.castShadows) return *p.castShadows;
+  const bool blend = p.material >= 0 && size_t(p.material) < materials.size() &&
+                     materials[size_t(p.material)].alphaMode == AlphaMode::blend;
+  return !blend;
+}
+
+bool Scene::hasShadowCasters() const {
+  return std::any_of(primitives.begin(), primitives.end(), [&](const Primitive& p) { return castsShadows(p); });
+}
+
+bool Scene::hasShadowCastingLights() const {
+  return std::any_of(pointLights.begin(), pointLights.end(), [](const PointLight& l) { return l.castsShadows(); }) ||
+         std::any_of(directionalLights.begin(), directionalLights.end(),
+                     [](const DirectionalLight& l) { return l.castShadows; });
+}
+
 size_t Scene::triangleCount() const {
   size_t n = 0;
   for (const Primitive& p : primitives)

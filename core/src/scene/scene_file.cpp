@@ -132,6 +132,25 @@ class SceneFileParser {
     return it == obj.end() ? fallback : number(*it, ptr + "/" + key);
   }
 
+  // An optional boolean key: nullopt when absent.
+  std::optional<bool> flag(const json& obj, const char* key, const std::string& ptr) const {
+    auto it = obj.find(key);
+    if (it == obj.end()) return std::nullopt;
+    if (!it->is_boolean()) fail(ptr + "/" + key, std::string("expected true or false, got ") + it->type_name());
+    return it->get<bool>();
+  }
+
+  // A model's "cast_shadows" (its primitives) and "light_shadows" (the lights
+  // its glTF file brings), over what the file or the defaults say.
+  void applyShadowKeys(Scene& model, const json& j, const std::string& ptr) const {
+    if (const auto cast = flag(j, "cast_shadows", ptr))
+      for (Primitive& p : model.primitives) p.castShadows = *cast;
+    if (const auto lights = flag(j, "light_shadows", ptr)) {
+      for (PointLight& l : model.pointLights) l.castShadows = *lights;
+      for (DirectionalLight& l : model.directionalLights) l.castShadows = *lights;
+    }
+  }
+
   glm::vec3 vec3(const json& j, const std::string& ptr) const {
     if (!j.is_array() || j.size() != 3) fail(ptr, "expected an array of 3 numbers");
     return glm::vec3(number(j[0], ptr + "/0"), number(j[1], ptr + "/1"), number(j[2], ptr + "/2"));
@@ -245,7 +264,7 @@ class SceneFileParser {
 
   void addModel(Scene& scene, const json& j, const std::string& ptr) const {
     object(j, ptr);
-    unknownKeys(j, ptr, {"file", "shape", "material", "transform", "name", "size", "spin"});
+    unknownKeys(j, ptr, {"file", "shape", "material", "transform", "name", "size", "spin", "cast_shadows", "light_shadows"});
     const glm::mat4 xf = j.contains("transform") ? transform(j["transform"], ptr + "/transform") : glm::mat4(1.0f);
     // Parsed before the model is loaded, so a bad spin is reported without reading a file.
     const Primitive::Spin turn = j.contains("spin") ? spin(j["spin"], ptr + "/spin", xf) : Primitive::Spin{};
@@ -270,11 +289,13 @@ class SceneFileParser {
         fail(ptr + "/file", e.what());
       }
       if (j.contains("material")) overrideMaterials(model, j["material"], ptr + "/material");
+      applyShadowKeys(model, j, ptr);
       appendScene(scene, std::move(model), xf);
       animate();
       return;
     }
     const std::string shape = string(j["shape"], ptr + "/shape");
+    if (j.contains("light_shadows")) fail(ptr + "/light_shadows", "a shape brings no lights (\"light_shadows\" is for a model file's)");
     Scene s;
     if (shape == "cube") {
       s.meshes.push_back(makeCube(0.5f));
@@ -299,6 +320,7 @@ class SceneFileParser {
     p.name = j.contains("name") ? string(j["name"], ptr + "/name") : shape;
     p.bounds = s.meshes[0].bounds;
     s.primitives.push_back(p);
+    applyShadowKeys(s, j, ptr);
     appendScene(scene, std::move(s), xf);
     animate();
   }
@@ -351,9 +373,10 @@ class SceneFileParser {
       const bool spot = type == "spot";
       if (spot)
         unknownKeys(j, ptr, {"type", "position", "direction", "inner_cone_deg", "outer_cone_deg", "color", "intensity",
-                             "constant", "linear", "quadratic", "radius"});
+                             "constant", "linear", "quadratic", "radius", "shadows"});
       else
-        unknownKeys(j, ptr, {"type", "position", "color", "intensity", "constant", "linear", "quadratic", "radius"});
+        unknownKeys(j, ptr,
+                    {"type", "position", "color", "intensity", "constant", "linear", "quadratic", "radius", "shadows"});
       if (!j.contains("position")) fail(ptr, std::string("a ") + type + " light needs \"position\"");
       PointLight l;
       l.position = vec3(j["position"], ptr + "/position");
@@ -364,16 +387,18 @@ class SceneFileParser {
       l.quadratic = numberOr(j, "quadratic", ptr, 1.8f);
       l.radius = j.contains("radius") ? number(j["radius"], ptr + "/radius") : 0.0f;
       if (spot) spotCone(j, ptr, l);
+      l.castShadows = flag(j, "shadows", ptr);
       if (auto p = pointLightProblem(l)) failProblem(ptr, *p);
       if (!j.contains("radius")) l.radius = lightRadius(l);
       scene.pointLights.push_back(l);
     } else if (type == "directional") {
-      unknownKeys(j, ptr, {"type", "direction", "color", "intensity"});
+      unknownKeys(j, ptr, {"type", "direction", "color", "intensity", "shadows"});
       if (!j.contains("direction")) fail(ptr, "a directional light needs \"direction\"");
       DirectionalLight l;
       l.direction = vec3(j["direction"], ptr + "/direction");
       l.color = color;
       l.intensity = intensity;
+      l.castShadows = flag(j, "shadows", ptr).value_or(true);
       if (auto p = directionalLightProblem(l)) failProblem(ptr, *p);
       const glm::vec3 d = l.direction;
       l.direction = glm::normalize(d / std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}));
@@ -457,15 +482,8 @@ Scene loadSceneFile(const std::string& path) {
 Scene loadSceneAny(const std::string& spec) {
   if (spec == "learnopengl") return makeLearnOpenGLScene();
   if (spec == "thin") return makeThinScene();
-  if (spec == "learnopengl:overview") {
-    // The chapter's start camera (0, 0, 5) sees 5 of the 9 objects; this one
-    // stands back and above so the whole 3x3 grid and its lights are in view.
-    Scene s = makeLearnOpenGLScene();
-    s.source = "learnopengl:overview";
-    s.camera.position = {0.0f, 4.5f, 9.5f};
-    s.camera.target = {0.0f, -0.75f, 0.0f};
-    return s;
-  }
+  if (spec == "learnopengl:overview") return makeLearnOpenGLOverviewScene();
+  if (spec == "learnopengl:shadows") return makeLearnOpenGLShadowsScene();
   const std::string prefix = "many-lights:";
   if (spec.rfind(prefix, 0) == 0) {
     std::string_view rest(spec);
@@ -496,7 +514,7 @@ Scene loadSceneAny(const std::string& spec) {
     return s;
   }
   throw RuntimeError("unknown scene '" + spec +
-                     "': expected a scene file (.json), a glTF model (.gltf, .glb), 'learnopengl', 'learnopengl:overview', 'thin' or 'many-lights:N'");
+                     "': expected a scene file (.json), a glTF model (.gltf, .glb), 'learnopengl', 'learnopengl:overview', 'learnopengl:shadows', 'thin' or 'many-lights:N'");
 }
 
 }  // namespace rgraph

@@ -139,8 +139,8 @@ class GpuScene {
   }
 
   // Which primitives a draw takes. opaque includes alpha-mask materials;
-  // shadowCasters: the opaque and mask ones whose Primitive::castShadows is
-  // set (a blended surface casts no shadow in the shipped shading).
+  // shadowCasters: those Scene::castsShadows says cast (a primitive's
+  // castShadows, else every one but the blended ones).
   enum class Filter { opaque, blend, all, shadowCasters };
   struct DrawOptions {
     Filter filter = Filter::opaque;
