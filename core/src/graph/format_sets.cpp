@@ -1,0 +1,25 @@
+#include "rgraph/format_sets.h"
+
+namespace rgraph {
+
+const std::vector<Format>& depthFormats() {
+  static const std::vector<Format> formats = [] {
+    std::vector<Format> v;
+    for (Format f : allFormats())
+      if (isDepthFormat(f)) v.push_back(f);
+    return v;
+  }();
+  return formats;
+}
+
+const std::vector<Format>& hdrFormats() {
+  static const std::vector<Format> formats = {Format::rgba16f, Format::rgba32f, Format::r11g11b10f};
+  return formats;
+}
+
+const std::vector<Format>& velocityFormats() {
+  static const std::vector<Format> formats = {Format::rg16f, Format::rgba16f, Format::rgba32f};
+  return formats;
+}
+
+}  // namespace rgraph
