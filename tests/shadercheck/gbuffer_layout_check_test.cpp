@@ -97,7 +97,7 @@ TEST(GBufferLayoutCheck, ADefaultLayoutIsComparedToo) {
   EXPECT_EQ(layout->where.path, "/passes/1");
   EXPECT_NE(layout->message.find("layout 'pbr' is not the layout"), std::string::npos) << layout->message;
   // position is bound to n, which g wrote through 'normal': only same-named slots count, so 'normal' is named.
-  EXPECT_NE(layout->message.find("geometry pass 'g' writes 'n' ('normal') with layout 'compact' (" + p.str() + ":3:65)"),
+  EXPECT_NE(layout->message.find("geometry pass 'g' writes 'n' ('normal') with layout 'compact' (" + p.str() + ":3:68)"),
             std::string::npos)
       << layout->message;
 }
