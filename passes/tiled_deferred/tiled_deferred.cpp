@@ -128,7 +128,7 @@ class TiledDeferredPass final : public PassInstance {
 
  private:
   uint32_t program_ = 0;
-  int tile_ = 16;
+  int tile_ = 0;  // tile_size (setup)
   lighting::LightBins bins_;
   gl::Uniform pointLightCount_, ambientAndSun_, load_;
 };
