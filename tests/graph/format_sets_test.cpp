@@ -32,4 +32,11 @@ TEST(FormatSets, HdrAndVelocityFormatsAreRenderableFloatColourFormats) {
   }
 }
 
+TEST(FormatSets, FormatNameListJoinsWithCommasAndOr) {
+  EXPECT_EQ(formatNameList(depthFormats()), "depth24, depth32f, depth24_stencil8 or depth32f_stencil8");
+  EXPECT_EQ(formatNameList({Format::rgba8, Format::r8}), "rgba8 or r8");
+  EXPECT_EQ(formatNameList({Format::rg16f}), "rg16f");
+  EXPECT_EQ(formatNameList({}), "");
+}
+
 }  // namespace

@@ -3,6 +3,7 @@
 // data, no GL include, like rgraph/format.h.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "rgraph/format.h"
@@ -18,5 +19,9 @@ const std::vector<Format>& hdrFormats();
 // The formats a motion-vector (velocity) target may have: rg16f, rgba16f,
 // rgba32f (two float components at least, signed).
 const std::vector<Format>& velocityFormats();
+
+// "a, b or c": a set's format names for a message (so that a message that
+// lists a set does not restate it).
+std::string formatNameList(const std::vector<Format>& formats);
 
 }  // namespace rgraph

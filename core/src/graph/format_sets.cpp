@@ -22,4 +22,13 @@ const std::vector<Format>& velocityFormats() {
   return formats;
 }
 
+std::string formatNameList(const std::vector<Format>& formats) {
+  std::string out;
+  for (size_t i = 0; i < formats.size(); ++i) {
+    if (i > 0) out += i + 1 == formats.size() ? " or " : ", ";
+    out += formatName(formats[i]);
+  }
+  return out;
+}
+
 }  // namespace rgraph
