@@ -55,7 +55,7 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 // GL 4.5 device has); a tile with more tests every light in step 2.
 #define MAX_TILE_CANDIDATES 1024
 
-layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
+#include "include/lights.glsl"
 uniform int u_pointLightCount;
 
 // View-space point on the ray through NDC `ndc` at positive depth `d`

@@ -28,7 +28,7 @@
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "include/invocation.glsl"
 
-layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
+#include "include/lights.glsl"
 #include "include/cluster_shading.glsl"
 layout(TARGET_FORMAT, binding = 0) uniform image2D u_target;
 uniform int u_pointLightCount;

@@ -43,7 +43,7 @@ layout(local_size_x = 16, local_size_y = 16, local_size_z = 1) in;
 #include "include/invocation.glsl"
 #include "include/ordered_append.glsl"
 
-layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
+#include "include/lights.glsl"
 uniform int u_pointLightCount;
 
 const uint kGroup = 256u;

@@ -7,7 +7,7 @@
 #include "include/gbuffer_read.glsl"
 #include "include/lighting.glsl"
 
-layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
+#include "include/lights.glsl"
 uniform int u_pointLightCount;  // 0 when another pass lights the point lights
 uniform int u_ambientAndSun;    // 1: add ambient and the directional light
 uniform int u_hasAo;            // 1: u_ao (r, any size) scales the ambient term

@@ -11,7 +11,7 @@
 #include "include/lighting.glsl"
 #include "include/clusters.glsl"
 
-layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
+#include "include/lights.glsl"
 #include "include/cluster_shading.glsl"
 uniform int u_pointLightCount;
 uniform int u_clustered;  // 1: the cluster lists are on storage buffer 1

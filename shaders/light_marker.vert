@@ -3,7 +3,7 @@
 #include "include/frame.glsl"
 
 layout(location = 0) in vec3 a_position;
-layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
+#include "include/lights.glsl"
 uniform float u_markerSize;  // half extent
 flat out vec3 v_color;
 

@@ -7,7 +7,7 @@
 #include "include/gbuffer_read.glsl"
 #include "include/lighting.glsl"
 
-layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
+#include "include/lights.glsl"
 flat in int v_light;
 layout(location = 0) out vec4 outColor;
 

@@ -10,7 +10,7 @@
 #include "include/frame.glsl"
 
 layout(location = 0) in vec3 a_position;
-layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
+#include "include/lights.glsl"
 uniform float u_volumeScale;
 uniform int u_firstLight;
 uniform int u_spotVolumes;

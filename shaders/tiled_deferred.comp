@@ -115,7 +115,7 @@ uint cullKeptBefore(uint set, uint j) {
   return n;
 }
 
-layout(std430, binding = 0) readonly buffer Lights { PointLight lights[]; };
+#include "include/lights.glsl"
 layout(TARGET_FORMAT, binding = 0) uniform image2D u_target;
 uniform int u_pointLightCount;
 uniform int u_ambientAndSun;  // 1: add ambient and the directional light

@@ -3,6 +3,7 @@
 // stencil) with nearest filtering.
 #include <GL/glcorearb.h>
 
+#include "rgraph/format_sets.h"
 #include "rgraph/gl/format.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/registry.h"
@@ -25,7 +26,7 @@ class BlitPass final : public PassInstance {
       filter_ = GL_NEAREST;
     } else {
       mask_ = GL_COLOR_BUFFER_BIT;
-      filter_ = ctx.params().getString("filter", "linear") == "nearest" ? GL_NEAREST : GL_LINEAR;
+      filter_ = ctx.params().getString("filter") == "nearest" ? GL_NEAREST : GL_LINEAR;
     }
     // Same format: a raw copy. Otherwise sRGB images are decoded/encoded.
     rawCopy_ = sf == df;
@@ -88,14 +89,12 @@ PassTypeDesc makeBlitPass() {
 // draws with (LearnOpenGL's glBlitFramebuffer of GL_DEPTH_BUFFER_BIT). The
 // graph refuses a depth blit between different formats before GL would.
 PassTypeDesc makeDepthBlitPass() {
-  const std::vector<Format> depth = {Format::depth24, Format::depth32f, Format::depth24_stencil8,
-                                     Format::depth32f_stencil8};
   PassTypeDesc d = makeBlitPass();
   d.name = "depth_blit";
   d.description = "Copies a depth (and stencil) image into another of the same format";
-  d.slots[0].formats = depth;
+  d.slots[0].formats = depthFormats();
   d.slots[0].description = "source depth image (may be multisampled: resolved)";
-  d.slots[1].formats = depth;
+  d.slots[1].formats = depthFormats();
   d.slots[1].description = "destination depth image (same format as src)";
   d.params.clear();
   return d;

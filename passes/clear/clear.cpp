@@ -11,7 +11,7 @@ using namespace rgraph;
 class ClearPass final : public PassInstance {
  public:
   void execute(PassContext& ctx) override {
-    std::vector<double> c = ctx.params().getVector("color", {0, 0, 0, 1});
+    std::vector<double> c = ctx.params().getVector("color");
     float v[4] = {0, 0, 0, 1};
     for (size_t i = 0; i < 4 && i < c.size(); ++i) v[i] = static_cast<float>(c[i]);
     glClearNamedFramebufferfv(ctx.framebuffer(), GL_COLOR, 0, v);

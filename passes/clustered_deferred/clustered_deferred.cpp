@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <string>
 
+#include "rgraph/format_sets.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/uniform.h"
 #include "rgraph/pass_decl.h"
@@ -40,7 +41,7 @@ constexpr int kShadeGroup = 8;  // clustered_deferred.comp's local_size_x and _y
 constexpr uint32_t kFarFieldBinding = 3;  // include/cluster_far_field.glsl's buffer
 constexpr int kFarFieldRecord = 4 + 16 * 12;  // its CLUSTER_FAR_RECORD (uints per cluster)
 
-bool farField(const ParamSet& p) { return p.getBool("far_field", false); }
+bool farField(const ParamSet& p) { return p.getBool("far_field"); }
 
 // The light bins the pass's own list build culls (and its far field takes
 // the far lights from): one cluster tile, or as many as make 64 pixels, a
@@ -71,7 +72,7 @@ class ClusteredDeferredPass final : public PassInstance {
     // programs(): the build program, then one shading program per target
     // format in the order of hdrFormats() (the image format is a define).
     builder_ = clusters::Builder(ctx.program(0));
-    const auto& formats = lighting::hdrFormats();
+    const auto& formats = hdrFormats();
     shade_ = ctx.program(1 + (std::find(formats.begin(), formats.end(), ctx.format("color")) - formats.begin()));
     pointLightCount_ = gl::Uniform(shade_, "u_pointLightCount");
     ambientAndSun_ = gl::Uniform(shade_, "u_ambientAndSun");
@@ -99,7 +100,7 @@ class ClusteredDeferredPass final : public PassInstance {
   void execute(PassContext& ctx) override {
     GpuScene& scene = *ctx.gpuScene();
     const Extent size = ctx.extent("color");
-    const int lights = ctx.params().getBool("point_lights", true) ? static_cast<int>(scene.pointLightCount()) : 0;
+    const int lights = ctx.params().getBool("point_lights") ? static_cast<int>(scene.pointLightCount()) : 0;
     lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
     if (buffer_) {
       bins_.build(lights, size);  // what the list build (and the far field) culls
@@ -117,7 +118,7 @@ class ClusteredDeferredPass final : public PassInstance {
     }
     glUseProgram(shade_);
     pointLightCount_.set(lights);
-    ambientAndSun_.set(ctx.params().getBool("ambient_and_sun", true));
+    ambientAndSun_.set(ctx.params().getBool("ambient_and_sun"));
     load_.set(ctx.loads("color"));
     glBindImageTexture(0, ctx.texture("color"), 0, GL_FALSE, 0, GL_READ_WRITE,
                        lighting::hdrImageFormat(ctx.format("color")));
@@ -157,12 +158,12 @@ PassTypeDesc makeClusteredDeferredPass() {
   d.programs = [](const ParamSet& p) {
     std::vector<ShaderProgramSpec> v;
     v.push_back(clusters::depthBoundedBuildProgram(p, lighting::binDefines(binGrid(p))));
-    for (Format target : lighting::hdrFormats()) {  // setup() takes the one of the bound target's format
+    for (Format target : hdrFormats()) {  // setup() takes the one of the bound target's format
       ShaderProgramSpec s;
       s.comp = "clustered_deferred.comp";
       s.defines = shadingDefines(p);
       s.defines.push_back(std::string("TARGET_FORMAT=") + lighting::hdrImageQualifier(target));
-      if (p.getString("overflow", "shade_all") == "truncate") s.defines.push_back("CLUSTER_OVERFLOW_TRUNCATE");
+      if (p.getString("overflow") == "truncate") s.defines.push_back("CLUSTER_OVERFLOW_TRUNCATE");
       s.samplers = lighting::gbufferSamplers();
       s.drawsToAttachments = false;
       v.push_back(std::move(s));

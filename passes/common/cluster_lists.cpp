@@ -24,8 +24,8 @@ std::vector<ParamDecl> gridParams(int defaultTileSize) {
 }
 
 Grid grid(const ParamSet& p) {
-  return {static_cast<int>(p.getInt("tile_size", 32)), static_cast<int>(p.getInt("slices", 24)),
-          static_cast<int>(p.getInt("max_cluster_lights", 256))};
+  return {static_cast<int>(p.getInt("tile_size")), static_cast<int>(p.getInt("slices")),
+          static_cast<int>(p.getInt("max_cluster_lights"))};
 }
 
 uint64_t bufferBytes(const Grid& g, Extent size) {

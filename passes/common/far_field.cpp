@@ -14,8 +14,8 @@ ParamDecl farFieldParam() {
 }
 
 void addFarFieldDefine(const ParamSet& p, std::vector<std::string>& defines) {
-  if (!p.getBool("far_field", false)) return;
-  if (p.getString("attenuation", "classic") == "smooth")
+  if (!p.getBool("far_field")) return;
+  if (p.getString("attenuation") == "smooth")
     throw RuntimeError(
         "far_field adds the attenuation past each light's radius, and attenuation 'smooth' is zero there: use "
         "attenuation 'classic' or set far_field false");

@@ -65,7 +65,7 @@ const Layout& find(std::string_view name) {
   return name == kDefaultLayout ? table.front() : find(kDefaultLayout);
 }
 
-const Layout& of(const ParamSet& params) { return find(params.getString("layout", std::string(kDefaultLayout))); }
+const Layout& of(const ParamSet& params) { return find(params.getString("layout")); }
 
 std::vector<std::string> names() {
   std::vector<std::string> out;
@@ -89,6 +89,29 @@ std::vector<std::string> colorSlots() {
     for (const auto& t : l.targets)
       if (std::find(out.begin(), out.end(), t.slot) == out.end()) out.push_back(t.slot);
   return out;
+}
+
+PassRule sameLayoutAsWriterRule() {
+  PassRule rule;
+  rule.text = "\"layout\" is the layout of the pass that wrote the G-buffer it reads";
+  rule.check = [](const PassCheckContext& ctx, PassChecks& checks) {
+    const std::string mine = of(ctx.params()).name;
+    std::vector<std::string> slots = colorSlots(), reported;
+    slots.push_back("depth");
+    for (const auto& slot : slots) {
+      const std::optional<SlotWriter> w = ctx.writer(slot);
+      if (!w || w->slot != slot || !w->params->has("layout")) continue;
+      const std::string theirs = of(*w->params).name;
+      if (theirs == mine || std::find(reported.begin(), reported.end(), w->pass) != reported.end()) continue;
+      reported.push_back(w->pass);
+      const std::string at = locationText(w->paramWhere("layout"));
+      checks.paramError("layout", "layout '" + mine + "' is not the layout of the G-buffer it reads: " + w->type +
+                                      " pass '" + w->pass + "' writes '" + ctx.find(slot)->resource + "' ('" + slot +
+                                      "') with layout '" + theirs + "'" + (at.empty() ? "" : " (" + at + ")") +
+                                      "; give both passes the same \"layout\"");
+    }
+  };
+  return rule;
 }
 
 }  // namespace rgraph::gbuffer

@@ -3,16 +3,12 @@
 #include <GL/glcorearb.h>
 
 #include "rgraph/error.h"
+#include "rgraph/format_sets.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/passes/gbuffer_layout.h"
 #include "rgraph/scene.h"
 
 namespace rgraph::lighting {
-
-const std::vector<Format>& hdrFormats() {
-  static const std::vector<Format> formats = {Format::rgba16f, Format::rgba32f, Format::r11g11b10f};
-  return formats;
-}
 
 const char* hdrImageQualifier(Format f) {
   switch (f) {
@@ -56,22 +52,22 @@ std::vector<std::string> defines(const ParamSet& p) {
   // ("no cut-off") leaves the lights without one: the shader would light
   // nothing. Refused here, where validate (through the pass's programs) and
   // setup at render time both build the defines.
-  if (p.getString("attenuation", "classic") == "smooth" && p.has("threshold") && !(threshold(p) > 0.0f))
+  if (p.getString("attenuation") == "smooth" && p.has("threshold") && !(threshold(p) > 0.0f))
     throw RuntimeError(
         "attenuation 'smooth' falls to zero at each light's radius, and threshold 0 (no cut-off) gives the lights "
         "none: set threshold above 0 (5/256 = 0.01953125 is LearnOpenGL's) or use attenuation 'classic'");
-  return {p.getString("model", "blinn_phong") == "cook_torrance" ? "LIGHTING_COOK_TORRANCE" : "LIGHTING_BLINN_PHONG",
-          p.getString("attenuation", "classic") == "smooth" ? "ATTENUATION_SMOOTH" : "ATTENUATION_CLASSIC"};
+  return {p.getString("model") == "cook_torrance" ? "LIGHTING_COOK_TORRANCE" : "LIGHTING_BLINN_PHONG",
+          p.getString("attenuation") == "smooth" ? "ATTENUATION_SMOOTH" : "ATTENUATION_CLASSIC"};
 }
 
 std::string layoutDefine(const ParamSet& p) { return gbuffer::of(p).define; }
 
 std::vector<std::string> gbufferDefines(const ParamSet& p) {
   std::vector<std::string> d = {layoutDefine(p)};
-  if (p.getBool("constant_material", false)) {
+  if (p.getBool("constant_material")) {
     d.push_back("CONSTANT_MATERIAL");
-    d.push_back("CONSTANT_METALLIC=" + std::to_string(p.getNumber("metallic", 0.0)));
-    d.push_back("CONSTANT_ROUGHNESS=" + std::to_string(p.getNumber("roughness", 1.0)));
+    d.push_back("CONSTANT_METALLIC=" + std::to_string(p.getNumber("metallic")));
+    d.push_back("CONSTANT_ROUGHNESS=" + std::to_string(p.getNumber("roughness")));
   }
   return d;
 }
@@ -100,7 +96,7 @@ std::vector<ParamDecl> constantMaterialParams() {
 
 void adaptGBuffer(const SceneFeatures& f, PassAdaptation& a) {
   if (f.metallicRoughnessVariation || !gbuffer::of(a.params).writes("material") ||
-      a.params.getBool("constant_material", false))
+      a.params.getBool("constant_material"))
     return;
   a.params.set("constant_material", true);
   a.params.set("metallic", static_cast<double>(f.metallic));
@@ -112,13 +108,13 @@ void adaptGBuffer(const SceneFeatures& f, PassAdaptation& a) {
 
 void adaptPointLightShading(const SceneFeatures& f, PassAdaptation& a) {
   adaptGBuffer(f, a);
-  if (!f.pointLights && a.params.getBool("point_lights", true)) {
+  if (!f.pointLights && a.params.getBool("point_lights")) {
     a.params.set("point_lights", false);
     a.notes.push_back("no point lights: ambient and directional light only");
   }
 }
 
-float threshold(const ParamSet& p) { return static_cast<float>(p.getNumber("threshold", 5.0 / 256.0)); }
+float threshold(const ParamSet& p) { return static_cast<float>(p.getNumber("threshold")); }
 
 PassRule gbufferReaderRule() {
   PassRule rule;
@@ -132,7 +128,7 @@ PassRule gbufferReaderRule() {
   rule.text += "; no material with constant_material";
   rule.check = [](const PassCheckContext& ctx, PassChecks& checks) {
     const gbuffer::Layout& layout = gbuffer::of(ctx.params());
-    for (const auto& slot : layout.readerSlots(ctx.params().getBool("constant_material", false)))
+    for (const auto& slot : layout.readerSlots(ctx.params().getBool("constant_material")))
       if (!ctx.bound(slot))
         checks.slotError(slot, "input '" + slot + "' is required by layout '" + layout.name + "' but not bound");
   };
@@ -153,7 +149,7 @@ PassTypeDesc gbufferReader(std::string name, std::string description) {
   d.name = std::move(name);
   d.description = std::move(description);
   d.slots = gbufferSlots();
-  d.rules = {gbufferReaderRule()};
+  d.rules = {gbufferReaderRule(), gbuffer::sameLayoutAsWriterRule()};
   d.needsScene = true;
   d.adapt = adaptGBuffer;
   return d;
@@ -183,7 +179,7 @@ std::vector<SlotDecl> gbufferSlots() {
       slot("albedo", Access::sampled, true, SlotDecl::Load::never, "G-buffer albedo + specular"),
       slot("material", Access::sampled, false, SlotDecl::Load::never, "G-buffer metallic/roughness (pbr, compact, fp32)"),
       slot("depth", Access::sampled, false, SlotDecl::Load::never, "G-buffer depth (compact: rebuilds position)",
-           {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}),
+           depthFormats()),
   };
 }
 

@@ -1,5 +1,6 @@
 #include "rgraph/passes/velocity.h"
 
+#include "rgraph/format_sets.h"
 #include "rgraph/pass_decl.h"
 
 namespace rgraph::velocity {
@@ -8,7 +9,7 @@ SlotDecl slot() {
   return decl::slot("velocity", Access::color_attachment, false, SlotDecl::Load::never,
                     "motion vectors in UV units, uv_now - uv_prev, unjittered (0 where nothing was drawn); "
                     "needs the velocity parameter",
-                    {Format::rg16f, Format::rgba16f, Format::rgba32f});
+                    velocityFormats());
 }
 
 ParamDecl param() {
@@ -16,7 +17,7 @@ ParamDecl param() {
                      "write motion vectors to the 'velocity' output (bind it too)");
 }
 
-bool enabled(const ParamSet& params) { return params.getBool("velocity", false); }
+bool enabled(const ParamSet& params) { return params.getBool("velocity"); }
 
 void addDefine(const ParamSet& params, std::vector<std::string>& defines) {
   if (enabled(params)) defines.push_back("HAS_VELOCITY");

@@ -4,6 +4,7 @@
 #include <GL/glcorearb.h>
 
 #include "rgraph/error.h"
+#include "rgraph/format_sets.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/pass_decl.h"
@@ -17,7 +18,7 @@ using namespace rgraph;
 class DeferredLightingPass final : public gl::FullscreenPass {
   void update(PassContext& ctx) override {
     GpuScene& scene = *ctx.gpuScene();
-    const bool points = ctx.params().getBool("point_lights", true);
+    const bool points = ctx.params().getBool("point_lights");
     pointLightCount_.set(points ? static_cast<int>(scene.pointLightCount()) : 0);
     ambientAndSun_.set(1);
     // Optional ambient occlusion (e.g. the ssao plugin's output) scales the ambient term.
@@ -35,7 +36,7 @@ PassTypeDesc makeDeferredLightingPass() {
       "deferred_lighting", "Fullscreen deferred lighting: ambient, directional and point lights from the G-buffer");
   d.slots.push_back(slot("color", Access::color_attachment, true, SlotDecl::Load::optional,
                          "HDR lighting target; background pixels keep its clear value",
-                         lighting::hdrFormats()));
+                         hdrFormats()));
   d.slots.push_back(slot("ao", Access::sampled, false, SlotDecl::Load::never,
                          "ambient occlusion (r channel, any size) that scales the ambient term, e.g. from ssao",
                          {Format::r8, Format::r16f, Format::r32f, Format::rg8, Format::rg16f}));
@@ -50,7 +51,7 @@ PassTypeDesc makeDeferredLightingPass() {
   d.programs = [](const ParamSet& p) {
     ShaderProgramSpec s = gl::fullscreenProgram("deferred_lighting.frag", lighting::gbufferSamplers(),
                                                 lighting::shadingDefines(p));
-    if (p.getBool("radius_test", false)) s.defines.push_back("LIGHT_RADIUS_BRANCH");
+    if (p.getBool("radius_test")) s.defines.push_back("LIGHT_RADIUS_BRANCH");
     s.samplers.push_back({"ao", "u_ao", 5, /*optional=*/true});  // u_hasAo says whether it is bound
     return std::vector<ShaderProgramSpec>{std::move(s)};
   };

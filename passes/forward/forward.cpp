@@ -6,6 +6,7 @@
 #include <GL/glcorearb.h>
 
 #include "rgraph/error.h"
+#include "rgraph/format_sets.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/pass_decl.h"
@@ -22,8 +23,8 @@ using namespace rgraph;
 class ForwardPass final : public PassInstance {
  public:
   void setup(PassContext& ctx) override {
-    markers_ = ctx.params().getBool("markers", true);
-    blend_ = ctx.params().getBool("blend", true);
+    markers_ = ctx.params().getBool("markers");
+    blend_ = ctx.params().getBool("blend");
     // Programs in the order of the type's programs(): the markers' first when drawn.
     if (markers_) {
       markerProgram_ = ctx.program(0);
@@ -38,7 +39,7 @@ class ForwardPass final : public PassInstance {
     if (markers_ && scene.pointLightCount() > 0) {
       lighting::bindPointLights(scene, lighting::threshold(ctx.params()));  // (the executor bound the Frame block)
       gl::useProgram(ctx, markerProgram_);
-      markerSize_.set(static_cast<float>(ctx.params().getNumber("marker_size", 0.125)));
+      markerSize_.set(static_cast<float>(ctx.params().getNumber("marker_size")));
       glEnable(GL_DEPTH_TEST);  // function GL_LESS and writes on, as every pass starts (rgraph/pass.h)
       glEnable(GL_CULL_FACE);
       glCullFace(GL_BACK);
@@ -65,10 +66,10 @@ PassTypeDesc makeForwardPass() {
   d.description = "Forward-rendered light markers and BLEND materials over the deferred image, depth-tested";
   d.slots = {
       slot("color", Access::color_attachment, true, SlotDecl::Load::required, "HDR lighting target to draw over",
-           lighting::hdrFormats()),
+           hdrFormats()),
       slot("depth", Access::depth_attachment, true, SlotDecl::Load::required,
            "the scene depth (a blit of the G-buffer depth); markers write it, blended surfaces only test it",
-           {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}),
+           depthFormats()),
       clusters::readerSlot("light lists a cluster_lights pass built: blended surfaces shade their cluster's lights "
                            "only (forward+); unbound: every light"),
   };
@@ -78,24 +79,24 @@ PassTypeDesc makeForwardPass() {
   d.params.push_back(decl::ranged("marker_size", ParamType::number, 0.125, 0.0, 100.0, "half extent of a light marker"));
   d.params.push_back(param("blend", ParamType::boolean, true, "draw BLEND materials, lit forward, back to front"));
   d.adapt = [](const SceneFeatures& f, PassAdaptation& a) {
-    if (!f.pointLights && a.params.getBool("markers", true)) {
+    if (!f.pointLights && a.params.getBool("markers")) {
       a.params.set("markers", false);
       a.notes.push_back("no point lights: no light markers");
     }
-    if (!f.blendMaterials && a.params.getBool("blend", true)) {
+    if (!f.blendMaterials && a.params.getBool("blend")) {
       a.params.set("blend", false);
       a.notes.push_back("no BLEND materials: no forward blend");
       a.unbindSlots.push_back(clusters::kSlot);  // markers need no lists: their builder may be culled
     }
-    if (!a.params.getBool("markers", true) && !a.params.getBool("blend", true)) {
+    if (!a.params.getBool("markers") && !a.params.getBool("blend")) {
       a.disable = true;
       a.notes.push_back("nothing left to draw forward: pass disabled");
     }
   };
   d.programs = [](const ParamSet& p) {
     std::vector<ShaderProgramSpec> v;
-    if (p.getBool("markers", true)) v.push_back(programSpec("light_marker.vert", "light_marker.frag"));
-    if (p.getBool("blend", true))
+    if (p.getBool("markers")) v.push_back(programSpec("light_marker.vert", "light_marker.frag"));
+    if (p.getBool("blend"))
       for (auto& s : forward::programs(p, /*blendsSourceAlpha=*/true)) v.push_back(std::move(s));
     return v;
   };

@@ -6,6 +6,7 @@
 #include <GL/glcorearb.h>
 
 #include "rgraph/error.h"
+#include "rgraph/format_sets.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/passes/cluster_lists.h"
@@ -33,7 +34,7 @@ class ForwardLitPass final : public PassInstance {
       glClearNamedFramebufferfv(ctx.framebuffer(), GL_COLOR, 1, zero);
     }
     surfaces_.draw(ctx, /*blended=*/false);
-    if (ctx.params().getBool("blend", true)) surfaces_.draw(ctx, /*blended=*/true);
+    if (ctx.params().getBool("blend")) surfaces_.draw(ctx, /*blended=*/true);
   }
 
  private:
@@ -47,9 +48,9 @@ PassTypeDesc makeForwardLitPass() {
   d.description = "Classic forward renderer: every light per fragment (the reference and the baseline)";
   d.slots = {
       slot("color", Access::color_attachment, true, SlotDecl::Load::optional,
-           "HDR target; background keeps its clear value", lighting::hdrFormats()),
+           "HDR target; background keeps its clear value", hdrFormats()),
       slot("depth", Access::depth_attachment, true, SlotDecl::Load::never, "depth buffer (cleared here)",
-           {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}),
+           depthFormats()),
       velocity::slot(),
       clusters::readerSlot("light lists a cluster_lights pass built: each fragment shades its cluster's lights only "
                            "(forward+); unbound: every light"),
@@ -60,12 +61,12 @@ PassTypeDesc makeForwardLitPass() {
   d.rules = {velocity::rule()};
   d.check = clusters::checkReaderSlot;
   d.adapt = [](const SceneFeatures& f, PassAdaptation& a) {
-    if (!f.blendMaterials && a.params.getBool("blend", true)) {
+    if (!f.blendMaterials && a.params.getBool("blend")) {
       a.params.set("blend", false);
       a.notes.push_back("no BLEND materials: opaque surfaces only");
     }
   };
-  d.programs = [](const ParamSet& p) { return forward::programs(p, p.getBool("blend", true)); };
+  d.programs = [](const ParamSet& p) { return forward::programs(p, p.getBool("blend")); };
   d.needsScene = true;
   d.create = [] { return std::make_unique<ForwardLitPass>(); };
   return d;

@@ -31,14 +31,14 @@ class FullscreenShaderPass final : public gl::FullscreenPass {
   // Parameters read once; update() only sets uniforms and state (the
   // program may be shared with other fullscreen passes).
   void prepare(PassContext& ctx) override {
-    std::string df = ctx.params().getString("depth_func", "always");
+    std::string df = ctx.params().getString("depth_func");
     depthFunc_ = GL_ALWAYS;
     for (const auto& f : kDepthFuncs)
       if (df == f.name) depthFunc_ = f.func;
     if (!ctx.bound("depth")) depthFunc_ = 0;
-    std::string blend = ctx.params().getString("blend", "none");
+    std::string blend = ctx.params().getString("blend");
     blend_ = blend == "alpha" ? 1 : blend == "additive" ? 2 : 0;
-    std::vector<double> c = ctx.params().getVector("color", {1, 1, 1, 1});
+    std::vector<double> c = ctx.params().getVector("color");
     c.resize(4, 1.0);
     for (size_t i = 0; i < 4; ++i) colorValue_[i] = static_cast<float>(c[i]);
     valueNumber_ = static_cast<float>(ctx.params().getNumber("value"));
@@ -105,7 +105,7 @@ PassTypeDesc makeFullscreenPass() {
     ShaderProgramSpec s = gl::fullscreenProgram(p.getString("shader"));
     if (s.frag.empty()) throw RuntimeError("parameter 'shader' is empty: name a fragment shader");
     for (size_t i = 0; i < kInputs.size(); ++i) s.samplers.push_back({kInputs[i], kInputs[i], static_cast<int>(i)});
-    s.blendsSourceAlpha = p.getString("blend", "none") == "alpha";
+    s.blendsSourceAlpha = p.getString("blend") == "alpha";
     return std::vector<ShaderProgramSpec>{std::move(s)};
   };
   d.create = [] { return std::make_unique<FullscreenShaderPass>(); };

@@ -18,7 +18,7 @@ const std::vector<std::string> kViews = {"position", "normal_abs", "normal", "al
 
 class GBufferViewPass final : public gl::FullscreenPass {
   void update(PassContext& ctx) override {
-    const std::string view = ctx.params().getString("view", "albedo");
+    const std::string view = ctx.params().getString("view");
     int mode = 3;
     for (size_t i = 0; i < kViews.size(); ++i)
       if (kViews[i] == view) mode = static_cast<int>(i);

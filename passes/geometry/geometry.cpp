@@ -4,6 +4,7 @@
 #include <GL/glcorearb.h>
 
 #include "rgraph/error.h"
+#include "rgraph/format_sets.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/pass_decl.h"
@@ -71,7 +72,7 @@ PassRule targetsRule() {
                                    slot + "' target; " + (wanted ? "bind it in outputs" : "remove it from outputs"));
     };
     require("position", layout.writes("position"));
-    require("material", layout.writes("material") && !ctx.params().getBool("constant_material", false));
+    require("material", layout.writes("material") && !ctx.params().getBool("constant_material"));
   };
   return rule;
 }
@@ -107,7 +108,7 @@ PassTypeDesc makeGeometryPass() {
       slot("material", Access::color_attachment, false, SlotDecl::Load::never,
            "metallic, roughness (, ao) (pbr, compact, fp32 layouts)", color),
       slot("depth", Access::depth_attachment, true, SlotDecl::Load::never, "scene depth",
-           {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}),
+           depthFormats()),
       velocity::slot(),  // last, so the layouts' colour targets keep their attachment indices
   };
   for (auto& s : d.slots) s.gbufferTarget = true;  // what `rgraph plan --scene` counts as G-buffer bytes

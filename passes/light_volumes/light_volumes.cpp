@@ -7,6 +7,7 @@
 #include <GL/glcorearb.h>
 
 #include "rgraph/error.h"
+#include "rgraph/format_sets.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/pass_decl.h"
@@ -33,7 +34,7 @@ class LightVolumesPass final : public PassInstance {
     gl::useProgram(ctx, program_);
     lighting::bindPointLights(scene, lighting::threshold(ctx.params()));  // (the executor bound the Frame block)
 
-    const std::string cull = ctx.params().getString("cull", "front");
+    const std::string cull = ctx.params().getString("cull");
     glEnable(GL_CULL_FACE);
     glCullFace(cull == "back" ? GL_BACK : GL_FRONT);
     if (ctx.bound("depth_test")) {
@@ -83,9 +84,9 @@ PassTypeDesc makeLightVolumesPass() {
       "light_volumes", "Point lights as instanced spheres scaled to their radius, spot lights as cones, added into the lighting target");
   d.slots.push_back(slot("depth_test", Access::depth_attachment_read, false, SlotDecl::Load::never,
                          "scene depth to test volumes against (read-only; a copy when the layout samples depth)",
-                         {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}));
+                         depthFormats()));
   d.slots.push_back(slot("color", Access::color_attachment, true, SlotDecl::Load::required,
-                         "HDR lighting target the lights are added to", lighting::hdrFormats()));
+                         "HDR lighting target the lights are added to", hdrFormats()));
   d.params = lighting::params(5.0 / 256.0, /*allowNoCutoff=*/false);
   d.params.push_back(lighting::layoutParam());
   d.params.push_back(param("cull", ParamType::enumeration, std::string("front"),

@@ -15,7 +15,7 @@ class PresentPass final : public gl::FullscreenPass {
   void update(PassContext& ctx) override {
     const Extent e = ctx.framebufferExtent();
     sameSize_.set(ctx.extent("src") == e);
-    gamma_.set(ctx.params().getBool("gamma", false) && !gl::isSrgb(ctx.format("dst")));
+    gamma_.set(ctx.params().getBool("gamma") && !gl::isSrgb(ctx.format("dst")));
     resolution_.set(static_cast<float>(e.width), static_cast<float>(e.height));
   }
   ProgramUniform sameSize_{this, "u_same_size"}, gamma_{this, "u_gamma"}, resolution_{this, "u_resolution"};

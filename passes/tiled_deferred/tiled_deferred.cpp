@@ -16,6 +16,7 @@
 #include <string>
 
 #include "rgraph/error.h"
+#include "rgraph/format_sets.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/uniform.h"
 #include "rgraph/pass_decl.h"
@@ -48,9 +49,9 @@ int64_t tileSharedBytes(int64_t lights, int64_t tile, bool farField) {
 }
 
 int maxTileLights(const ParamSet& p) {
-  const int64_t tile = p.getInt("tile_size", 16);
-  const bool farField = p.getBool("far_field", false);
-  int64_t n = std::clamp<int64_t>(p.getInt("max_tile_lights", 1024), 1, 65536);
+  const int64_t tile = p.getInt("tile_size");
+  const bool farField = p.getBool("far_field");
+  int64_t n = std::clamp<int64_t>(p.getInt("max_tile_lights"), 1, 65536);
   // The largest count that fits: the bytes grow by at least 4 a light.
   if (tileSharedBytes(n, tile, farField) > 32768) n = (32768 - tileSharedBytes(0, tile, farField)) / 4;
   while (n > 1 && tileSharedBytes(n, tile, farField) > 32768) --n;
@@ -60,8 +61,8 @@ int maxTileLights(const ParamSet& p) {
 // The bins: at least 64 pixels a side, so that the bin buffer stays small
 // (about 2.4 KiB per 64x64 pixels), on storage-buffer binding 1.
 lighting::BinGrid binGrid(const ParamSet& p) {
-  const int tile = static_cast<int>(p.getInt("tile_size", 16));
-  return {tile, std::max(2, 64 / tile), p.getBool("far_field", false), 1};
+  const int tile = static_cast<int>(p.getInt("tile_size"));
+  return {tile, std::max(2, 64 / tile), p.getBool("far_field"), 1};
 }
 
 // What both programs share: lighting, G-buffer, tile and far-field defines
@@ -69,7 +70,7 @@ lighting::BinGrid binGrid(const ParamSet& p) {
 // lighting::binProgram).
 std::vector<std::string> commonDefines(const ParamSet& p) {
   std::vector<std::string> defines = lighting::shadingDefines(p);
-  defines.push_back("TILE_SIZE=" + std::to_string(p.getInt("tile_size", 16)));
+  defines.push_back("TILE_SIZE=" + std::to_string(p.getInt("tile_size")));
   lighting::addFarFieldDefine(p, defines);
   invocations::addPermuteDefine(p, defines);
   return defines;
@@ -86,7 +87,7 @@ std::vector<std::string> programDefines(const ParamSet& p, Format target) {
 class TiledDeferredPass final : public PassInstance {
  public:
   void setup(PassContext& ctx) override {
-    tile_ = static_cast<int>(ctx.params().getInt("tile_size", 16));
+    tile_ = static_cast<int>(ctx.params().getInt("tile_size"));
     GLint invocations = 0, groupX = 0, groupY = 0;
     glGetIntegerv(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS, &invocations);
     glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 0, &groupX);
@@ -97,7 +98,7 @@ class TiledDeferredPass final : public PassInstance {
                          std::to_string(invocations));
     // programs(): the bin program, then one lighting program per target
     // format (the image format qualifier is a define), in the order of hdrFormats().
-    const auto& formats = lighting::hdrFormats();
+    const auto& formats = hdrFormats();
     program_ = ctx.program(1 + (std::find(formats.begin(), formats.end(), ctx.format("color")) - formats.begin()));
     bins_.setup(ctx.program(0), binGrid(ctx.params()), ctx.extent("color"));
     pointLightCount_ = gl::Uniform(program_, "u_pointLightCount");
@@ -108,13 +109,13 @@ class TiledDeferredPass final : public PassInstance {
   void execute(PassContext& ctx) override {
     GpuScene& scene = *ctx.gpuScene();
     const Extent size = ctx.extent("color");
-    const bool points = ctx.params().getBool("point_lights", true);
+    const bool points = ctx.params().getBool("point_lights");
     const int lights = points ? static_cast<int>(scene.pointLightCount()) : 0;
     lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
     bins_.build(lights, size);
     glUseProgram(program_);
     pointLightCount_.set(lights);
-    ambientAndSun_.set(ctx.params().getBool("ambient_and_sun", true));
+    ambientAndSun_.set(ctx.params().getBool("ambient_and_sun"));
     load_.set(ctx.loads("color"));
     glBindImageTexture(0, ctx.texture("color"), 0, GL_FALSE, 0, GL_READ_WRITE,
                        lighting::hdrImageFormat(ctx.format("color")));
@@ -127,7 +128,7 @@ class TiledDeferredPass final : public PassInstance {
 
  private:
   uint32_t program_ = 0;
-  int tile_ = 16;
+  int tile_ = 0;  // tile_size (setup)
   lighting::LightBins bins_;
   gl::Uniform pointLightCount_, ambientAndSun_, load_;
 };
@@ -148,7 +149,7 @@ PassTypeDesc makeTiledDeferredPass() {
   d.programs = [](const ParamSet& p) {
     std::vector<ShaderProgramSpec> v;
     v.push_back(lighting::binProgram(commonDefines(p), binGrid(p)));
-    for (Format target : lighting::hdrFormats()) {  // setup() takes the one of the bound target's format
+    for (Format target : hdrFormats()) {  // setup() takes the one of the bound target's format
       ShaderProgramSpec s;
       s.comp = "tiled_deferred.comp";
       s.defines = programDefines(p, target);

@@ -3,6 +3,7 @@
 #include <GL/glcorearb.h>
 
 #include "rgraph/error.h"
+#include "rgraph/format_sets.h"
 #include "rgraph/gl/format.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/pass_decl.h"
@@ -17,11 +18,11 @@ class TonemapPass final : public gl::FullscreenPass {
   // GL_FRAMEBUFFER_SRGB on, so an srgb8_alpha8 output encodes on write.)
   void update(PassContext& ctx) override {
     const ParamSet& p = ctx.params();
-    const std::string op = p.getString("operator", "aces");
-    exposure_.set(static_cast<float>(p.getNumber("exposure", 1.0)));
+    const std::string op = p.getString("operator");
+    exposure_.set(static_cast<float>(p.getNumber("exposure")));
     operator_.set(op == "reinhard" ? 0 : op == "aces" ? 1 : 2);
     encodeSrgb_.set(!gl::isSrgb(ctx.format("output")));  // a linear rgba8 target gets the curve here
-    gamma_.set(static_cast<float>(p.getNumber("gamma", 0.0)));
+    gamma_.set(static_cast<float>(p.getNumber("gamma")));
   }
   uint32_t changedState() const override { return 0; }  // uniforms only
   ProgramUniform exposure_{this, "u_exposure"}, operator_{this, "u_operator"};
@@ -34,7 +35,7 @@ PassTypeDesc makeTonemapPass() {
   d.name = "tonemap";
   d.description = "HDR to the display: exposure, Reinhard or ACES, sRGB transfer";
   d.slots = {
-      slot("hdr", Access::sampled, true, SlotDecl::Load::never, "the HDR image", lighting::hdrFormats()),
+      slot("hdr", Access::sampled, true, SlotDecl::Load::never, "the HDR image", hdrFormats()),
       slot("output", Access::color_attachment, true, SlotDecl::Load::never,
            "the display image (srgb8_alpha8 encodes on write; rgba8 gets the curve in the shader)",
            {Format::rgba8, Format::srgb8_alpha8}),

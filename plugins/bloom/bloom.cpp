@@ -20,6 +20,7 @@
 
 #include "bloom_chain.h"
 #include "rgraph/error.h"
+#include "rgraph/format_sets.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/plugin.h"
@@ -27,16 +28,14 @@
 namespace {
 using namespace rgraph;
 
-const std::vector<Format> kHdrFormats = {Format::rgba16f, Format::rgba32f, Format::r11g11b10f};
-
 // ------------------------------------------------------------ bloom_bright
 
 class BrightPass final : public gl::FullscreenPass {
   void update(PassContext& ctx) override {
     const ParamSet& p = ctx.params();
-    threshold_.set(static_cast<float>(p.getNumber("threshold", 1.0)));
-    knee_.set(static_cast<float>(p.getNumber("knee", 0.5)));
-    clamp_.set(static_cast<float>(p.getNumber("clamp", 64.0)));
+    threshold_.set(static_cast<float>(p.getNumber("threshold")));
+    knee_.set(static_cast<float>(p.getNumber("knee")));
+    clamp_.set(static_cast<float>(p.getNumber("clamp")));
   }
   ProgramUniform threshold_{this, "u_threshold"}, knee_{this, "u_knee"}, clamp_{this, "u_clamp"};
 };
@@ -47,8 +46,8 @@ class GaussianBlur final : public gl::FullscreenPass {
   // Draws into its two targets in turn, through the executor's framebuffers of each.
   void execute(PassContext& ctx) override {
     const ParamSet& p = ctx.params();
-    const int iterations = static_cast<int>(p.getInt("iterations", 5));
-    const float radius = static_cast<float>(p.getNumber("radius", 1.0));
+    const int iterations = static_cast<int>(p.getInt("iterations"));
+    const float radius = static_cast<float>(p.getNumber("radius"));
     const Extent size = ctx.extent("dst");
     gl::useProgram(ctx, program());
     targetTexel_.set(1.0f / static_cast<float>(size.width), 1.0f / static_cast<float>(size.height));
@@ -78,7 +77,7 @@ class GaussianBlur final : public gl::FullscreenPass {
 class BlurPass final : public PassInstance {
   void setup(PassContext& ctx) override {
     if (!impl_)
-      impl_ = ctx.params().getString("method", "gaussian") == "mip_chain" ? bloom::createChainBlur()
+      impl_ = ctx.params().getString("method") == "mip_chain" ? bloom::createChainBlur()
                                                                            : std::make_unique<GaussianBlur>();
     impl_->setup(ctx);
   }
@@ -97,14 +96,14 @@ class CompositePass final : public gl::FullscreenPass {
       glBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);  // add rgb, keep alpha
     }
     hasHdr_.set(hasHdr);
-    intensity_.set(static_cast<float>(ctx.params().getNumber("intensity", 1.0)));
+    intensity_.set(static_cast<float>(ctx.params().getNumber("intensity")));
   }
   ProgramUniform hasHdr_{this, "u_hasHdr"}, intensity_{this, "u_intensity"};
 };
 
 // ------------------------------------------------------------ registration
 
-bool chainMethod(const ParamSet& p) { return p.getString("method", "gaussian") == "mip_chain"; }
+bool chainMethod(const ParamSet& p) { return p.getString("method") == "mip_chain"; }
 
 // mip_chain: temp's level k holds the chain's level k, half the source's
 // size k times, so temp has the source's size (that dst and temp have one
@@ -114,7 +113,7 @@ void checkBlur(const PassCheckContext& ctx, PassChecks& checks) {
   if (!chainMethod(ctx.params())) return;
   const Extent src = ctx.extent("src"), temp = ctx.extent("temp");
   if (src.width == 0 || temp.width == 0) return;  // unresolved: reported elsewhere
-  const int levels = int(ctx.params().getInt("levels", 6));
+  const int levels = int(ctx.params().getInt("levels"));
   if (temp != src)
     checks.slotError("temp", "method 'mip_chain' draws its " + std::to_string(levels) +
                      " levels into temp's mip levels 1.." + std::to_string(levels) + ", halving the source's size: " +
@@ -161,9 +160,9 @@ void registerBloom(PluginHost& host) {
     d.name = "bloom_bright";
     d.description = "Bloom 1/3: the bright part of an HDR image (soft threshold), at the bright target's size";
     d.slots = {
-        slot("hdr", Access::sampled, true, SlotDecl::Load::never, "HDR image", kHdrFormats),
+        slot("hdr", Access::sampled, true, SlotDecl::Load::never, "HDR image", hdrFormats()),
         slot("bright", Access::color_attachment, true, SlotDecl::Load::never,
-             "its bright part (any size: a smaller target is a 2x2 box downsample at half size)", kHdrFormats),
+             "its bright part (any size: a smaller target is a 2x2 box downsample at half size)", hdrFormats()),
     };
     d.params = {
         ranged("threshold", ParamType::number, 1.0, 0.0, 1000.0, "brightness (max channel) where bloom starts"),
@@ -181,12 +180,13 @@ void registerBloom(PluginHost& host) {
                     "(Jimenez 2014) in the mip levels of 'temp'";
     d.slots = {
         slot("src", Access::sampled, true, SlotDecl::Load::never, "image to blur (e.g. bloom_bright's output)",
-             kHdrFormats),
-        slot("dst", Access::color_attachment, true, SlotDecl::Load::never, "the blurred image (temp's size)", kHdrFormats),
+             hdrFormats()),
+        slot("dst", Access::color_attachment, true, SlotDecl::Load::never, "the blurred image (temp's size)",
+             hdrFormats()),
         slot("temp", Access::color_attachment, true, SlotDecl::Load::never,
              "scratch: gaussian, dst's twin (the other half of the ping-pong); mip_chain, the chain's levels in its "
              "mip levels 1..levels (the source's size, \"mips\": levels + 1)",
-             kHdrFormats),
+             hdrFormats()),
     };
     d.params = {
         param("method", ParamType::enumeration, std::string("gaussian"),
@@ -216,13 +216,13 @@ void registerBloom(PluginHost& host) {
     d.description = "Bloom 3/3: HDR + intensity * bloom into a new HDR image (or added into a loaded 'color')";
     d.slots = {
         slot("hdr", Access::sampled, false, SlotDecl::Load::never,
-             "HDR image (same size as 'color'); leave unbound to add into a loaded 'color' instead", kHdrFormats),
+             "HDR image (same size as 'color'); leave unbound to add into a loaded 'color' instead", hdrFormats()),
         // Scaled up to the HDR image's size: bilinear.
         sampledWith(slot("bloom", Access::sampled, true, SlotDecl::Load::never, "blurred bright image (any size)",
-                         kHdrFormats),
+                         hdrFormats()),
                     bilinearClamped()),
         slot("color", Access::color_attachment, true, SlotDecl::Load::optional, "the HDR image with bloom",
-             kHdrFormats),
+             hdrFormats()),
     };
     d.params = {ranged("intensity", ParamType::number, 1.0, 0.0, 100.0, "bloom strength")};
     d.programs = gl::fullscreenPrograms(frag, {{"hdr", "u_hdr", 0, /*optional=*/true}, {"bloom", "u_bloom", 1}});

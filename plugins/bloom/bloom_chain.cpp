@@ -35,7 +35,7 @@ struct SizeUniforms {
   }
 };
 
-int chainLevels(const ParamSet& p) { return int(std::clamp<int64_t>(p.getInt("levels", 6), 1, kMaxLevels)); }
+int chainLevels(const ParamSet& p) { return int(std::clamp<int64_t>(p.getInt("levels"), 1, kMaxLevels)); }
 
 class ChainBlur final : public PassInstance {
  public:
@@ -69,7 +69,7 @@ class ChainBlur final : public PassInstance {
       const PassFramebuffer fb = gl::bindPassFramebuffer(ctx, {{"temp", uint32_t(k)}});
       glBindTextureUnit(0, first ? ctx.texture("src") : ctx.texture("temp", level(k - 1)));
       downSizes_.set(first ? ctx.extent("src") : levelExtent(temp, k - 1), fb.extent);
-      karis_.set(first && p.getBool("karis", true));
+      karis_.set(first && p.getBool("karis"));
       triangle_->draw(ctx);
     }
 
@@ -77,7 +77,7 @@ class ChainBlur final : public PassInstance {
     // own downsample; the last draw writes level 1's tent, times 1 / levels,
     // into dst.
     gl::useProgram(ctx, up_);
-    radius_.set(float(p.getNumber("radius", 1.0)));
+    radius_.set(float(p.getNumber("radius")));
     scale_.set(1.0f);
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);

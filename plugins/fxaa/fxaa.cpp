@@ -19,9 +19,9 @@ const std::vector<Format> kLdrFormats = {Format::rgba8, Format::srgb8_alpha8};
 class FxaaPass final : public gl::FullscreenPass {
   void update(PassContext& ctx) override {
     const ParamSet& p = ctx.params();
-    contrast_.set(static_cast<float>(p.getNumber("contrast_threshold", 0.0312)));
-    relative_.set(static_cast<float>(p.getNumber("relative_threshold", 0.125)));
-    subpixel_.set(static_cast<float>(p.getNumber("subpixel", 0.75)));
+    contrast_.set(static_cast<float>(p.getNumber("contrast_threshold")));
+    relative_.set(static_cast<float>(p.getNumber("relative_threshold")));
+    subpixel_.set(static_cast<float>(p.getNumber("subpixel")));
     linearInput_.set(gl::isSrgb(ctx.format("input")));
   }
   ProgramUniform contrast_{this, "u_contrastThreshold"}, relative_{this, "u_relativeThreshold"};

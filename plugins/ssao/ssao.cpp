@@ -19,6 +19,7 @@
 #include <random>
 
 #include "rgraph/error.h"
+#include "rgraph/format_sets.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/objects.h"
@@ -76,7 +77,7 @@ std::vector<std::string> ssaoDefines(const ParamSet& p) { return {lighting::layo
 class SsaoPass final : public gl::FullscreenPass {
   void prepare(PassContext& ctx) override {
     noise_ = noiseTexture();
-    const int n = static_cast<int>(std::clamp<int64_t>(ctx.params().getInt("kernel_size", 32), 1, kMaxKernel));
+    const int n = static_cast<int>(std::clamp<int64_t>(ctx.params().getInt("kernel_size"), 1, kMaxKernel));
     kernel_ = hemisphereKernel(n);
     gbufferSize_ = ctx.extent("normal");
   }
@@ -86,9 +87,9 @@ class SsaoPass final : public gl::FullscreenPass {
     const int n = static_cast<int>(kernel_.size() / 3);
     kernelU_.setVec3Array(kernel_.data(), n);
     kernelSize_.set(n);
-    radius_.set(static_cast<float>(p.getNumber("radius", 0.5)));
-    bias_.set(static_cast<float>(p.getNumber("bias", 0.025)));
-    power_.set(static_cast<float>(p.getNumber("power", 1.0)));
+    radius_.set(static_cast<float>(p.getNumber("radius")));
+    bias_.set(static_cast<float>(p.getNumber("bias")));
+    power_.set(static_cast<float>(p.getNumber("power")));
     gbufferSizeU_.set(static_cast<float>(gbufferSize_.width), static_cast<float>(gbufferSize_.height));
     const Extent target = ctx.framebufferExtent();
     targetTexel_.set(1.0f / static_cast<float>(target.width), 1.0f / static_cast<float>(target.height));
@@ -107,7 +108,7 @@ class SsaoPass final : public gl::FullscreenPass {
 // ------------------------------------------------------------ ssao_blur
 
 class SsaoBlurPass final : public gl::FullscreenPass {
-  void update(PassContext& ctx) override { size_.set(static_cast<int>(ctx.params().getInt("size", 2))); }
+  void update(PassContext& ctx) override { size_.set(static_cast<int>(ctx.params().getInt("size"))); }
   ProgramUniform size_{this, "u_size"};
 };
 
@@ -117,16 +118,13 @@ class SsaoUpsamplePass final : public gl::FullscreenPass {
   void update(PassContext& ctx) override {
     const Extent g = ctx.framebufferExtent();
     gbufferSize_.set(static_cast<float>(g.width), static_cast<float>(g.height));
-    tolerance_.set(static_cast<float>(ctx.params().getNumber("tolerance", 0.05)));
+    tolerance_.set(static_cast<float>(ctx.params().getNumber("tolerance")));
     ctx.gpuScene()->bindFrame();
   }
   ProgramUniform gbufferSize_{this, "u_gbufferSize"}, tolerance_{this, "u_tolerance"};
 };
 
 // ------------------------------------------------------------ registration
-
-const std::vector<Format> kDepthFormats = {Format::depth24, Format::depth32f, Format::depth24_stencil8,
-                                           Format::depth32f_stencil8};
 
 // The G-buffer slot the layout reads positions from must be bound.
 void checkPositionSlot(const PassCheckContext& ctx, PassChecks& checks) {
@@ -156,7 +154,7 @@ void registerUpsample(PluginHost& host) {
       slot("src", Access::sampled, true, SlotDecl::Load::never, "ssao_blur's output at the reduced size", kAoFormats),
       slot("position", Access::sampled, false, SlotDecl::Load::never,
            "G-buffer world position (every layout but compact)"),
-      slot("depth", Access::sampled, false, SlotDecl::Load::never, "G-buffer depth (compact)", kDepthFormats),
+      slot("depth", Access::sampled, false, SlotDecl::Load::never, "G-buffer depth (compact)", depthFormats()),
       slot("ao", Access::color_attachment, true, SlotDecl::Load::never,
            "ambient visibility at the G-buffer's size (for deferred_lighting's 'ao')", kAoFormats),
   };
@@ -176,7 +174,7 @@ void registerUpsample(PluginHost& host) {
     const std::string g = gbuffer::of(ctx.params()).positionSlot();
     if (ctx.bound(g)) checkSameSize(ctx, checks, g, "ao");
   };
-  d.rules = {positionRule(), sameSize};
+  d.rules = {positionRule(), sameSize, gbuffer::sameLayoutAsWriterRule()};
   d.needsScene = true;  // for the camera
   d.create = [] { return std::make_unique<SsaoUpsamplePass>(); };
   host.addPassType(std::move(d));
@@ -194,7 +192,7 @@ void registerSsao(PluginHost& host) {
              "G-buffer world position (every layout but compact)"),
         slot("normal", Access::sampled, true, SlotDecl::Load::never, "G-buffer normal"),
         slot("depth", Access::sampled, false, SlotDecl::Load::never, "G-buffer depth (compact: rebuilds position)",
-             kDepthFormats),
+             depthFormats()),
         slot("ao", Access::color_attachment, true, SlotDecl::Load::never,
              "ambient visibility, 1 open .. 0 occluded (any size; noisy until ssao_blur)", kAoFormats),
     };
@@ -212,7 +210,7 @@ void registerSsao(PluginHost& host) {
       s.ownSamplers = {"u_noise"};  // the 4x4 rotation texture the pass binds on unit 5
       return std::vector<ShaderProgramSpec>{s};
     };
-    d.rules = {positionRule()};
+    d.rules = {positionRule(), gbuffer::sameLayoutAsWriterRule()};
     d.needsScene = true;  // for the camera
     d.create = [] { return std::make_unique<SsaoPass>(); };
     host.addPassType(std::move(d));

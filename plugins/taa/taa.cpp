@@ -13,6 +13,7 @@
 // resolved image.
 #include <GL/glcorearb.h>
 
+#include "rgraph/format_sets.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/pass_decl.h"
@@ -21,19 +22,14 @@
 namespace {
 using namespace rgraph;
 
-const std::vector<Format> kHdrFormats = {Format::rgba16f, Format::rgba32f, Format::r11g11b10f};
-const std::vector<Format> kVelocityFormats = {Format::rg16f, Format::rgba16f, Format::rgba32f};
-const std::vector<Format> kDepthFormats = {Format::depth24, Format::depth32f, Format::depth24_stencil8,
-                                           Format::depth32f_stencil8};
-
 class TaaPass final : public gl::FullscreenPass {
   void update(PassContext& ctx) override {
     const ParamSet& p = ctx.params();
     historyValid_.set(ctx.historyValid("history"));
-    historyWeight_.set(static_cast<float>(p.getNumber("history_weight", 0.9)));
-    clipGamma_.set(static_cast<float>(p.getNumber("clip_gamma", 1.25)));
-    reject_.set(static_cast<float>(p.getNumber("reject_distance", 2.0)));
-    sharpen_.set(static_cast<float>(p.getNumber("sharpen", 0.0)));
+    historyWeight_.set(static_cast<float>(p.getNumber("history_weight")));
+    clipGamma_.set(static_cast<float>(p.getNumber("clip_gamma")));
+    reject_.set(static_cast<float>(p.getNumber("reject_distance")));
+    sharpen_.set(static_cast<float>(p.getNumber("sharpen")));
     ctx.gpuScene()->bindFrame();  // the cameras, for motion not in the velocity input
   }
   ProgramUniform historyValid_{this, "u_historyValid"}, historyWeight_{this, "u_historyWeight"};
@@ -61,18 +57,18 @@ void registerTaa(PluginHost& host) {
   d.name = "taa";
   d.description = "Temporal anti-aliasing: jittered frames accumulated through a reprojected, clipped history";
   d.slots = {
-      slot("color", Access::sampled, true, SlotDecl::Load::never, "this frame's HDR image (jittered)", kHdrFormats),
+      slot("color", Access::sampled, true, SlotDecl::Load::never, "this frame's HDR image (jittered)", hdrFormats()),
       // Reprojected: the bicubic history filter is built from bilinear taps.
       sampledWith(slot("history", Access::sampled, true, SlotDecl::Load::never,
-                       "last frame's output: a resource with \"history_of\" this pass's output", kHdrFormats),
+                       "last frame's output: a resource with \"history_of\" this pass's output", hdrFormats()),
                   bilinearClamped()),
       slot("velocity", Access::sampled, true, SlotDecl::Load::never,
-           "motion vectors in UV units, uv_now - uv_prev (the geometry pass's velocity slot)", kVelocityFormats),
+           "motion vectors in UV units, uv_now - uv_prev (the geometry pass's velocity slot)", velocityFormats()),
       slot("depth", Access::sampled, true, SlotDecl::Load::never,
            "this frame's depth, of everything drawn (velocity dilation; camera motion where velocity is 0)",
-           kDepthFormats),
+           depthFormats()),
       slot("output", Access::color_attachment, true, SlotDecl::Load::never,
-           "the resolved HDR image, next frame's history", kHdrFormats),
+           "the resolved HDR image, next frame's history", hdrFormats()),
   };
   d.params = {
       ranged("history_weight", ParamType::number, 0.9, 0.0, 0.99,

@@ -1,6 +1,8 @@
 // Per-frame data shared by every scene pass (std140, binding 0), filled by the
-// executor's GPU scene from the scene camera and lights. Keep in sync with
-// core/src/gl/gpu_scene.cpp (FrameBlock).
+// executor's GPU scene from the scene camera and lights. Its C++ mirror is
+// FrameBlock in core/src/gl/frame_block.h: the ctest
+// FrameBlockLayout.EveryMemberOfFrameGlslHasTheOffsetAndTypeOfFrameBlock fails
+// when a member here and there differ in offset or type (change both).
 // Each member's comment is its documentation: the Frame table in
 // docs/writing-a-pass.md is generated from this block (rgraph_doc_tables; the
 // ctest docs.generated_tables fails when they differ). A comment line indented

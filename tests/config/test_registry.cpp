@@ -4,6 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rgraph/format_sets.h"
+
 namespace rgraph::test {
 namespace {
 
@@ -61,7 +63,7 @@ PassRegistry makeRegistry() {
            {slot("color", Access::color_attachment, true, L::never,
                  {Format::rgba8, Format::rgba16f, Format::srgb8_alpha8}, true),
             slot("depth", Access::depth_attachment, true, L::never,
-                 {Format::depth24, Format::depth32f, Format::depth24_stencil8, Format::depth32f_stencil8}, true)}));
+                 depthFormats(), true)}));
   types.push_back(type("blit", {slot("src", Access::blit_src), slot("dst", Access::blit_dst, true, L::optional)}));
   types.push_back(type(
       "blend", {slot("color", Access::color_attachment, true, L::required), slot("overlay", Access::sampled, false)}));

@@ -477,6 +477,9 @@ TEST(Diagnostics, AccessFormatMismatch) {
   EXPECT_EQ(found[1]->slot, "depth");
   EXPECT_EQ(found[1]->resource, "color");
   EXPECT_TRUE(contains(found[1]->message, "colour format")) << found[1]->message;
+  // The depth formats it suggests: depthFormats(), every one.
+  EXPECT_TRUE(contains(found[1]->message, "(use depth24, depth32f, depth24_stencil8 or depth32f_stencil8)"))
+      << found[1]->message;
   expectWhere(*found[1], at(61, 1));
   // A buffer bound as a sampled texture.
   ASSERT_EQ(found.size(), 3u);

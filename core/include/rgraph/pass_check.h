@@ -51,16 +51,34 @@ struct CheckedSlot {
 // output size). What the pass checks see (and what the shader checks need).
 std::vector<CheckedSlot> planSlots(const GraphDesc& graph, const Plan& plan, size_t pass);
 
+// The pass that wrote the version a reading slot binds, for a check that
+// spans two passes (a G-buffer reader's "layout" against its writer's:
+// gbuffer_layout.h). Valid while the check runs.
+struct SlotWriter {
+  std::string pass;         // its name
+  std::string type;         // its pass type
+  std::string slot;         // the slot it wrote the version through
+  const ParamSet* params = nullptr;  // its params, declared defaults filled in
+  // Where one of its params is in the config (at the pass when the config
+  // leaves it at its default): for messages that name both places.
+  std::function<SourceLocation(const std::string& param)> paramWhere;
+};
+
 // What a check hook sees of one pass instance. GL-free.
 class PassCheckContext {
  public:
+  // Finds the writer of a slot's version (runPassChecks gives one; without
+  // it, writer() finds none).
+  using WriterLookup = std::function<std::optional<SlotWriter>(const CheckedSlot&)>;
+
   PassCheckContext(std::string passName, const ParamSet& params, std::vector<CheckedSlot> slots, Extent output,
-                   std::optional<bool> scenePresent)
+                   std::optional<bool> scenePresent, WriterLookup writers = {})
       : passName_(std::move(passName)),
         params_(params),
         slots_(std::move(slots)),
         output_(output),
-        scenePresent_(scenePresent) {}
+        scenePresent_(scenePresent),
+        writers_(std::move(writers)) {}
 
   const std::string& passName() const { return passName_; }
   const ParamSet& params() const { return params_; }
@@ -77,6 +95,11 @@ class PassCheckContext {
   uint32_t samples(std::string_view slot) const;
   bool loads(std::string_view slot) const;
   const std::vector<CheckedSlot>& slots() const { return slots_; }
+  // The pass that wrote the version a reading slot binds; nullopt when the
+  // slot is unbound or writes, or the version has no writer among the
+  // pipeline's passes (an imported or history resource, or an error the
+  // graph reports).
+  std::optional<SlotWriter> writer(std::string_view slot) const;
 
  private:
   std::string passName_;
@@ -84,6 +107,7 @@ class PassCheckContext {
   std::vector<CheckedSlot> slots_;
   Extent output_;
   std::optional<bool> scenePresent_;
+  WriterLookup writers_;
 };
 
 // Where a check hook reports. Messages say what is wrong and what to do;
@@ -110,6 +134,9 @@ class PassChecks {
 
 // "WxH" for messages.
 std::string extentText(Extent e);
+// "FILE:LINE:COL" (or "FILE:LINE", or FILE) for a message that names a second
+// place in the config; "" when the location is unknown.
+std::string locationText(const SourceLocation& at);
 // A common check: slots `a` and `b` (both bound, sizes known) have the same
 // size; otherwise an error at `a` naming both sizes.
 void checkSameSize(const PassCheckContext& ctx, PassChecks& checks, const std::string& a, const std::string& b);

@@ -214,6 +214,23 @@ struct SamplerUniform {
   int line = 0;
 };
 
+// A member of a uniform block as glslang lays it out (std140 for the blocks
+// rgraph's shaders declare).
+struct UniformBlockMember {
+  std::string name;  // as declared ("u_view"; "Block.member" for a block with an instance name)
+  int offset = -1;   // bytes from the start of the block
+  std::string type;  // GLSL spelling: "mat4", "vec4", "ivec4", "float", "vec4[8]"...
+};
+
+// A uniform block the program uses, with every member (read or not).
+struct UniformBlock {
+  std::string name;  // the block name ("Frame")
+  int binding = -1;  // layout(binding), -1 when none
+  int size = 0;      // bytes
+  std::vector<UniformBlockMember> members;  // in offset order
+  const UniformBlockMember* findMember(const std::string& member) const;
+};
+
 // One program, compiled, linked and reflected.
 struct ProgramCheck {
   ShaderProgramSpec spec;
@@ -222,7 +239,9 @@ struct ProgramCheck {
   std::vector<ShaderMessage> messages;  // errors and warnings, located
   std::vector<FragmentOutput> outputs;  // user fragment outputs (built-ins left out)
   std::vector<SamplerUniform> samplers; // every declared sampler, active or not
+  std::vector<UniformBlock> uniformBlocks;  // the blocks the program uses (a block it never reads is left out)
   const SamplerUniform* findSampler(const std::string& name) const;
+  const UniformBlock* findUniformBlock(const std::string& name) const;
 };
 
 // A slot of a pass instance as the config binds it.

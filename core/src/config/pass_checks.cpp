@@ -34,6 +34,12 @@ bool PassCheckContext::loads(std::string_view slot) const {
   return s && s->loads;
 }
 
+std::optional<SlotWriter> PassCheckContext::writer(std::string_view slot) const {
+  const CheckedSlot* s = find(slot);
+  if (!s || !writers_ || isWriteAccess(s->access) || s->resource.empty()) return std::nullopt;
+  return writers_(*s);
+}
+
 void PassChecks::slotError(std::string slot, std::string message) {
   entries_.push_back({Entry::Kind::slot, std::move(slot), std::move(message)});
 }
@@ -45,6 +51,14 @@ void PassChecks::paramError(std::string param, std::string message) {
 void PassChecks::passError(std::string message) { entries_.push_back({Entry::Kind::pass, {}, std::move(message)}); }
 
 std::string extentText(Extent e) { return std::to_string(e.width) + "x" + std::to_string(e.height); }
+
+std::string locationText(const SourceLocation& at) {
+  if (at.file.empty()) return {};
+  std::string out = at.file;
+  if (at.line > 0) out += ":" + std::to_string(at.line);
+  if (at.line > 0 && at.column > 0) out += ":" + std::to_string(at.column);
+  return out;
+}
 
 void checkSameSize(const PassCheckContext& ctx, PassChecks& checks, const std::string& a, const std::string& b) {
   const Extent ea = ctx.extent(a), eb = ctx.extent(b);
@@ -140,6 +154,54 @@ SourceLocation slotLocation(const PassDecl& pd, const PassTypeDesc& type, const 
   return doc.locate(pd.where.path + (write ? "/outputs" : "/inputs"), pd.where);
 }
 
+// Every pass's params with its type's declared defaults filled in, made once
+// (a writer's params are looked at by each of its readers).
+class FilledParams {
+ public:
+  FilledParams(const PipelineConfig& pipeline, const PassRegistry& registry)
+      : pipeline_(pipeline), registry_(registry), params_(pipeline.graph.passes.size()) {}
+  // nullptr for a pass of an unknown type.
+  const ParamSet* of(size_t pass) {
+    if (params_[pass]) return &*params_[pass];
+    const PassTypeDesc* type = registry_.find(pipeline_.graph.passes[pass].type);
+    if (!type) return nullptr;
+    ParamSet params = defaultParams(type->params);
+    if (pass < pipeline_.params.size())
+      for (const auto& [k, v] : pipeline_.params[pass].values()) params.set(k, v);
+    return &params_[pass].emplace(std::move(params));
+  }
+
+ private:
+  const PipelineConfig& pipeline_;
+  const PassRegistry& registry_;
+  std::vector<std::optional<ParamSet>> params_;
+};
+
+// The enabled pass other than `reader` that writes the version `slot` reads
+// (a version has one writer: two are the graph's duplicate_writer error).
+std::optional<SlotWriter> findWriter(const GraphDesc& g, size_t reader, const CheckedSlot& slot, FilledParams& params,
+                                     DocLocator& locator) {
+  for (size_t q = 0; q < g.passes.size(); ++q) {
+    const PassDecl& pd = g.passes[q];
+    if (q == reader || !pd.enabled) continue;
+    for (const ResourceUse& ru : pd.uses) {
+      if (!isWriteAccess(ru.access) || ru.output != slot.resource) continue;
+      const ParamSet* set = params.of(q);
+      if (!set) return std::nullopt;
+      SlotWriter w;
+      w.pass = pd.name;
+      w.type = pd.type;
+      w.slot = ru.slot;
+      w.params = set;
+      w.paramWhere = [&locator, &pd](const std::string& param) {
+        return locator.locate(pd.where.path + "/params/" + param, pd.where);
+      };
+      return w;
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 Diagnostics runPassChecks(const PipelineConfig& pipeline, const Plan& plan, const PassRegistry& registry,
@@ -147,6 +209,7 @@ Diagnostics runPassChecks(const PipelineConfig& pipeline, const Plan& plan, cons
   Diagnostics out;
   const GraphDesc& g = pipeline.graph;
   DocLocator locator(pipeline.file);
+  FilledParams filled(pipeline, registry);
   for (size_t p = 0; p < g.passes.size(); ++p) {
     const PassDecl& pd = g.passes[p];
     if (!pd.enabled) continue;
@@ -167,10 +230,9 @@ Diagnostics runPassChecks(const PipelineConfig& pipeline, const Plan& plan, cons
       add(DiagCode::needs_scene, "needs a scene (rgraph render --scene ...)", pd.where, {});
     if (!type->check && type->rules.empty()) continue;
 
-    ParamSet params = defaultParams(type->params);
-    if (p < pipeline.params.size())
-      for (const auto& [k, v] : pipeline.params[p].values()) params.set(k, v);
-    const PassCheckContext ctx(pd.name, params, planSlots(g, plan, p), plan.output, options.scenePresent);
+    const ParamSet& params = *filled.of(p);
+    const PassCheckContext ctx(pd.name, params, planSlots(g, plan, p), plan.output, options.scenePresent,
+                               [&, p](const CheckedSlot& s) { return findWriter(g, p, s, filled, locator); });
     PassChecks checks;
     if (type->check) type->check(ctx, checks);
     for (const PassRule& rule : type->rules) rule.check(ctx, checks);

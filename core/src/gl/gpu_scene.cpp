@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "frame_block.h"
 #include "rgraph/error.h"
 #include "rgraph/jitter.h"
 #include "rgraph/scene.h"
@@ -16,6 +17,8 @@
 namespace rgraph {
 namespace {
 
+// The std140 mirror of shaders/include/frame.glsl (frame_block.h: a test holds
+// every member's offset and type to glslang's reflection of the GLSL block).
 using detail::FrameBlock;
 
 // std430 mirror of PointLight in frame.glsl (the meaning of each member is

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "compile_internal.h"
+#include "rgraph/format_sets.h"
 
 namespace rgraph::graph_detail {
 
@@ -157,7 +158,7 @@ void Compiler::checkUse(const Use& u, uint32_t f, std::vector<Att>& attachments,
         useDiag(DiagCode::access_format_mismatch,
                 slotLabel(f) + " binds " + boundName(f) + " as a depth attachment, but its format " +
                     std::string(formatName(rs.format)) +
-                    " is a colour format (use depth24, depth32f, depth24_stencil8 or depth32f_stencil8)",
+                    " is a colour format (use " + formatNameList(depthFormats()) + ")",
                 f, boundVersion(f), u.write);
       attachments.push_back({f, r});
       break;

@@ -30,10 +30,6 @@ const char* shapeName(BoundShape s) {
   return "";
 }
 
-std::string locationText(const SourceLocation& w) {
-  return w.file + ":" + std::to_string(w.line) + ":" + std::to_string(w.column);
-}
-
 // A sampler's type against the bound shape, and a shadow sampler against the
 // slot's compare mode. The message names the declaration; the diagnostic
 // points at the binding.

@@ -20,6 +20,7 @@
 #include "rgraph/config.h"
 #include "sampler_shape.h"
 #include "rgraph/registry.h"
+#include "uniform_blocks.h"
 
 namespace rgraph {
 namespace {
@@ -210,6 +211,18 @@ const SamplerUniform* ProgramCheck::findSampler(const std::string& name) const {
   return nullptr;
 }
 
+const UniformBlock* ProgramCheck::findUniformBlock(const std::string& name) const {
+  for (const auto& b : uniformBlocks)
+    if (b.name == name) return &b;
+  return nullptr;
+}
+
+const UniformBlockMember* UniformBlock::findMember(const std::string& member) const {
+  for (const auto& m : members)
+    if (m.name == member) return &m;
+  return nullptr;
+}
+
 ShaderChecker::ShaderChecker(std::vector<std::string> searchDirectories) : dirs_(std::move(searchDirectories)) {}
 ShaderChecker::~ShaderChecker() = default;
 
@@ -256,7 +269,7 @@ const ProgramCheck& ShaderChecker::program(const ShaderProgramSpec& spec) {
         m.text = "link: " + m.text;
         pc.messages.push_back(std::move(m));
       }
-    } else if (program.buildReflection(EShReflectionAllIOVariables)) {
+    } else if (program.buildReflection(EShReflectionAllIOVariables | EShReflectionAllBlockVariables)) {
       if (!spec.frag.empty()) {
         for (int i = 0; i < program.getNumPipeOutputs(); ++i) {
           const glslang::TObjectReflection& r = program.getPipeOutput(i);
@@ -280,6 +293,7 @@ const ProgramCheck& ShaderChecker::program(const ShaderProgramSpec& spec) {
         for (auto& s : pc.samplers)
           if (s.name == name) s.active = true;
       }
+      pc.uniformBlocks = shadercheck_detail::reflectUniformBlocks(program);
     }
   }
   pc.ok = ok;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "rgraph/pass.h"
+#include "rgraph/pass_check.h"
 
 namespace rgraph::gbuffer {
 
@@ -64,5 +65,15 @@ std::string nameList(bool withSummaries);
 // Every colour slot any layout writes, in slot order (position, normal,
 // albedo, material): the geometry pass's colour slots.
 std::vector<std::string> colorSlots();
+
+// Rule (PassTypeDesc::rules) of a G-buffer reader: its "layout" is the layout
+// the G-buffer it reads was written with. The writer is the pass that wrote
+// the version a colour slot or "depth" reads, when it has a "layout" param
+// and wrote it through the slot of the same name (as geometry does). Two
+// layouts store different things in the same slots (compact: an octahedral
+// normal, no position), so a reader of another layout would decode nonsense;
+// the error, at the reader's "layout", names both passes and where the
+// writer's layout is set.
+PassRule sameLayoutAsWriterRule();
 
 }  // namespace rgraph::gbuffer

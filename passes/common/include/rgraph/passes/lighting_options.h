@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "rgraph/format_sets.h"
 #include "rgraph/pass.h"
 
 namespace rgraph::lighting {
 
-// The formats an HDR lighting target may have (rgba16f, rgba32f, r11g11b10f).
-const std::vector<Format>& hdrFormats();
+// The formats an HDR lighting target may have: hdrFormats() (rgraph/format_sets.h).
 // For compute passes storing into an HDR target: the GLSL image format
 // qualifier (rgba16f, rgba32f, r11f_g11f_b10f) and the GL internal format.
 const char* hdrImageQualifier(Format f);
@@ -54,8 +54,9 @@ float threshold(const ParamSet& params);
 // (gbuffer::Layout::readerSlots), its sentence listing them per layout.
 PassRule gbufferReaderRule();
 // What every pass that reads the G-buffer declares alike: name, description,
-// the sampled G-buffer slots (gbufferSlots), the check that its layout's
-// slots are bound (gbufferReaderRule), needsScene, and adaptGBuffer as its adapt
+// the sampled G-buffer slots (gbufferSlots), the checks that its layout's
+// slots are bound (gbufferReaderRule) and that its layout is its writer's
+// (gbuffer::sameLayoutAsWriterRule), needsScene, and adaptGBuffer as its adapt
 // hook. The pass adds its own slots, params and programs.
 PassTypeDesc gbufferReader(std::string name, std::string description);
 // A compute lighting pass (tiled_deferred, clustered_deferred): gbufferReader,
