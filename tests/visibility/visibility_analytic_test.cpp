@@ -151,34 +151,46 @@ TEST(VisibilityOracle, EpsilonIsRelativeToTheCastersBox) {
 
 // The self-intersection rule: a flat lit floor stays lit down to 1 degree of
 // elevation, for float-rounded positions (what a G-buffer holds), with and
-// without the normal.
+// without the normal. The floor is tilted (17 degrees about (1, 0, 1)) so
+// that rounding moves the points off its plane (a level floor's y = 0 is exact in float).
 TEST(VisibilityOracle, FlatFloorIsLitAtGrazingAngles) {
   Scene s = boxOverFloor({0.0f, 2.0f, 0.0f}, 50.0f);
   s.primitives[0].castShadows = false;  // the floor alone
+  const glm::mat4 tilt = glm::rotate(glm::mat4(1.0f), glm::radians(17.0f), glm::normalize(glm::vec3(1, 0, 1)));
+  s.primitives[1].transform = tilt;
+  const glm::dmat4 m(tilt);
+  auto onFloor = [&](const dvec3& local) { return dvec3(m * glm::dvec4(local, 1.0)); };
+  const dvec3 up = glm::normalize(dvec3(m * glm::dvec4(0.0, 1.0, 0.0, 0.0)));
   const VisibilityOracle oracle(s);
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> u(-45.0, 45.0);
+  int offPlane = 0;
   for (double elevation : {1.0, 2.0, 5.0, 15.0, 45.0, 89.0}) {
     for (double azimuth : {0.0, 1.3, 2.9, 4.4}) {
       const double e = elevation * 3.14159265358979323846 / 180.0;
+      const dvec3 toLight = onFloor(dvec3(std::cos(e) * std::cos(azimuth), std::sin(e), std::cos(e) * std::sin(azimuth))) -
+                            onFloor(dvec3(0.0));
       DirectionalLight sun;
-      sun.direction = -glm::vec3(std::cos(e) * std::cos(azimuth), std::sin(e), std::cos(e) * std::sin(azimuth));
+      sun.direction = -glm::vec3(toLight);
       PointLight lamp;  // 40 units away at the same elevation
       for (int i = 0; i < 200; ++i) {
-        const dvec3 p = floatRounded(dvec3(u(rng) + 1.0 / 3.0, 0.0, u(rng) / 7.0));
-        lamp.position = glm::vec3(p - dvec3(sun.direction) * 40.0);
+        const dvec3 exact = onFloor(dvec3(u(rng), 0.0, u(rng)));
+        const dvec3 p = floatRounded(exact);
+        offPlane += glm::dot(p - onFloor(dvec3(0.0)), up) != 0.0;
+        lamp.position = glm::vec3(p + toLight * 40.0);
         ASSERT_TRUE(oracle.visible(p, sun)) << "elevation " << elevation << " at " << p.x << ", " << p.z;
         ASSERT_TRUE(oracle.visible(p, lamp)) << "elevation " << elevation;
-        ASSERT_EQ(oracle.classify({p, dvec3(0.0, 1.0, 0.0)}, sun), Visibility::lit);
-        ASSERT_EQ(oracle.classify({p, dvec3(0.0, 1.0, 0.0)}, lamp), Visibility::lit);
+        ASSERT_EQ(oracle.classify({p, up}, sun), Visibility::lit);
+        ASSERT_EQ(oracle.classify({p, up}, lamp), Visibility::lit);
       }
     }
   }
-  // A float-rounded point below the horizon of a light under the floor: the
-  // floor itself shadows it (with the normal, the ray starts above the floor).
+  EXPECT_GT(offPlane, 4000);  // rounding did move the points off the plane
+  // A light under the floor: the floor itself shadows its points (with the
+  // normal the ray starts above the floor and must cross it).
   DirectionalLight fromBelow;
-  fromBelow.direction = glm::normalize(glm::vec3(0.3f, 1.0f, 0.0f));
-  EXPECT_EQ(oracle.classify({dvec3(1.0 / 3.0, 0.0, 0.1), dvec3(0.0, 1.0, 0.0)}, fromBelow), Visibility::shadowed);
+  fromBelow.direction = glm::vec3(up);
+  EXPECT_EQ(oracle.classify({floatRounded(onFloor(dvec3(1.0 / 3.0, 0.0, 0.1))), up}, fromBelow), Visibility::shadowed);
 }
 
 TEST(VisibilityOracle, PointJustUnderACasterIsShadowed) {
@@ -217,8 +229,13 @@ TEST(VisibilityOracle, LightInsideACasterSeesNothingOutside) {
 TEST(VisibilityOracle, LightOnASurfaceIsNotBlockedByIt) {
   const VisibilityOracle oracle(boxOverFloor());
   PointLight onTop;
-  onTop.position = {0.0f, 2.5f, 0.0f};  // on the box's top face
-  EXPECT_TRUE(oracle.visible(dvec3(3.0, 4.0, 0.0), onTop));
+  onTop.position = {0.1f, 2.5f, 0.3f};  // on the box's top face (float: up to rounding)
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  for (int i = 0; i < 1000; ++i) {
+    const dvec3 p(u(rng), 2.5 + std::abs(u(rng)) + 0.01, u(rng));  // above the top face's plane
+    ASSERT_TRUE(oracle.visible(p, onTop)) << i;
+  }
   EXPECT_FALSE(oracle.visible(dvec3(3.0, 0.0, 0.0), onTop));  // the segment dives into the box, out of its side
 }
 
