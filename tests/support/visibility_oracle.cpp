@@ -139,6 +139,27 @@ std::optional<RayHit> VisibilityOracle::closestHit(const dvec3& origin, const dv
   return bvh_.closestHit(ray);
 }
 
+std::optional<VisibilityOracle::Probe> VisibilityOracle::probeAtPixel(const Camera& camera, int width, int height,
+                                                                     double x, double y) const {
+  if (width <= 0 || height <= 0) return std::nullopt;
+  // The camera's frame as Camera::view() and projection() build it (glm::lookAt,
+  // glm::perspective), in double. The ray's direction has unit length along
+  // the view axis, so that its t is the view depth, clipped as GL clips.
+  const dvec3 eye(camera.position), forward = glm::normalize(dvec3(camera.target) - eye);
+  const dvec3 right = glm::normalize(glm::cross(forward, dvec3(camera.validUp())));
+  const dvec3 up = glm::cross(right, forward);
+  const double tanHalf = std::tan(double(camera.fovY) * kPi / 360.0), aspect = double(width) / double(height);
+  const double ndcX = 2.0 * x / width - 1.0, ndcY = 2.0 * y / height - 1.0;
+  Ray ray;
+  ray.origin = eye;
+  ray.direction = forward + right * (ndcX * tanHalf * aspect) + up * (ndcY * tanHalf);
+  ray.tMin = camera.near > 0.0f ? double(camera.near) : 0.1;
+  ray.tMax = camera.far > camera.near ? double(camera.far) : ray.tMin * 1000.0;
+  const auto hit = bvh_.closestHit(ray);
+  if (!hit) return std::nullopt;
+  return Probe{ray.origin + ray.direction * hit->t, faceNormal(*hit, ray.direction)};
+}
+
 dvec3 VisibilityOracle::faceNormal(const RayHit& hit, const dvec3& rayDirection) const {
   const WorldTriangle& t = bvh_.triangles().at(static_cast<size_t>(hit.triangle));
   const dvec3 n = glm::cross(t.b - t.a, t.c - t.a);

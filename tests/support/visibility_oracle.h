@@ -81,6 +81,14 @@ class VisibilityOracle {
   std::vector<Visibility> classify(const std::vector<Probe>& probes, const DirectionalLight& light,
                                    int threads = 0) const;
 
+  // The point a G-buffer holds at window position (x, y) of a width x height
+  // frame seen by `camera`: GL window coordinates (x from the left, y from the
+  // bottom row, pixel centres at i + 0.5, as gl_FragCoord and glReadPixels), the
+  // first caster the camera ray meets between the near and far planes, with its
+  // face normal turned towards the camera. nullopt where it meets none. The
+  // oracle holds only casters: a non-casting primitive is not seen.
+  std::optional<Probe> probeAtPixel(const Camera& camera, int width, int height, double x, double y) const;
+
   // The surface a ray meets first (any triangle, tMin = epsilon()): for probes
   // placed by casting camera rays, without a G-buffer.
   std::optional<RayHit> closestHit(const dvec3& origin, const dvec3& direction) const;

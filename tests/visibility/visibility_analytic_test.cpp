@@ -279,6 +279,47 @@ TEST(VisibilityOracle, BatchAnswersAreTheSingleAnswers) {
   }
 }
 
+// Probes placed by the camera land where the camera's float view-projection
+// puts them: projected back, each falls on its own pixel centre.
+TEST(VisibilityOracle, PixelProbesAreWhereTheCameraSees) {
+  const VisibilityOracle oracle(boxOverFloor());
+  Camera cam;
+  cam.position = {1.0f, 6.0f, 7.0f};
+  cam.target = {0.0f, 1.0f, 0.0f};
+  cam.fovY = 50.0f;
+  const int w = 64, h = 48;
+  const glm::dmat4 vp(cam.viewProjection(float(w) / float(h)));
+  int onBox = 0, onFloor = 0, sky = 0, shadowed = 0;
+  DirectionalLight sun;
+  for (int py = 0; py < h; ++py)
+    for (int px = 0; px < w; ++px) {
+      const auto probe = oracle.probeAtPixel(cam, w, h, px + 0.5, py + 0.5);
+      if (!probe) {
+        ++sky;
+        continue;
+      }
+      const glm::dvec4 clip = vp * glm::dvec4(probe->point, 1.0);
+      EXPECT_NEAR((clip.x / clip.w + 1.0) * 0.5 * w, px + 0.5, 1e-3);
+      EXPECT_NEAR((clip.y / clip.w + 1.0) * 0.5 * h, py + 0.5, 1e-3);
+      EXPECT_LT(glm::dot(probe->normal, probe->point - dvec3(cam.position)), 0.0);  // faces the camera
+      const bool box = probe->point.y > 1e-9;
+      onBox += box;
+      onFloor += !box;
+      shadowed += oracle.classify(*probe, sun) == Visibility::shadowed;
+    }
+  EXPECT_GT(onBox, 50);
+  EXPECT_GT(onFloor, 500);
+  EXPECT_EQ(sky, 0);  // the floor fills the view
+  EXPECT_GT(shadowed, 20);  // the footprint under the box shows
+  // Looking up: nothing.
+  cam.target = {0.0f, 20.0f, 0.0f};
+  EXPECT_FALSE(oracle.probeAtPixel(cam, w, h, 32.5, 24.5));
+  // Beyond the far plane: nothing either.
+  cam.target = {0.0f, 1.0f, 0.0f};
+  cam.far = 2.0f;
+  EXPECT_FALSE(oracle.probeAtPixel(cam, w, h, 32.5, 24.5));
+}
+
 TEST(VisibilityOracle, NamesTheAnswers) {
   EXPECT_STREQ(visibilityName(Visibility::lit), "lit");
   EXPECT_STREQ(visibilityName(Visibility::shadowed), "shadowed");
