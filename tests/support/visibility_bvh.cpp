@@ -98,7 +98,7 @@ Bvh::Bvh(std::vector<WorldTriangle> triangles) {
       continue;
     }
     const dvec3 mn = glm::min(t.a, glm::min(t.b, t.c)), mx = glm::max(t.a, glm::max(t.b, t.c));
-    items.push_back({mn, mx, (mn + mx) * 0.5, static_cast<uint32_t>(i)});
+    items.push_back({mn, mx, mn * 0.5 + mx * 0.5, static_cast<uint32_t>(i)});  // no overflow near DBL_MAX
   }
   stats_.triangles = items.size();
   if (items.empty()) return;
@@ -114,37 +114,13 @@ Bvh::Bvh(std::vector<WorldTriangle> triangles) {
   }
 }
 
-// Builds the subtree of items[begin, end) and returns its node's index. The
-// split: the cheapest of kSahBins - 1 bin boundaries on each axis of the
-// centroids' box; an object-median split on the widest axis when binning
-// cannot separate the items (equal centroids) but they are too many for a leaf.
-uint32_t Bvh::build(std::vector<BuildItem>& items, uint32_t begin, uint32_t end, int depth) {
-  const uint32_t index = static_cast<uint32_t>(nodes_.size());
-  nodes_.push_back({});
-  dvec3 mn(std::numeric_limits<double>::infinity()), mx(-std::numeric_limits<double>::infinity());
-  dvec3 cmin = mn, cmax = mx;
-  for (uint32_t i = begin; i < end; ++i) {
-    mn = glm::min(mn, items[i].min);
-    mx = glm::max(mx, items[i].max);
-    cmin = glm::min(cmin, items[i].centroid);
-    cmax = glm::max(cmax, items[i].centroid);
-  }
-  nodes_[index].min = mn;
-  nodes_[index].max = mx;
-  stats_.maxDepth = std::max(stats_.maxDepth, depth);
+// Binned SAH: for each axis of the centroids' box, bin the centroids and
+// sweep the kSahBins - 1 boundaries; the cheapest (sum of child half-areas
+// times triangle counts) wins. axis -1 when no boundary separates the items.
+Bvh::SahSplit Bvh::bestSahSplit(const std::vector<BuildItem>& items, uint32_t begin, uint32_t end, const dvec3& cmin,
+                                const dvec3& cmax) {
+  SahSplit best;
   const uint32_t count = end - begin;
-  auto makeLeaf = [&] {
-    nodes_[index].first = begin;
-    nodes_[index].count = count;
-    ++stats_.leaves;
-    stats_.maxLeafSize = std::max<size_t>(stats_.maxLeafSize, count);
-    return index;
-  };
-  if (count <= static_cast<uint32_t>(kMaxLeafTriangles) || depth >= kMaxDepth) return makeLeaf();
-
-  // Binned SAH: for each axis, bin the centroids and sweep the boundaries.
-  int bestAxis = -1, bestSplit = 0;
-  double bestCost = std::numeric_limits<double>::infinity();
   for (int axis = 0; axis < 3; ++axis) {
     const double extent = cmax[axis] - cmin[axis];
     if (!(extent > 0.0)) continue;
@@ -175,13 +151,43 @@ uint32_t Bvh::build(std::vector<BuildItem>& items, uint32_t begin, uint32_t end,
       acc.count += bins[b].count;
       if (acc.count == 0 || acc.count == count) continue;
       const double cost = halfArea(acc.min, acc.max) * acc.count + rightCost[b + 1];
-      if (cost < bestCost) {
-        bestCost = cost;
-        bestAxis = axis;
-        bestSplit = b;
-      }
+      if (cost < best.cost) best = {axis, b, cost};
     }
   }
+  return best;
+}
+
+// Builds the subtree of items[begin, end) and returns its node's index. The
+// split: the cheapest of kSahBins - 1 bin boundaries on each axis of the
+// centroids' box; an object-median split on the widest axis when binning
+// cannot separate the items (equal centroids) but they are too many for a leaf.
+uint32_t Bvh::build(std::vector<BuildItem>& items, uint32_t begin, uint32_t end, int depth) {
+  const uint32_t index = static_cast<uint32_t>(nodes_.size());
+  nodes_.push_back({});
+  dvec3 mn(std::numeric_limits<double>::infinity()), mx(-std::numeric_limits<double>::infinity());
+  dvec3 cmin = mn, cmax = mx;
+  for (uint32_t i = begin; i < end; ++i) {
+    mn = glm::min(mn, items[i].min);
+    mx = glm::max(mx, items[i].max);
+    cmin = glm::min(cmin, items[i].centroid);
+    cmax = glm::max(cmax, items[i].centroid);
+  }
+  nodes_[index].min = mn;
+  nodes_[index].max = mx;
+  stats_.maxDepth = std::max(stats_.maxDepth, depth);
+  const uint32_t count = end - begin;
+  auto makeLeaf = [&] {
+    nodes_[index].first = begin;
+    nodes_[index].count = count;
+    ++stats_.leaves;
+    stats_.maxLeafSize = std::max<size_t>(stats_.maxLeafSize, count);
+    return index;
+  };
+  if (count <= static_cast<uint32_t>(kMaxLeafTriangles) || depth >= kMaxDepth) return makeLeaf();
+
+  const SahSplit best = bestSahSplit(items, begin, end, cmin, cmax);
+  const int bestAxis = best.axis, bestSplit = best.bin;
+  const double bestCost = best.cost;
 
   uint32_t mid = begin;
   if (bestAxis >= 0) {

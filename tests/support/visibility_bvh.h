@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -98,6 +99,13 @@ class Bvh {
 
  private:
   struct BuildItem;
+  struct SahSplit {
+    int axis = -1;  // -1: none
+    int bin = 0;    // the left child takes bins 0..bin
+    double cost = std::numeric_limits<double>::infinity();
+  };
+  static SahSplit bestSahSplit(const std::vector<BuildItem>& items, uint32_t begin, uint32_t end, const dvec3& cmin,
+                               const dvec3& cmax);
   uint32_t build(std::vector<BuildItem>& items, uint32_t begin, uint32_t end, int depth);
 
   std::vector<WorldTriangle> triangles_;  // reordered so that each leaf's are contiguous
