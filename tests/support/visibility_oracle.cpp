@@ -47,7 +47,7 @@ std::vector<WorldTriangle> shadowCasterTriangles(const Scene& scene) {
   std::vector<WorldTriangle> out;
   for (size_t p = 0; p < scene.primitives.size(); ++p) {
     const Primitive& prim = scene.primitives[p];
-    if (!prim.castShadows) continue;
+    if (!scene.castsShadows(prim)) continue;  // its castShadows, else not when it blends
     if (prim.mesh < 0 || static_cast<size_t>(prim.mesh) >= scene.meshes.size())
       throw std::runtime_error("visibility oracle: primitive " + std::to_string(p) + " ('" + prim.name +
                                "'): mesh " + std::to_string(prim.mesh) + " out of range (" +

@@ -6,11 +6,12 @@
 // linkable by the test suites and by bench/.
 //
 // What it models:
-//   - casters: every Scene::primitive with castShadows, its mesh's triangles
+//   - casters: every primitive Scene::castsShadows says casts (castShadows, else not blended), its mesh's triangles
 //     under the primitive's static `transform` (local -> world). A primitive's
 //     spin (transformAt) is ignored: the oracle sees the scene at time 0, as
-//     does every static render. Back and front faces both block; materials
-//     (alpha mask or blend) are not looked at: a caster is opaque.
+//     does every static render. Back and front faces both block; a caster is
+//     opaque (an alpha mask's cut-outs block too; a blended primitive casts
+//     only when its castShadows says so, and then it blocks fully).
 //   - lights: a point light is visible when the segment from the point to its
 //     position crosses no caster; a directional light when the ray from the
 //     point towards -direction (unbounded) crosses none. A spot light is
