@@ -142,6 +142,19 @@ TEST(VisibilityOracle, NonCastersAreIgnored) {
   EXPECT_TRUE(VisibilityOracle(s).visible(dvec3(0.0, 1.5, 0.0), below));
 }
 
+// A blended box (glass) lets the light through unless it says it casts.
+TEST(VisibilityOracle, BlendedPrimitivesCastOnlyWhenTheySaySo) {
+  Scene s = boxOverFloor();
+  Material glass;
+  glass.alphaMode = AlphaMode::blend;
+  s.materials.push_back(glass);
+  s.primitives[0].material = int(s.materials.size()) - 1;
+  DirectionalLight sun;
+  EXPECT_TRUE(VisibilityOracle(s).visible(dvec3(0.0), sun));
+  s.primitives[0].castShadows = true;
+  EXPECT_FALSE(VisibilityOracle(s).visible(dvec3(0.0), sun));
+}
+
 TEST(VisibilityOracle, EpsilonIsRelativeToTheCastersBox) {
   const VisibilityOracle oracle(boxOverFloor());
   const double diagonal = std::sqrt(100.0 * 100.0 * 2.0 + 2.5 * 2.5);  // floor 100 x 100, box top at 2.5
