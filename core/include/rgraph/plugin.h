@@ -59,7 +59,7 @@
 // PassInstance::changedState, PassContext::emptyVertexArray and bindings().
 // 5: PassContext::framebuffer(attachments) and texture(slot, sub) (the
 // executor's framebuffer cache and texture views), gl::bindPassFramebuffer
-// with attachments; textures of every shape (layers, cubes).
+// with attachments; textures of every shape (layers, cubes); CheckedSlot::mips.
 #define RGRAPH_PLUGIN_ABI_VERSION 5u
 
 #define RGRAPH_PLUGIN_ABI_SYMBOL "rgraph_plugin_abi_version"
