@@ -44,7 +44,7 @@ std::string variant(const json& shipped, const PostRow& row, const std::string& 
     // so they are compared on the same input and against the same reference;
     // the shipped file blurs a half-size one with five levels.
     for (const char* r : {"bright", "blur_a", "blur_b"}) p.at("resources").at(r)["size"] = "output";
-    p.at("resources").at("blur_b")["mips"] = kChainLevels + 1;  // the chain's levels 1..6 (bloom_chain.h)
+    p.at("resources").at("blur_b")["mips"] = kChainLevels;  // the chain's levels 1..6 in mip levels 0..5 (bloom_chain.h)
     json& params = passNamed(p, "bloom_blur")["params"];
     params = row.method == "gaussian" ? json{{"method", "gaussian"}, {"iterations", 6}, {"radius", 2.0}}
                                       : json{{"method", "mip_chain"}, {"levels", kChainLevels}};

@@ -105,22 +105,25 @@ class CompositePass final : public gl::FullscreenPass {
 
 bool chainMethod(const ParamSet& p) { return p.getString("method") == "mip_chain"; }
 
-// mip_chain: temp's level k holds the chain's level k, half the source's
-// size k times, so temp has the source's size (that dst and temp have one
-// size, the graph checks: they are a pass's attachments). Its mip count is
-// checked at setup (the levels exist), where the texture is known.
+// mip_chain: temp's mip level k - 1 holds the chain's level k, half the
+// source's size k times (rounded up), so temp has the source's size (that dst
+// and temp have one size, the graph checks: they are a pass's attachments)
+// and at least `levels` mip levels.
 void checkBlur(const PassCheckContext& ctx, PassChecks& checks) {
   if (!chainMethod(ctx.params())) return;
   const Extent src = ctx.extent("src"), temp = ctx.extent("temp");
   if (src.width == 0 || temp.width == 0) return;  // unresolved: reported elsewhere
   const int levels = int(ctx.params().getInt("levels"));
+  const std::string draws = "method 'mip_chain' draws its " + std::to_string(levels) + " levels into temp's mip levels 0.." +
+                            std::to_string(levels - 1) + ", halving the source's size: ";
   if (temp != src)
-    checks.slotError("temp", "method 'mip_chain' draws its " + std::to_string(levels) +
-                     " levels into temp's mip levels 1.." + std::to_string(levels) + ", halving the source's size: " +
-                     "temp must have the source's size, " + std::to_string(src.width) + "x" +
-                     std::to_string(src.height) + ", and is " + std::to_string(temp.width) + "x" +
-                     std::to_string(temp.height) + " (give it the source's size and \"mips\": " +
-                     std::to_string(levels + 1) + ")");
+    checks.slotError("temp", draws + "temp must have the source's size, " + extentText(src) + ", and is " +
+                                 extentText(temp) + " (give it the source's size and \"mips\": " +
+                                 std::to_string(levels) + ")");
+  else if (const CheckedSlot* t = ctx.find("temp"); t && t->mips != 0 && t->mips < uint32_t(levels))
+    checks.slotError("temp", draws + "'" + t->resource + "' has " + std::to_string(t->mips) + " mip level" +
+                                 (t->mips == 1 ? "" : "s") + " (give it \"mips\": " + std::to_string(levels) +
+                                 ", or lower \"levels\" to " + std::to_string(t->mips) + ")");
 }
 
 // gaussian: one program; mip_chain: the downsample then the upsample (bloom_chain.cpp's order).
@@ -185,7 +188,7 @@ void registerBloom(PluginHost& host) {
              hdrFormats()),
         slot("temp", Access::color_attachment, true, SlotDecl::Load::never,
              "scratch: gaussian, dst's twin (the other half of the ping-pong); mip_chain, the chain's levels in its "
-             "mip levels 1..levels (the source's size, \"mips\": levels + 1)",
+             "mip levels 0..levels - 1 (the source's size, \"mips\": levels)",
              hdrFormats()),
     };
     d.params = {
@@ -204,7 +207,7 @@ void registerBloom(PluginHost& host) {
     };
     d.programs = blurPrograms(host);
     d.rules = {PassRule{"method \"mip_chain\" draws its levels into temp's mip levels: give temp the size of src and "
-                        "\"mips\": levels + 1",
+                        "\"mips\": levels",
                         checkBlur}};
     d.create = [] { return std::make_unique<BlurPass>(); };
     host.addPassType(std::move(d));

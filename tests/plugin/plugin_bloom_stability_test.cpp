@@ -47,7 +47,7 @@ std::string config(int px, int py, const std::string& blurParams) {
     "resources": {
       "hdr":    { "format": "rgba32f" },
       "bright": { "format": "rgba32f" },
-      "chain":  { "format": "rgba32f", "mips": )" + std::to_string(kLevels + 1) + R"( },
+      "chain":  { "format": "rgba32f", "mips": )" + std::to_string(kLevels) + R"( },
       "bloom":  { "format": "rgba32f" }
     },
     "passes": [

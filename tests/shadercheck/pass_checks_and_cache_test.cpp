@@ -104,6 +104,38 @@ TEST(PassChecks, SizesComeFromThePlanAtItsOutputSize) {
   EXPECT_NE(d[0].message.find("'hdr' (32x16) and 'output' (64x32)"), std::string::npos) << d[0].message;
 }
 
+// CheckedSlot::mips: the levels a binding covers, from its first level on
+// (the texture's "mips", capped by its full chain) or the bound range's.
+TEST(PassChecks, SlotsCountTheMipLevelsTheyBind) {
+  const std::string text = R"({"version": 1, "resources": {
+      "hdr": {"format": "rgba16f", "size": [64, 64]},
+      "five": {"format": "rgba16f", "size": [64, 64], "mips": 5},
+      "full": {"format": "rgba16f", "size": [64, 32], "mips": "full"}},
+    "passes": [
+      {"name": "a", "type": "fullscreen", "inputs": {"input0": "hdr"}, "outputs": {"color": "five"}},
+      {"name": "b", "type": "fullscreen", "inputs": {"input0": "five.mip[1..2]"}, "outputs": {"color": "full"}},
+      {"name": "c", "type": "fullscreen", "inputs": {"input0": "full.mip[2]", "color": "five.mip[3]"},
+       "outputs": {"color": "five_3.mip[3]"}}],
+    "output": "hdr"})";
+  Diagnostics diags;
+  PipelineConfig pipeline = ConfigDocument::parseText(text, "mips.json", diags).build(PassRegistry::builtins(), diags);
+  ASSERT_FALSE(hasErrors(diags)) << lines(diags);
+  const Plan plan = compile(pipeline.graph);
+  auto slot = [&](size_t pass, const std::string& name) {
+    for (const CheckedSlot& s : planSlots(pipeline.graph, plan, pass))
+      if (s.slot == name) return s;
+    ADD_FAILURE() << "no slot " << name;
+    return CheckedSlot{};
+  };
+  EXPECT_EQ(slot(0, "input0").mips, 1u);  // a plain texture
+  EXPECT_EQ(slot(0, "color").mips, 5u);   // the whole of "mips": 5
+  EXPECT_EQ(slot(1, "input0").mips, 2u);  // mip[1..2]
+  EXPECT_EQ(slot(1, "color").mips, 7u);   // "full" at 64x32: 64, 32, ..., 1
+  EXPECT_EQ(slot(2, "input0").mips, 1u);  // mip[2]
+  EXPECT_EQ(slot(2, "color").mips, 1u);   // mip[3], loaded and written
+  EXPECT_EQ(slot(2, "color").extent, (Extent{8, 8}));
+}
+
 TEST(PassChecks, ParamErrorsPointAtTheParam) {
   // A pass type of this test whose hook refuses a parameter.
   PassRegistry registry;

@@ -39,6 +39,9 @@ struct CheckedSlot {
   Subresource sub;
   uint32_t layers = 1;  // TextureDesc::layers
   bool cube = false;
+  // Mip levels the binding covers: the texture's (TextureDesc::mips resolved
+  // at the plan's size) from sub.mipBegin on, or the bound range's; 0 when unknown.
+  uint32_t mips = 0;
   bool loads = false;    // a writing slot that also loads its previous version
   // A history resource (ResourceDecl::historyOf): the resource whose previous
   // frame it holds; empty for anything else.

@@ -60,7 +60,10 @@
 // 5: PassContext::framebuffer(attachments) and texture(slot, sub) (the
 // executor's framebuffer cache and texture views), gl::bindPassFramebuffer
 // with attachments; textures of every shape (layers, cubes).
-#define RGRAPH_PLUGIN_ABI_VERSION 5u
+// 6: CheckedSlot::mips (check hooks see the mip levels a binding covers),
+// PassCheckContext::writer (the pass that wrote a read version: cross-pass
+// rules), rgraph/format_sets.h.
+#define RGRAPH_PLUGIN_ABI_VERSION 6u
 
 #define RGRAPH_PLUGIN_ABI_SYMBOL "rgraph_plugin_abi_version"
 #define RGRAPH_PLUGIN_REGISTER_SYMBOL "rgraph_plugin_register"

@@ -109,6 +109,11 @@ std::vector<CheckedSlot> planSlots(const GraphDesc& g, const Plan& plan, size_t 
         s.extent = e.width == 0 ? e
                                 : Extent{std::max<uint32_t>(1, e.width >> level), std::max<uint32_t>(1, e.height >> level)};
         s.sub = bu->sub;
+        if (e.width != 0) {
+          const uint32_t levels = mipLevels(rd.texture, e);
+          const uint32_t rest = bu->sub.mipBegin < levels ? levels - bu->sub.mipBegin : 0;
+          s.mips = bu->sub.mipCount == Subresource::kAll ? rest : std::min(rest, bu->sub.mipCount);
+        }
         s.layers = rd.texture.layers;
         s.cube = rd.texture.cube;
       }
