@@ -4,6 +4,9 @@
 // benchmark's GL objects, then the context, before static destructors.
 #pragma once
 
+#include <benchmark/benchmark.h>
+
+#include <exception>
 #include <functional>
 #include <memory>
 
@@ -33,6 +36,19 @@ T& contextSingleton(Make make) {
     slot = std::move(made);
   }
   return *slot;
+}
+
+// A benchmark's world (`world()`, made on first use), or nullptr after
+// SkipWithError with what making it threw (no GL context, a pipeline with
+// errors): the benchmark returns at once, the others still run.
+template <class World>
+World* worldOrSkip(benchmark::State& state, World& (*world)()) {
+  try {
+    return &world();
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return nullptr;
+  }
 }
 
 }  // namespace rgraph::bench

@@ -366,13 +366,8 @@ void printBreakdown(const std::string& name, Case& c) {
 }
 
 void BM_ExecutorOverhead(benchmark::State& state, std::string name) {
-  World* w = nullptr;
-  try {
-    w = &world();
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
+  World* w = bench::worldOrSkip(state, world);
+  if (!w) return;
   Case& c = w->cases[name];
   if (!c.error.empty()) {
     state.SkipWithError(c.error.c_str());

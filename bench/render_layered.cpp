@@ -7,8 +7,9 @@
 // the same way, glFinish after each, wall clock: llvmpipe's timer queries are
 // wrong, ../shared/PLATFORM.md) and reports each one's median and the median
 // of the per-pair ratios per_layer / layered ("speedup": above 1, the layered
-// draw is faster). Before timing, the two paths' layers are compared and
-// must be equal byte for byte (else the benchmark is skipped with an error).
+// draw is faster; speedup_min: the smallest pair's; bench/paired_times.h).
+// Before timing, the two paths' layers are compared and must be equal byte
+// for byte (else the benchmark is skipped with an error).
 //
 // Cases: cube (6 faces of a 256x256 cube map, a point light's shadow map)
 // and array16 (16 layers of a 128x128 2D array, e.g. cascades or an atlas),
@@ -27,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "../apps/rgraph/median.h"
+#include "paired_times.h"
 #include "render_context.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/gpu_scene.h"
@@ -136,13 +137,8 @@ double timed(const std::function<void()>& draw) {
 }
 
 void BM_LayeredPaired(benchmark::State& state, std::unique_ptr<Layered> World::*which) {
-  World* w = nullptr;
-  try {
-    w = &world();
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
+  World* w = bench::worldOrSkip(state, world);
+  if (!w) return;
   if (!w->gpu->supportsLayeredDraw()) {
     state.SkipWithError("no gl_Layer from the vertex shader on this device");
     return;
@@ -164,19 +160,14 @@ void BM_LayeredPaired(benchmark::State& state, std::unique_ptr<Layered> World::*
     state.SkipWithError("the layered draw's layers differ from the per-layer draws'");
     return;
   }
-  std::vector<double> a, b, ratio;
+  bench::PairedTimes times;
   for (auto _ : state) {
-    const double x = timed(perLayer), y = timed(layered);
-    a.push_back(x);
-    b.push_back(y);
-    ratio.push_back(x / y);
-    state.SetIterationTime((x + y) / 1000.0);
+    const double x = timed(perLayer);
+    times.add(state, x, timed(layered));
   }
   glDisable(GL_DEPTH_TEST);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  state.counters["per_layer_ms"] = cli::median(a);
-  state.counters["layered_ms"] = cli::median(b);
-  state.counters["speedup"] = cli::median(ratio);
+  times.report(state, "per_layer", "layered");
   state.counters["draws_per_layer"] = double(w->gpu->primitiveCount(GpuScene::Filter::opaque)) * t.layers;
   state.counters["draws_layered"] = double(w->gpu->primitiveCount(GpuScene::Filter::opaque));
   state.SetLabel(std::to_string(t.layers) + " layers of " + std::to_string(t.side) + "x" + std::to_string(t.side) +

@@ -42,6 +42,7 @@
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
 #include "render_context.h"
+#include "paired_times.h"
 #include "../apps/rgraph/median.h"
 
 namespace {
@@ -162,13 +163,8 @@ void reportImage(benchmark::State& state, const Runner& r) {
 }
 
 void BM_Method(benchmark::State& state, std::string name) {
-  World* w = nullptr;
-  try {
-    w = &world();
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
+  World* w = bench::worldOrSkip(state, world);
+  if (!w) return;
   auto it = w->runners.find(name);
   if (it == w->runners.end()) {
     state.SkipWithError(("no pipeline for " + name).c_str());
@@ -191,31 +187,19 @@ void BM_Method(benchmark::State& state, std::string name) {
 
 // Two methods frame for frame (base, other, base, ...): the ratio under the same load.
 void BM_Paired(benchmark::State& state, std::string base, std::string other) {
-  World* w = nullptr;
-  try {
-    w = &world();
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
+  World* w = bench::worldOrSkip(state, world);
+  if (!w) return;
   auto f = w->runners.find(base), o = w->runners.find(other);
   if (f == w->runners.end() || o == w->runners.end()) {
     state.SkipWithError("missing pipeline");
     return;
   }
-  std::vector<double> fwd, oth, ratio;
+  bench::PairedTimes times;
   for (auto _ : state) {
     const double a = f->second.frame();
-    const double b = o->second.frame();
-    fwd.push_back(a);
-    oth.push_back(b);
-    ratio.push_back(a / b);
-    state.SetIterationTime((a + b) / 1000.0);
+    times.add(state, a, o->second.frame());
   }
-  state.counters[base + "_ms"] = median(fwd);
-  state.counters[other + "_ms"] = median(oth);
-  state.counters["speedup"] = median(ratio);
-  state.counters["speedup_min"] = ratio.empty() ? 0.0 : *std::min_element(ratio.begin(), ratio.end());
+  times.report(state, base, other);
   reportImage(state, o->second);
   state.SetLabel(std::to_string(w->size.width) + "x" + std::to_string(w->size.height) + " " + w->scene->source);
 }
