@@ -68,9 +68,7 @@ std::vector<PassRule> blitRules() {
 }
 
 PassTypeDesc makeBlitPass() {
-  PassTypeDesc d;
-  d.name = "blit";
-  d.description = "Copies, scales or resolves an image into another (glBlitFramebuffer)";
+  PassTypeDesc d = decl::passType("blit", "Copies, scales or resolves an image into another (glBlitFramebuffer)");
   d.slots = {
       decl::slot("src", Access::blit_src, true, SlotDecl::Load::never,
                "source image (colour or depth; may be multisampled: resolved)", {}, true),

@@ -19,9 +19,7 @@ class ClearPass final : public PassInstance {
 };
 
 PassTypeDesc makeClearPass() {
-  PassTypeDesc d;
-  d.name = "clear";
-  d.description = "Fills a colour image with a constant colour";
+  PassTypeDesc d = decl::passType("clear", "Fills a colour image with a constant colour");
   d.slots = {decl::slot("color", Access::color_attachment, true, SlotDecl::Load::never,
                       "the image to fill (any colour format)")};
   d.params = {decl::param("color", ParamType::vec4, std::vector<double>{0.0, 0.0, 0.0, 1.0},

@@ -33,11 +33,9 @@ class ClusterLightsPass final : public PassInstance {
 
 PassTypeDesc makeClusterLightsPass() {
   using namespace rgraph::decl;
-  PassTypeDesc d;
-  d.name = "cluster_lights";
-  d.description =
+  PassTypeDesc d = passType("cluster_lights",
       "Clustered light lists (compute): per view-space cluster (screen tile x exponential depth slice), the point "
-      "lights whose cut-off sphere touches it, into a buffer that clustered_deferred, forward and forward_lit read";
+      "lights whose cut-off sphere touches it, into a buffer that clustered_deferred, forward and forward_lit read");
   d.slots = {slot(clusters::kSlot, Access::storage_write, true, SlotDecl::Load::never,
                   "buffer the lists go into (a header, a count per cluster, max_cluster_lights indices per "
                   "cluster: see the check's message for the bytes an output size needs)")};

@@ -145,9 +145,7 @@ std::vector<SamplerSlot> gbufferSamplers() {
 }
 
 PassTypeDesc gbufferReader(std::string name, std::string description) {
-  PassTypeDesc d;
-  d.name = std::move(name);
-  d.description = std::move(description);
+  PassTypeDesc d = decl::passType(std::move(name), std::move(description));
   d.slots = gbufferSlots();
   d.rules = {gbufferReaderRule(), gbuffer::sameLayoutAsWriterRule()};
   d.needsScene = true;

@@ -61,9 +61,8 @@ class ForwardPass final : public PassInstance {
 
 PassTypeDesc makeForwardPass() {
   using namespace rgraph::decl;
-  PassTypeDesc d;
-  d.name = "forward";
-  d.description = "Forward-rendered light markers and BLEND materials over the deferred image, depth-tested";
+  PassTypeDesc d = passType("forward",
+      "Forward-rendered light markers and BLEND materials over the deferred image, depth-tested");
   d.slots = {
       slot("color", Access::color_attachment, true, SlotDecl::Load::required, "HDR lighting target to draw over",
            hdrFormats()),

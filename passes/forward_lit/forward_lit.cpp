@@ -43,9 +43,8 @@ class ForwardLitPass final : public PassInstance {
 
 PassTypeDesc makeForwardLitPass() {
   using namespace rgraph::decl;
-  PassTypeDesc d;
-  d.name = "forward_lit";
-  d.description = "Classic forward renderer: every light per fragment (the reference and the baseline)";
+  PassTypeDesc d = passType("forward_lit",
+      "Classic forward renderer: every light per fragment (the reference and the baseline)");
   d.slots = {
       slot("color", Access::color_attachment, true, SlotDecl::Load::optional,
            "HDR target; background keeps its clear value", hdrFormats()),

@@ -76,9 +76,7 @@ class FullscreenShaderPass final : public gl::FullscreenPass {
 };
 
 PassTypeDesc makeFullscreenPass() {
-  PassTypeDesc d;
-  d.name = "fullscreen";
-  d.description = "Runs a fragment shader over the whole image (fullscreen triangle)";
+  PassTypeDesc d = decl::passType("fullscreen", "Runs a fragment shader over the whole image (fullscreen triangle)");
   for (size_t i = 0; i < kInputs.size(); ++i)
     d.slots.push_back(decl::slot(kInputs[i], Access::sampled, false, SlotDecl::Load::never,
                                "texture bound to `uniform sampler2D " + std::string(kInputs[i]) + "` on unit " +

@@ -96,9 +96,8 @@ PassTypeDesc makeGeometryPass() {
   using namespace rgraph::decl;
   const std::vector<Format> color = {Format::rgba8,  Format::srgb8_alpha8, Format::rgba16f, Format::rgba32f,
                                      Format::rg16f,  Format::rg8,          Format::r11g11b10f};
-  PassTypeDesc d;
-  d.name = "geometry";
-  d.description = "Fills the G-buffer (multiple render targets) with the scene's opaque and masked surfaces";
+  PassTypeDesc d = passType("geometry",
+      "Fills the G-buffer (multiple render targets) with the scene's opaque and masked surfaces");
   d.slots = {
       slot("position", Access::color_attachment, false, SlotDecl::Load::never,
            "world position (learnopengl, pbr, fp32 layouts)", {Format::rgba16f, Format::rgba32f}),

@@ -22,9 +22,7 @@ class PresentPass final : public gl::FullscreenPass {
 };
 
 PassTypeDesc makePresentPass() {
-  PassTypeDesc d;
-  d.name = "present";
-  d.description = "Copies a colour image into the output image, converting to 8 bits";
+  PassTypeDesc d = decl::passType("present", "Copies a colour image into the output image, converting to 8 bits");
   d.slots = {
       decl::slot("src", Access::sampled, true, SlotDecl::Load::never, "the image to show"),
       decl::slot("dst", Access::color_attachment, true, SlotDecl::Load::never, "the output image",

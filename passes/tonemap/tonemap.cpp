@@ -31,9 +31,7 @@ class TonemapPass final : public gl::FullscreenPass {
 
 PassTypeDesc makeTonemapPass() {
   using namespace rgraph::decl;
-  PassTypeDesc d;
-  d.name = "tonemap";
-  d.description = "HDR to the display: exposure, Reinhard or ACES, sRGB transfer";
+  PassTypeDesc d = passType("tonemap", "HDR to the display: exposure, Reinhard or ACES, sRGB transfer");
   d.slots = {
       slot("hdr", Access::sampled, true, SlotDecl::Load::never, "the HDR image", hdrFormats()),
       slot("output", Access::color_attachment, true, SlotDecl::Load::never,

@@ -159,9 +159,8 @@ void registerBloom(PluginHost& host) {
   using namespace rgraph::decl;
   {
     const std::string frag = host.shaderPath("bloom_bright.frag");
-    PassTypeDesc d;
-    d.name = "bloom_bright";
-    d.description = "Bloom 1/3: the bright part of an HDR image (soft threshold), at the bright target's size";
+    PassTypeDesc d = passType("bloom_bright",
+        "Bloom 1/3: the bright part of an HDR image (soft threshold), at the bright target's size");
     d.slots = {
         slot("hdr", Access::sampled, true, SlotDecl::Load::never, "HDR image", hdrFormats()),
         slot("bright", Access::color_attachment, true, SlotDecl::Load::never,
@@ -177,10 +176,9 @@ void registerBloom(PluginHost& host) {
     host.addPassType(std::move(d));
   }
   {
-    PassTypeDesc d;
-    d.name = "bloom_blur";
-    d.description = "Bloom 2/3: a Gaussian ping-pong between 'temp' and 'dst' (LearnOpenGL), or a mip chain "
-                    "(Jimenez 2014) in the mip levels of 'temp'";
+    PassTypeDesc d = passType("bloom_blur",
+        "Bloom 2/3: a Gaussian ping-pong between 'temp' and 'dst' (LearnOpenGL), or a mip chain "
+        "(Jimenez 2014) in the mip levels of 'temp'");
     d.slots = {
         slot("src", Access::sampled, true, SlotDecl::Load::never, "image to blur (e.g. bloom_bright's output)",
              hdrFormats()),
@@ -214,9 +212,8 @@ void registerBloom(PluginHost& host) {
   }
   {
     const std::string frag = host.shaderPath("bloom_composite.frag");
-    PassTypeDesc d;
-    d.name = "bloom_composite";
-    d.description = "Bloom 3/3: HDR + intensity * bloom into a new HDR image (or added into a loaded 'color')";
+    PassTypeDesc d = passType("bloom_composite",
+        "Bloom 3/3: HDR + intensity * bloom into a new HDR image (or added into a loaded 'color')");
     d.slots = {
         slot("hdr", Access::sampled, false, SlotDecl::Load::never,
              "HDR image (same size as 'color'); leave unbound to add into a loaded 'color' instead", hdrFormats()),

@@ -30,9 +30,8 @@ class FxaaPass final : public gl::FullscreenPass {
 
 void registerFxaa(PluginHost& host) {
   using namespace rgraph::decl;
-  PassTypeDesc d;
-  d.name = "fxaa";
-  d.description = "FXAA (3.11 quality-preset style): edge-directed blend of a tone-mapped image, same size out";
+  PassTypeDesc d = passType("fxaa",
+      "FXAA (3.11 quality-preset style): edge-directed blend of a tone-mapped image, same size out");
   d.slots = {
       // The edge search and the final blend read between texel centres.
       sampledWith(slot("input", Access::sampled, true, SlotDecl::Load::never,

@@ -147,9 +147,8 @@ PassRule positionRule() {
 void registerUpsample(PluginHost& host) {
   using namespace rgraph::decl;
   const std::string frag = host.shaderPath("ssao_upsample.frag");
-  PassTypeDesc d;
-  d.name = "ssao_upsample";
-  d.description = "SSAO at a reduced size back to the G-buffer's size, depth-aware (joint bilateral upsample)";
+  PassTypeDesc d = passType("ssao_upsample",
+      "SSAO at a reduced size back to the G-buffer's size, depth-aware (joint bilateral upsample)");
   d.slots = {
       slot("src", Access::sampled, true, SlotDecl::Load::never, "ssao_blur's output at the reduced size", kAoFormats),
       slot("position", Access::sampled, false, SlotDecl::Load::never,
@@ -184,9 +183,8 @@ void registerSsao(PluginHost& host) {
   using namespace rgraph::decl;
   {
     const std::string frag = host.shaderPath("ssao.frag");
-    PassTypeDesc d;
-    d.name = "ssao";
-    d.description = "Screen-space ambient occlusion (hemisphere kernel) from G-buffer depth/position and normals";
+    PassTypeDesc d = passType("ssao",
+        "Screen-space ambient occlusion (hemisphere kernel) from G-buffer depth/position and normals");
     d.slots = {
         slot("position", Access::sampled, false, SlotDecl::Load::never,
              "G-buffer world position (every layout but compact)"),
@@ -217,9 +215,7 @@ void registerSsao(PluginHost& host) {
   }
   {
     const std::string frag = host.shaderPath("ssao_blur.frag");
-    PassTypeDesc d;
-    d.name = "ssao_blur";
-    d.description = "SSAO 2/2: box blur over the 4x4 noise tile";
+    PassTypeDesc d = passType("ssao_blur", "SSAO 2/2: box blur over the 4x4 noise tile");
     d.slots = {
         slot("src", Access::sampled, true, SlotDecl::Load::never, "raw ssao output", kAoFormats),
         slot("ao", Access::color_attachment, true, SlotDecl::Load::never, "blurred ambient visibility (src's size)",

@@ -53,9 +53,8 @@ void checkHistory(const PassCheckContext& ctx, PassChecks& checks) {
 
 void registerTaa(PluginHost& host) {
   using namespace rgraph::decl;
-  PassTypeDesc d;
-  d.name = "taa";
-  d.description = "Temporal anti-aliasing: jittered frames accumulated through a reprojected, clipped history";
+  PassTypeDesc d = passType("taa",
+      "Temporal anti-aliasing: jittered frames accumulated through a reprojected, clipped history");
   d.slots = {
       slot("color", Access::sampled, true, SlotDecl::Load::never, "this frame's HDR image (jittered)", hdrFormats()),
       // Reprojected: the bicubic history filter is built from bilinear taps.

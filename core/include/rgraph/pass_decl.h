@@ -10,6 +10,15 @@
 
 namespace rgraph::decl {
 
+// A pass type named `name` (the config's "type"), described for `rgraph
+// passes` by `description`; the caller adds slots, params and programs.
+inline PassTypeDesc passType(std::string name, std::string description) {
+  PassTypeDesc d;
+  d.name = std::move(name);
+  d.description = std::move(description);
+  return d;
+}
+
 inline SlotDecl slot(std::string name, Access access, bool required, SlotDecl::Load load, std::string description,
                      std::vector<Format> formats = {}, bool acceptsMultisample = false) {
   SlotDecl s;
