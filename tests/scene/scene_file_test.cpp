@@ -140,6 +140,8 @@ TEST_F(SceneFile, Errors) {
   expectError(R"({"models": {}})", {"/models", "array"});
   expectError(R"({"models": [{"file": "nowhere.gltf"}]})", {"/models/0/file", "nowhere.gltf"});
   expectError(R"({"models": [{"file": 3}]})", {"/models/0/file", "string"});
+  expectError(R"({"models": [{"shape": "cube", "material": {"doubleSided": 1}}]})",
+              {"/models/0/material/doubleSided", "expected true or false, got number"});
   expectError(R"({"models": [{}]})", {"/models/0", "file"});
   expectError(R"({"models": [{"shape": "torus"}]})", {"/models/0/shape", "torus"});
   expectError(R"({"models": [{"shape": "cube", "transform": {"scale": [1, 2]}}]})", {"/models/0/transform/scale"});

@@ -256,10 +256,7 @@ class SceneFileParser {
       else if (a == "blend" || a == "BLEND") m.alphaMode = AlphaMode::blend;
       else fail(ptr + "/alphaMode", "expected \"opaque\", \"mask\" or \"blend\", got \"" + a + "\"");
     }
-    if (j.contains("doubleSided")) {
-      if (!j["doubleSided"].is_boolean()) fail(ptr + "/doubleSided", "expected true or false");
-      m.doubleSided = j["doubleSided"].get<bool>();
-    }
+    if (const auto twoSided = flag(j, "doubleSided", ptr)) m.doubleSided = *twoSided;
   }
 
   void addModel(Scene& scene, const json& j, const std::string& ptr) const {
