@@ -83,14 +83,68 @@ struct SceneFeatures {
   // texture), so no G-buffer target needs to carry them.
   bool metallicRoughnessVariation = true;
   float metallic = 1.0f, roughness = 1.0f;  // the shared values when there is no variation
+
+  // Shadows (passes/shadow_map): which lights a shadow pipeline should give
+  // maps, from the scene's lights, its casters and the camera it is seen from.
+  struct ShadowLight {
+    enum class Kind { directional, spot, point };
+    Kind kind = Kind::directional;
+    uint32_t light = 0;  // index into Scene::directionalLights (directional) or Scene::pointLights
+    bool operator==(const ShadowLight&) const = default;
+  };
+  struct UnshadowedLight {
+    ShadowLight light;
+    // Why it has no map, one short phrase: "does not cast" (its castShadows
+    // is false, or unset on a point light), "outside the view" (its reach
+    // misses the camera's frustum), "not shaded" (a directional light after
+    // the first: the lighting passes shade only the first).
+    std::string reason;
+    bool operator==(const UnshadowedLight&) const = default;
+  };
+  // Some primitive casts (Scene::castsShadows).
+  bool shadowCasters = false;
+  // The casting lights that reach the view, most important first: the first
+  // directional light, then spot and point lights by distance from the
+  // camera to the light's reach (0 inside it), ties in scene order. Empty
+  // without casters (every light then goes to unshadowedLights with "no
+  // caster in the scene").
+  std::vector<ShadowLight> shadowLights;
+  std::vector<UnshadowedLight> unshadowedLights;  // every other light, in scene order (directional first)
 };
 
 // What a pass type's adapt hook may change in one pass for a scene.
+//
+// Expansion: a template pass may be replaced by instances generated from the
+// scene (a shadow map per casting light and cascade). Each instance is the
+// template with its own name, params and a subset of the template's
+// bindings, each optionally narrowed to a part of its texture; instances
+// keep the template's source location, so diagnostics about them point at
+// the template. An empty `expand` removes the template (its resources may
+// then have no writer: readers must be adapted too, from the same features).
+struct ExpandedPass {
+  std::string suffix;  // the instance is named "<template name>.<suffix>"
+  ParamSet params;     // a copy of the template's params, as the hook changed them
+  struct Binding {
+    std::string slot;                  // a slot the template binds (its input and output alike)
+    std::optional<Subresource> part;   // unset: what the template binds
+  };
+  std::vector<Binding> bindings;       // the template's other bindings are dropped
+};
+
 struct PassAdaptation {
   bool disable = false;                   // in-place writes become pass-throughs
   std::vector<std::string> unbindSlots;   // optional slots to drop (their resources may become unused)
   ParamSet params;                        // the pass's parameters, to modify
   std::vector<std::string> notes;         // why, one line each ("no point lights: ...")
+  // Set: the pass is replaced by these, at its place, in this order (above).
+  std::optional<std::vector<ExpandedPass>> expand;
+  // The texture a template's slot binds, reshaped for its instances: its
+  // array layer count (a plain 2D array; 0 leaves it). Applied with expand.
+  struct Reshape {
+    std::string slot;
+    uint32_t layers = 0;
+  };
+  std::vector<Reshape> reshape;
 };
 
 // A sampled slot and the sampler uniform a program reads it through.

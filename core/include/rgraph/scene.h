@@ -359,6 +359,10 @@ struct SceneFeatures;  // rgraph/pass.h
 // What this scene needs from a pipeline (point lights, blending, normal maps,
 // metallic/roughness variation), for PassTypeDesc::adapt hooks.
 SceneFeatures sceneFeatures(const Scene& scene);
+// The same seen from `camera` at this aspect (width / height): the shadow
+// facts (SceneFeatures::shadowLights) depend on the view. The one-argument
+// form uses scene.camera at 16:9.
+SceneFeatures sceneFeatures(const Scene& scene, const Camera& camera, float aspect);
 
 // Appends `src` to `dst` under `transform` (primitives, point and directional
 // lights; src's camera is taken only when dst has none). Indices are rebased.
