@@ -138,11 +138,14 @@ struct PassAdaptation {
   std::vector<std::string> notes;         // why, one line each ("no point lights: ...")
   // Set: the pass is replaced by these, at its place, in this order (above).
   std::optional<std::vector<ExpandedPass>> expand;
-  // The texture a template's slot binds, reshaped for its instances: its
-  // array layer count (a plain 2D array; 0 leaves it). Applied with expand.
+  // The resource a template's slot binds, reshaped for its instances: a
+  // texture's array layer count (a plain 2D array) and square size, a
+  // buffer's bytes (0 leaves each as declared). Applied with expand.
   struct Reshape {
     std::string slot;
     uint32_t layers = 0;
+    uint32_t size = 0;   // width = height, absolute
+    uint64_t bytes = 0;  // buffers
   };
   std::vector<Reshape> reshape;
 };
