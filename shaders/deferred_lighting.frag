@@ -1,11 +1,13 @@
 #version 450 core
 // Deferred lighting, once per pixel: ambient + the directional light + every
 // point light (unless light volumes draw those). Defines: one GBUFFER_*, one
-// LIGHTING_*, one ATTENUATION_*, optionally LIGHT_RADIUS_BRANCH.
+// LIGHTING_*, one ATTENUATION_*, optionally LIGHT_RADIUS_BRANCH and the
+// shadow defines (include/shadows.glsl).
 #include "include/frame.glsl"
 #include "include/gbuffer.glsl"
 #include "include/gbuffer_read.glsl"
 #include "include/lighting.glsl"
+#include "include/shadows.glsl"
 
 #include "include/lights.glsl"
 uniform int u_pointLightCount;  // 0 when another pass lights the point lights
@@ -22,8 +24,8 @@ void main() {
   vec3 color = vec3(0.0);
   if (u_ambientAndSun != 0) {
     float occlusion = u_hasAo != 0 ? texture(u_ao, gl_FragCoord.xy * u_viewport.zw).r : 1.0;
-    color += ambientTerm(s) * occlusion + shadeDirectionalLight(s, V);
+    color += ambientTerm(s) * occlusion + shadeDirectionalLight(s, V) * sunVisibility(s);
   }
-  for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(lights[i], s, V);
+  for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(lights[i], s, V) * lightVisibility(i, s);
   outColor = vec4(color, 1.0);
 }

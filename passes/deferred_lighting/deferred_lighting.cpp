@@ -10,6 +10,7 @@
 #include "rgraph/pass_decl.h"
 #include "rgraph/passes/light_radii.h"
 #include "rgraph/passes/lighting_options.h"
+#include "rgraph/passes/shadow_sampling.h"
 #include "rgraph/registry.h"
 
 namespace {
@@ -24,6 +25,7 @@ class DeferredLightingPass final : public gl::FullscreenPass {
     // Optional ambient occlusion (e.g. the ssao plugin's output) scales the ambient term.
     hasAo_.set(ctx.bound("ao"));
     lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
+    shadows::bindInfo(ctx);
   }
   uint32_t changedState() const override { return 0; }  // uniforms and the scene's buffers only
   ProgramUniform pointLightCount_{this, "u_pointLightCount"}, ambientAndSun_{this, "u_ambientAndSun"};
@@ -47,12 +49,20 @@ PassTypeDesc makeDeferredLightingPass() {
   d.params.push_back(param("radius_test", ParamType::boolean, false,
                            "skip a light's maths beyond its radius with a branch (LearnOpenGL's loop)"));
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
-  d.adapt = lighting::adaptPointLightShading;
+  for (auto& s : shadows::slots()) d.slots.push_back(std::move(s));
+  for (auto& p : shadows::params()) d.params.push_back(std::move(p));
+  d.rules.push_back(shadows::rule());
+  d.adapt = [](const SceneFeatures& f, PassAdaptation& a) {
+    lighting::adaptPointLightShading(f, a);
+    shadows::adapt(f, a);
+  };
   d.programs = [](const ParamSet& p) {
     ShaderProgramSpec s = gl::fullscreenProgram("deferred_lighting.frag", lighting::gbufferSamplers(),
                                                 lighting::shadingDefines(p));
     if (p.getBool("radius_test")) s.defines.push_back("LIGHT_RADIUS_BRANCH");
     s.samplers.push_back({"ao", "u_ao", 5, /*optional=*/true});  // u_hasAo says whether it is bound
+    for (auto& def : shadows::defines(p)) s.defines.push_back(std::move(def));
+    for (auto& sampler : shadows::samplers(p)) s.samplers.push_back(std::move(sampler));
     return std::vector<ShaderProgramSpec>{std::move(s)};
   };
   d.create = [] { return std::make_unique<DeferredLightingPass>(); };

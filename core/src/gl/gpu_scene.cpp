@@ -224,6 +224,8 @@ glm::mat4 GpuScene::writeFrame(Extent viewport, const Camera& cam, const FrameMo
   const float w = static_cast<float>(std::max(viewport.width, 1u));
   const float h = static_cast<float>(std::max(viewport.height, 1u));
   eye_ = cam.position;
+  camera_ = cam;
+  viewport_ = viewport;
   FrameBlock f{};
   f.view = cam.view();
   f.proj = cam.projection(w / h);

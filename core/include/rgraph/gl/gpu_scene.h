@@ -31,6 +31,7 @@
 #include "rgraph/gl/context_identity.h"
 #include "rgraph/gl/objects.h"
 #include "rgraph/graph.h"
+#include "rgraph/scene.h"  // Camera, held by value (camera())
 
 namespace rgraph {
 
@@ -77,6 +78,10 @@ class GpuScene {
   // jitter and the models' previous matrices (u_prevModel per draw). Returns
   // this frame's unjittered view-projection (the next frame's prevViewProj).
   glm::mat4 updateFrame(Extent viewport, const Camera& camera, const FrameMotion& motion);
+  // The camera and viewport of the last updateFrame (unjittered): what passes
+  // that fit something to the view (shadow cascades) fit it to.
+  const Camera& camera() const { return camera_; }
+  Extent viewport() const { return viewport_; }
   // The scene's lights or ambient changed (same Scene object): light buffers
   // are rewritten in place at their next use, grown only past their capacity
   // (a power of two), so that moving, recolouring, adding and removing lights
@@ -257,6 +262,8 @@ class GpuScene {
   gl::Buffer views_, layerViews_;
   uint32_t viewStride_ = 0, layerStride_ = 0, nextView_ = 0, nextLayerSlot_ = 0;
   glm::ivec4 frameIndex_{0};
+  Camera camera_;     // of the last updateFrame
+  Extent viewport_;
   mutable std::optional<bool> layeredSupport_;
   void bindProgram(uint32_t program) const;
   void bindVertexArray(uint32_t vertexArray) const;
