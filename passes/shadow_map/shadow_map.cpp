@@ -201,6 +201,9 @@ void expand(const SceneFeatures& f, PassAdaptation& a) {
   // At least two layers: one alone would make a plain 2D texture, which the
   // lighting passes' sampler2DArrayShadow cannot read.
   a.reshape.push_back({"atlas", std::max(layer, 2u), static_cast<uint32_t>(a.params.getInt("size")), 0});
+  // A spare layer (one map alone) is bound by the last map pass, so that the
+  // whole atlas has a writer; it is never drawn nor sampled.
+  if (layer < 2) a.expand->back().bindings[0].part->layerCount = Subresource::kAll;
   a.reshape.push_back({"info", 0, 0, shadows::infoBytes(lightCount)});
   a.notes.push_back(std::to_string(lights.size()) + " shadowed light(s) in " + std::to_string(layer) +
                     " atlas layer(s): " + names);

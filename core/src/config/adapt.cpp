@@ -35,7 +35,7 @@ ResourceDecl* resourceOfVersion(GraphDesc& graph, const std::string& version) {
 // their shape: a note says so.
 void applyReshape(PipelineConfig& pipeline, const PassDecl& pass, const PassAdaptation& a, AdaptReport& report) {
   for (const PassAdaptation::Reshape& r : a.reshape) {
-    if (r.layers == 0) continue;
+    if (r.layers == 0 && r.size == 0 && r.bytes == 0) continue;
     auto use = std::find_if(pass.uses.begin(), pass.uses.end(), [&](const ResourceUse& u) { return u.slot == r.slot; });
     const std::string prefix = "pass " + q(pass.name) + ": slot " + q(r.slot);
     if (use == pass.uses.end()) {
@@ -45,13 +45,21 @@ void applyReshape(PipelineConfig& pipeline, const PassDecl& pass, const PassAdap
     const std::string& version = use->output.empty() ? use->input : use->output;
     ResourceDecl* res = resourceOfVersion(pipeline.graph, version);
     if (!res) continue;  // an unknown name: the compiler reports it
-    if (res->imported || res->texture.cube || res->kind != ResourceKind::texture) {
-      const char* what = res->imported ? "imported" : res->kind != ResourceKind::texture ? "a buffer" : "a cube map";
-      report.notes.push_back(prefix + " binds " + q(res->name) + ", " + what + ": not reshaped to " +
+    if (res->imported) {
+      report.notes.push_back(prefix + " binds " + q(res->name) + ", imported: not reshaped");
+      continue;
+    }
+    if (res->kind == ResourceKind::buffer) {
+      if (r.bytes) res->bufferBytes = r.bytes;
+      continue;
+    }
+    if (res->texture.cube && r.layers) {
+      report.notes.push_back(prefix + " binds " + q(res->name) + ", a cube map: not reshaped to " +
                              std::to_string(r.layers) + " layers");
       continue;
     }
-    res->texture.layers = r.layers;
+    if (r.layers) res->texture.layers = r.layers;
+    if (r.size) res->texture.size = SizeSpec::absolute(r.size, r.size);
   }
 }
 
