@@ -229,7 +229,10 @@ PassTypeDesc makeShadowMapPass() {
              "view depth the cascades reach (0: the camera's far plane)"),
       param("stabilize", ParamType::boolean, true,
             "fit cascades to bounding spheres and snap them to whole texels (no shimmering edges)"),
-      param("cull", ParamType::enumeration, std::string("back"), "faces culled in the maps", {"back", "front", "none"}),
+      param("cull", ParamType::enumeration, std::string("none"),
+            "faces culled in the maps: none (a light inside a closed caster, one-sided walls facing the light: both "
+            "cast), back (fewer fragments) or front (a closed caster's far side)",
+            {"none", "back", "front"}),
       ranged("slope_bias", ParamType::number, 1.5, 0.0, 64.0, "depth bias scaled by the depth slope (glPolygonOffset factor)"),
       ranged("constant_bias", ParamType::number, 2.0, 0.0, 4096.0, "constant depth bias (glPolygonOffset units)"),
       ranged("normal_offset", ParamType::number, 1.0, 0.0, 16.0,
