@@ -23,7 +23,10 @@ ResourceDecl* resourceOfVersion(GraphDesc& graph, const std::string& version) {
     for (const PassDecl& p : graph.passes)
       for (const ResourceUse& u : p.uses) {
         if (u.input.empty() || u.output.empty() || !isWriteAccess(u.access) || of.count(u.output)) continue;
-        if (auto it = of.find(u.input); it != of.end()) changed = of.emplace(u.output, it->second).second;
+        if (auto it = of.find(u.input); it != of.end()) {
+          of.emplace(u.output, it->second);
+          changed = true;
+        }
       }
   }
   auto it = of.find(version);
