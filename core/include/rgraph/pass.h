@@ -144,6 +144,9 @@ struct PassAdaptation {
   std::vector<std::string> unbindSlots;   // optional slots to drop (their resources may become unused)
   ParamSet params;                        // the pass's parameters, to modify
   std::vector<std::string> notes;         // why, one line each ("no point lights: ...")
+  // A table the hook reports on the scene (the shadow budget), one line per
+  // row: `rgraph plan --scene` prints it under the pass's name.
+  std::vector<std::string> report;
   // Set: the pass is replaced by these, at its place, in this order (above).
   std::optional<std::vector<ExpandedPass>> expand;
   // The resource a template's slot binds, reshaped for its instances: a

@@ -134,6 +134,7 @@ AdaptReport adaptToScene(PipelineConfig& pipeline, const PassRegistry& registry,
     PassAdaptation a;
     a.params = pipeline.params[i];
     type->adapt(features, a);
+    if (!a.report.empty()) report.tables.push_back({pass.name, a.report});
     if (a.expand && !a.disable) {
       applyReshape(pipeline, pass, a, report);
       // The instances are not adapted again: the hook made them for these features.

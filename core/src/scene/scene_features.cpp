@@ -94,6 +94,9 @@ SceneFeatures sceneFeatures(const Scene& scene) { return sceneFeatures(scene, sc
 
 SceneFeatures sceneFeatures(const Scene& scene, const Camera& camera, float aspect) {
   SceneFeatures f;
+  f.scene = &scene;
+  f.camera = camera;
+  f.aspect = aspect;
   f.pointLights = scene.hasPointLights();
   f.blendMaterials = scene.hasBlendMaterials();
   f.normalMaps = scene.hasNormalMaps();
