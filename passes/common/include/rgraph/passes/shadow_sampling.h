@@ -80,4 +80,15 @@ void adapt(const SceneFeatures& f, PassAdaptation& a);
 // Binds the info buffer at kInfoBinding when the pass reads shadows.
 void bindInfo(PassContext& ctx);
 
+// The above, as a lighting pass type takes them: slots(), params() and
+// rule() added to `d`, and adapt() chained after the type's own hook (set
+// before this call). A pass its own hook disables, or one that calls
+// compileOut, keeps no shadow inputs.
+void declareReader(PassTypeDesc& d);
+// defines(p) and samplers(p) added to a program that includes shadows.glsl.
+void addToProgram(ShaderProgramSpec& s, const ParamSet& p);
+// "shadows" off and the inputs unbound, with `why` noted (adapt's reasons, or
+// a pass's own: forward with no blended surface to light).
+void compileOut(PassAdaptation& a, const std::string& why);
+
 }  // namespace rgraph::shadows
