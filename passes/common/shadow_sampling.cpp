@@ -167,11 +167,8 @@ void declareReader(PassTypeDesc& d) {
   d.rules.push_back(rule());
   d.adapt = [own = std::move(d.adapt)](const SceneFeatures& f, PassAdaptation& a) {
     if (own) own(f, a);
-    // A disabled pass reads nothing: its shadow inputs must not keep the maps alive.
-    if (a.disable)
-      compileOut(a, "pass disabled");
-    else
-      adapt(f, a);
+    // A disabled pass reads nothing (the graph keeps no writer alive for it).
+    if (!a.disable) adapt(f, a);
   };
 }
 

@@ -82,8 +82,7 @@ void bindInfo(PassContext& ctx);
 
 // The above, as a lighting pass type takes them: slots(), params() and
 // rule() added to `d`, and adapt() chained after the type's own hook (set
-// before this call). A pass its own hook disables, or one that calls
-// compileOut, keeps no shadow inputs.
+// before this call; not run when that hook disables the pass).
 void declareReader(PassTypeDesc& d);
 // defines(p) and samplers(p) added to a program that includes shadows.glsl.
 void addToProgram(ShaderProgramSpec& s, const ParamSet& p);
