@@ -6,7 +6,11 @@
 // shader: one of the two extensions below, GpuScene::supportsLayeredDraw).
 #if defined(LAYERED)
 #extension GL_ARB_shader_viewport_layer_array : enable
+// The AMD one only where the compiler has it (its macro is defined): glslang,
+// which validate checks with, knows only the ARB one and would warn.
+#if defined(GL_AMD_vertex_shader_layer)
 #extension GL_AMD_vertex_shader_layer : enable
+#endif
 #endif
 #include "include/frame.glsl"
 #if defined(LAYERED)

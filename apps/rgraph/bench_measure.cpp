@@ -31,7 +31,8 @@ Measured measure(const std::string& pipelineText, const std::string& name, const
 }
 
 std::unique_ptr<Executor> makeExecutor(PipelineConfig& cfg, const Scene& scene, Extent size, ShaderLibrary& shaders) {
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));  // as `rgraph render` does
+  const float aspect = size.height > 0 ? float(size.width) / float(size.height) : 16.0f / 9.0f;
+  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene, scene.camera, aspect));  // as `rgraph render` does
   auto exec = std::make_unique<Executor>(cfg, PassRegistry::builtins(), shaders, &scene);
   exec->resize(size);
   return exec;

@@ -123,6 +123,38 @@ void printPlanText(const Plan& plan) {
             << " (the least any allocator needs)\n";
 }
 
+std::string lightLabel(const SceneFeatures::ShadowLight& l) {
+  using Kind = SceneFeatures::ShadowLight::Kind;
+  const char* kind = l.kind == Kind::directional ? "directional" : l.kind == Kind::spot ? "spot" : "point";
+  return std::string(kind) + " " + std::to_string(l.light);
+}
+
+// Which lights a shadow pipeline gives maps (most important first) and why
+// each other light gets none (scene order). Indices are into the scene's
+// directional lights or its point lights (spots included), as in shadow pass names.
+void printShadows(const SceneFeatures& f) {
+  std::cout << "shadows:" << (f.shadowCasters ? "" : " (no caster in the scene)") << "\n";
+  if (f.shadowLights.empty() && f.unshadowedLights.empty()) std::cout << "  (no lights)\n";
+  for (const auto& l : f.shadowLights) std::cout << "  shadowed: " << lightLabel(l) << "\n";
+  for (const auto& u : f.unshadowedLights)
+    std::cout << "  unshadowed: " << lightLabel(u.light) << " (" << u.reason << ")\n";
+}
+
+nlohmann::json shadowsJson(const SceneFeatures& f) {
+  auto light = [](const SceneFeatures::ShadowLight& l) {
+    const std::string label = lightLabel(l);
+    return nlohmann::json{{"kind", label.substr(0, label.find(' '))}, {"light", l.light}};
+  };
+  nlohmann::json shadowed = nlohmann::json::array(), unshadowed = nlohmann::json::array();
+  for (const auto& l : f.shadowLights) shadowed.push_back(light(l));
+  for (const auto& u : f.unshadowedLights) {
+    nlohmann::json j = light(u.light);
+    j["reason"] = u.reason;
+    unshadowed.push_back(std::move(j));
+  }
+  return {{"casters", f.shadowCasters}, {"shadowed", shadowed}, {"unshadowed", unshadowed}};
+}
+
 }  // namespace
 
 int runValidate(const std::string& path, const SizeOptions& size, bool json, bool checkShaders) {
@@ -158,7 +190,8 @@ int runPlan(const std::string& path, const SizeOptions& size, bool json, const s
     return kExitFailure;
   }
   PipelineConfig adapted = result->first;
-  const AdaptReport report = adaptToScene(adapted, PassRegistry::builtins(), sceneFeatures(scene));
+  const SceneFeatures features = sceneFeatures(scene, scene.camera, float(size.width) / float(size.height));
+  const AdaptReport report = adaptToScene(adapted, PassRegistry::builtins(), features);
   Diagnostics adaptedDiags;
   Plan plan = checkPipeline(adapted, compileOptions(size.width, size.height, size.maxTextureSize), ShaderChecks::skip,
                             adaptedDiags, /*scenePresent=*/true);
@@ -170,6 +203,7 @@ int runPlan(const std::string& path, const SizeOptions& size, bool json, const s
     nlohmann::json out = planJson(plan);
     out["scene"] = {{"source", scene.source},
                     {"adaptations", report.notes},
+                    {"shadows", shadowsJson(features)},
                     {"gbuffer_bytes_per_pixel", {{"before", before}, {"after", after}}},
                     {"memory_before", memoryJson(result->second)}};
     std::cout << out.dump(2) << "\n";
@@ -177,6 +211,7 @@ int runPlan(const std::string& path, const SizeOptions& size, bool json, const s
     std::cout << "adapted to scene " << scene.source << ":\n";
     if (report.notes.empty()) std::cout << "  (nothing to drop)\n";
     for (const auto& n : report.notes) std::cout << "  " << n << "\n";
+    printShadows(features);
     std::cout << "G-buffer bytes per pixel: " << before << " before, " << after << " after\n";
     printPlanText(plan);
   }

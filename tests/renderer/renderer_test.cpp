@@ -168,6 +168,32 @@ TEST_F(RendererApi, LosingTheLastPointLightAdaptsThePipelineAgain) {
   EXPECT_TRUE(after->culled) << "no point lights: no light volumes";
 }
 
+// Shadows: a light edit re-adapts exactly when it changes which lights get
+// shadow maps (SceneFeatures::shadowLights), not when a shadowed light moves
+// within the view or a light that casts nothing comes or goes.
+TEST_F(RendererApi, ChangingTheShadowedLightsAdaptsThePipelineAgain) {
+  auto scene = RenderScene::load("learnopengl:shadows");
+  auto r = makeRenderer();
+  r->setScene(scene);
+  r->render();
+  ASSERT_EQ(r->builds(), 1u);
+  PointLight light = scene->pointLight(0);
+  light.position = glm::vec3(0.0f, 0.5f, 0.0f);
+  light.castShadows = true;
+  scene->setPointLight(0, light);
+  r->render();
+  EXPECT_EQ(r->builds(), 2u) << "a point light now casts";
+  light.position = glm::vec3(0.5f, 0.5f, 0.5f);
+  scene->setPointLight(0, light);
+  scene->addPointLight(PointLight{glm::vec3(0.0f, 1.0f, 1.0f), glm::vec3(1.0f)});
+  r->render();
+  EXPECT_EQ(r->builds(), 2u) << "moved within the view, and a light that does not cast added";
+  light.position = r->camera().position - 50.0f * r->camera().forward();  // far behind the camera
+  scene->setPointLight(0, light);
+  r->render();
+  EXPECT_EQ(r->builds(), 3u) << "the shadowed light left the view";
+}
+
 TEST_F(RendererApi, BadLightsAndCamerasAreRefusedAndChangeNothing) {
   auto scene = RenderScene::load("learnopengl:overview");
   PointLight bad = scene->pointLight(0);

@@ -63,7 +63,9 @@
 // 6: CheckedSlot::mips (check hooks see the mip levels a binding covers),
 // PassCheckContext::writer (the pass that wrote a read version: cross-pass
 // rules), rgraph/format_sets.h.
-#define RGRAPH_PLUGIN_ABI_VERSION 6u
+// 7: SceneFeatures's shadow facts (shadowCasters, shadowLights,
+// unshadowedLights), PassAdaptation::expand and ::reshape (ExpandedPass).
+#define RGRAPH_PLUGIN_ABI_VERSION 7u
 
 #define RGRAPH_PLUGIN_ABI_SYMBOL "rgraph_plugin_abi_version"
 #define RGRAPH_PLUGIN_REGISTER_SYMBOL "rgraph_plugin_register"

@@ -1,11 +1,118 @@
 #include "rgraph/adapt.h"
 
 #include <algorithm>
+#include <map>
 #include <set>
 
 #include "rgraph/registry.h"
 
 namespace rgraph {
+
+namespace {
+
+std::string q(const std::string& s) { return "'" + s + "'"; }
+
+// The declared resource a version name is of, as the compiler resolves it: a
+// resource's name is its first version; an in-place write's output is of
+// its input's resource. nullptr when no resource has that version.
+ResourceDecl* resourceOfVersion(GraphDesc& graph, const std::string& version) {
+  std::map<std::string, size_t> of;
+  for (size_t r = 0; r < graph.resources.size(); ++r) of.emplace(graph.resources[r].name, r);
+  for (bool changed = true; changed && !of.count(version);) {
+    changed = false;
+    for (const PassDecl& p : graph.passes)
+      for (const ResourceUse& u : p.uses) {
+        if (u.input.empty() || u.output.empty() || !isWriteAccess(u.access) || of.count(u.output)) continue;
+        if (auto it = of.find(u.input); it != of.end()) changed = of.emplace(u.output, it->second).second;
+      }
+  }
+  auto it = of.find(version);
+  return it == of.end() ? nullptr : &graph.resources[it->second];
+}
+
+// The textures the template's slots bind get the layer counts the hook asks
+// for. Imported textures (owned by the caller), cubes and buffers keep
+// their shape: a note says so.
+void applyReshape(PipelineConfig& pipeline, const PassDecl& pass, const PassAdaptation& a, AdaptReport& report) {
+  for (const PassAdaptation::Reshape& r : a.reshape) {
+    if (r.layers == 0) continue;
+    auto use = std::find_if(pass.uses.begin(), pass.uses.end(), [&](const ResourceUse& u) { return u.slot == r.slot; });
+    const std::string prefix = "pass " + q(pass.name) + ": slot " + q(r.slot);
+    if (use == pass.uses.end()) {
+      report.notes.push_back(prefix + " is not bound: nothing reshaped");
+      continue;
+    }
+    const std::string& version = use->output.empty() ? use->input : use->output;
+    ResourceDecl* res = resourceOfVersion(pipeline.graph, version);
+    if (!res) continue;  // an unknown name: the compiler reports it
+    if (res->imported || res->texture.cube || res->kind != ResourceKind::texture) {
+      const char* what = res->imported ? "imported" : res->kind != ResourceKind::texture ? "a buffer" : "a cube map";
+      report.notes.push_back(prefix + " binds " + q(res->name) + ", " + what + ": not reshaped to " +
+                             std::to_string(r.layers) + " layers");
+      continue;
+    }
+    res->texture.layers = r.layers;
+  }
+}
+
+// An instance: the template under its own name and params, binding only the
+// slots listed, each narrowed to its part. Locations stay the template's.
+PassDecl makeInstance(const PassDecl& pass, const ExpandedPass& e) {
+  PassDecl inst = pass;
+  inst.name = pass.name + "." + e.suffix;
+  inst.uses.clear();
+  for (const ResourceUse& u : pass.uses) {
+    auto b = std::find_if(e.bindings.begin(), e.bindings.end(),
+                          [&](const ExpandedPass::Binding& b) { return b.slot == u.slot; });
+    if (b == e.bindings.end()) continue;
+    ResourceUse& kept = inst.uses.emplace_back(u);
+    if (b->part) kept.sub = *b->part;
+  }
+  return inst;
+}
+
+// Replaces pass `i` by its instances (parallel vectors kept in step) and
+// returns how many there are.
+size_t expandPass(PipelineConfig& pipeline, size_t i, const std::vector<ExpandedPass>& expand,
+                  const std::vector<std::string>& hookNotes, AdaptReport& report) {
+  const PassDecl pass = pipeline.graph.passes[i];
+  std::vector<PassDecl> passes;
+  std::vector<ParamSet> params;
+  std::vector<std::vector<SamplerOverride>> samplers;
+  const bool hasSamplers = i < pipeline.samplers.size();
+  std::string names;
+  for (const ExpandedPass& e : expand) {
+    passes.push_back(makeInstance(pass, e));
+    params.push_back(e.params);
+    names += (names.empty() ? "" : ", ") + passes.back().name;
+    if (!hasSamplers) continue;
+    std::vector<SamplerOverride>& kept = samplers.emplace_back();
+    for (const SamplerOverride& s : pipeline.samplers[i])
+      if (std::any_of(passes.back().uses.begin(), passes.back().uses.end(),
+                      [&](const ResourceUse& u) { return u.slot == s.slot; }))
+        kept.push_back(s);
+  }
+  auto replace = [i](auto& vec, auto& with) {
+    vec.erase(vec.begin() + static_cast<std::ptrdiff_t>(i));
+    vec.insert(vec.begin() + static_cast<std::ptrdiff_t>(i), with.begin(), with.end());
+  };
+  replace(pipeline.graph.passes, passes);
+  replace(pipeline.params, params);
+  if (hasSamplers) replace(pipeline.samplers, samplers);
+  if (expand.empty()) {
+    std::string why;
+    for (const std::string& n : hookNotes) why += (why.empty() ? "" : "; ") + n;
+    report.notes.push_back("pass " + q(pass.name) + ": removed (" +
+                           (why.empty() ? std::string("its adapt hook made no instances") : why) + ")");
+  } else {
+    for (const std::string& n : hookNotes) report.notes.push_back("pass " + q(pass.name) + ": " + n);
+    report.notes.push_back("pass " + q(pass.name) + ": expanded into " + std::to_string(expand.size()) +
+                           (expand.size() == 1 ? " pass (" : " passes (") + names + ")");
+  }
+  return expand.size();
+}
+
+}  // namespace
 
 AdaptReport adaptToScene(PipelineConfig& pipeline, const PassRegistry& registry, const SceneFeatures& features) {
   AdaptReport report;
@@ -16,6 +123,13 @@ AdaptReport adaptToScene(PipelineConfig& pipeline, const PassRegistry& registry,
     PassAdaptation a;
     a.params = pipeline.params[i];
     type->adapt(features, a);
+    if (a.expand && !a.disable) {
+      applyReshape(pipeline, pass, a, report);
+      // The instances are not adapted again: the hook made them for these features.
+      const size_t n = expandPass(pipeline, i, *a.expand, a.notes, report);
+      i = i + n - 1;  // n == 0: the next pass is at i now (the loop's ++i wraps the -1)
+      continue;
+    }
     for (const auto& note : a.notes) report.notes.push_back("pass '" + pass.name + "': " + note);
     pipeline.params[i] = std::move(a.params);
     if (a.disable) {
@@ -32,7 +146,6 @@ AdaptReport adaptToScene(PipelineConfig& pipeline, const PassRegistry& registry,
   }
   return report;
 }
-
 uint32_t gbufferBytesPerPixel(const PipelineConfig& pipeline, const Plan& plan, const PassRegistry& registry) {
   std::set<ResourceIndex> counted;
   uint32_t bytes = 0;

@@ -33,10 +33,12 @@ namespace {
 
 std::string mib(uint64_t bytes) { return std::to_string((bytes + (1u << 19)) >> 20) + " MiB"; }
 
+// What the adapt hooks act on. unshadowedLights only explains the rest (its
+// reasons): adding a light that casts nothing must not rebuild the pipeline.
 bool sameFeatures(const SceneFeatures& a, const SceneFeatures& b) {
   return a.pointLights == b.pointLights && a.blendMaterials == b.blendMaterials && a.normalMaps == b.normalMaps &&
          a.metallicRoughnessVariation == b.metallicRoughnessVariation && a.metallic == b.metallic &&
-         a.roughness == b.roughness;
+         a.roughness == b.roughness && a.shadowCasters == b.shadowCasters && a.shadowLights == b.shadowLights;
 }
 
 }  // namespace
@@ -87,6 +89,8 @@ struct Renderer::Impl {
   // else at the first frame. false, with a device_error in diags, on failure.
   bool replace(PipelineConfig next, Diagnostics& diags);
   void adapt();
+  // The scene's features seen with this renderer's camera at its output's aspect.
+  SceneFeatures features() const;
   CompileOptions compileOptions() const;
   // Why a plan's textures may not be allocated (both figures: over options.maxMemoryBytes, or over what
   // the device says it has free); "" when they fit.
@@ -184,12 +188,17 @@ void Renderer::Impl::adapt() {
   adapted = source;
   notes.clear();
   if (scene && options.adaptToScene) {
-    const SceneFeatures features = sceneFeatures(scene->scene());
-    notes = adaptToScene(adapted, PassRegistry::builtins(), features).notes;
-    adaptedFor = features;
+    const SceneFeatures now = features();
+    notes = adaptToScene(adapted, PassRegistry::builtins(), now).notes;
+    adaptedFor = now;
   } else {
     adaptedFor.reset();
   }
+}
+
+SceneFeatures Renderer::Impl::features() const {
+  const float aspect = size.width > 0 && size.height > 0 ? float(size.width) / float(size.height) : 16.0f / 9.0f;
+  return sceneFeatures(scene->scene(), camera, aspect);
 }
 
 CompileOptions Renderer::Impl::compileOptions() const {
@@ -223,10 +232,11 @@ std::string Renderer::Impl::memoryRefusal(const Plan& plan) const {
 void Renderer::Impl::prepareFrame() {
   if (size.width == 0 || size.height == 0) throw RuntimeError("Renderer::render: no output size (call setSize first)");
   // Light edits change the pipeline only when they change what the scene needs
-  // (its first point light, or its last one removed).
+  // (its first point light, or its last one removed, or the set of shadowed
+  // lights). Camera moves alone do not re-adapt.
   if (scene && scene->lightsVersion() != sceneVersionSeen) {
     sceneVersionSeen = scene->lightsVersion();
-    if (options.adaptToScene && adaptedFor && !sameFeatures(*adaptedFor, sceneFeatures(scene->scene()))) {
+    if (options.adaptToScene && adaptedFor && !sameFeatures(*adaptedFor, features())) {
       spdlog::info("the scene's lights changed what it needs: adapting the pipeline again");
       rebuild = true;
     }
