@@ -8,13 +8,15 @@
 // tiled_deferred.comp, so the methods agree.
 // With FAR_FIELD the listed lights are shaded without their cut and the
 // cluster's far field (the lights it does not list, clustered_far.comp)
-// is added (include/cluster_far_field.glsl).
-// Defines: one GBUFFER_*, one LIGHTING_*, one ATTENUATION_*; TARGET_FORMAT
+// is added (include/cluster_far_field.glsl), not shadowed.
+// Defines: one GBUFFER_*, one LIGHTING_*, one ATTENUATION_*, the shadow ones
+// (include/shadows.glsl); TARGET_FORMAT
 // (rgba16f, rgba32f or r11f_g11f_b10f); FAR_FIELD. The grid is the list buffer's.
 #include "include/frame.glsl"
 #include "include/gbuffer.glsl"
 #include "include/gbuffer_read.glsl"
 #include "include/lighting.glsl"
+#include "include/shadows.glsl"
 #include "include/clusters.glsl"
 #if defined(FAR_FIELD)
 #include "include/far_field.glsl"
@@ -44,7 +46,7 @@ void main() {
   const vec3 V = safeNormal(u_cameraPos.xyz - s.position, s.normal);
   vec3 color = vec3(0.0);
   if (u_load != 0) color = imageLoad(u_target, px).rgb;
-  if (u_ambientAndSun != 0) color += ambientTerm(s) + shadeDirectionalLight(s, V);
+  if (u_ambientAndSun != 0) color += ambientTerm(s) + shadeDirectionalLight(s, V) * sunVisibility(s);
   const float viewDepth = max(-(u_view * vec4(s.position, 1.0)).z, 0.0);
   color += shadeClusterLights(px, viewDepth, u_pointLightCount, s, V);
 #if defined(FAR_FIELD)

@@ -3,12 +3,14 @@
 // classic forward renderer; also how blended surfaces are lit), or, with
 // u_clustered, only the lights of the fragment's cluster (forward+: the lists
 // a cluster_lights pass built, include/cluster_shading.glsl). Defines: one
-// LIGHTING_*, one ATTENUATION_*, optionally HAS_NORMAL_MAPS and HAS_VELOCITY
-// (motion vectors at location 1, as the geometry pass writes them).
+// LIGHTING_*, one ATTENUATION_*, optionally HAS_NORMAL_MAPS, HAS_VELOCITY
+// (motion vectors at location 1, as the geometry pass writes them) and the
+// shadow defines (include/shadows.glsl: each light times its visibility).
 #include "include/frame.glsl"
 #include "include/gbuffer.glsl"
 #include "include/material.glsl"
 #include "include/lighting.glsl"
+#include "include/shadows.glsl"
 #include "include/clusters.glsl"
 
 #include "include/lights.glsl"
@@ -32,12 +34,12 @@ void main() {
 #if defined(HAS_VELOCITY)
   outVelocity = screenVelocity(vs_clipNow, vs_clipPrev);
 #endif
-  vec3 color = ambientTerm(s) + shadeDirectionalLight(s, V);
+  vec3 color = ambientTerm(s) + shadeDirectionalLight(s, V) * sunVisibility(s);
   if (u_clustered != 0) {
     const float viewDepth = max(-(u_view * vec4(fs.worldPos, 1.0)).z, 0.0);
     color += shadeClusterLights(ivec2(gl_FragCoord.xy), viewDepth, u_pointLightCount, s, V);
   } else {
-    for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(lights[i], s, V);
+    for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(lights[i], s, V) * lightVisibility(i, s);
   }
   outColor = vec4(color, u_blendPass != 0 ? alpha : 1.0);
 }

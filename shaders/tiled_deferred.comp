@@ -36,13 +36,17 @@
 // order the invocations run in.
 // The maths is include/lighting.glsl's, as in deferred_lighting.frag and
 // light_volume.frag, so the methods agree.
-// Defines: one GBUFFER_*, one LIGHTING_*, one ATTENUATION_*; TILE_SIZE,
+// Shadows (include/shadows.glsl): each shaded light times its visibility;
+// with FAR_FIELD the far field's sums (the tails of the lights a tile does
+// not list) are not shadowed.
+// Defines: one GBUFFER_*, one LIGHTING_*, one ATTENUATION_*, the shadow ones; TILE_SIZE,
 // MAX_TILE_LIGHTS (bounded by GL_MAX_COMPUTE_SHARED_MEMORY_SIZE), TARGET_FORMAT
 // (the image format qualifier of the target: rgba16f or rgba32f).
 #include "include/frame.glsl"
 #include "include/gbuffer.glsl"
 #include "include/gbuffer_read.glsl"
 #include "include/lighting.glsl"
+#include "include/shadows.glsl"
 #include "include/tile_cull.glsl"
 #include "include/light_bounds.glsl"
 #ifndef TILE_SIZE
@@ -536,13 +540,15 @@ void main() {
   const vec3 V = safeNormal(u_cameraPos.xyz - s.position, s.normal);
   vec3 color = vec3(0.0);
   if (u_load != 0) color = imageLoad(u_target, px).rgb;
-  if (u_ambientAndSun != 0) color += ambientTerm(s) + shadeDirectionalLight(s, V);
+  if (u_ambientAndSun != 0) color += ambientTerm(s) + shadeDirectionalLight(s, V) * sunVisibility(s);
   if (count <= uint(MAX_TILE_LIGHTS)) {
 #if defined(FAR_FIELD)
     // The listed lights without their cut (their tails), the rest as the far field.
     for (uint w = 0u; w * 32u < count; ++w)
-      for (uint bits = s_quarterLights[quarter][w]; bits != 0u; bits &= bits - 1u)
-        color += shadePointLight(farFieldUncut(lights[s_lights[w * 32u + uint(findLSB(bits))]]), s, V);
+      for (uint bits = s_quarterLights[quarter][w]; bits != 0u; bits &= bits - 1u) {
+        const uint i = s_lights[w * 32u + uint(findLSB(bits))];
+        color += shadePointLight(farFieldUncut(lights[i]), s, V) * lightVisibility(int(i), s);
+      }
     const vec3 offset = s.position - s_farPoint[quarter];
     for (uint bits = s_farBins[quarter]; bits != 0u; bits &= bits - 1u) {
       const int b = findLSB(bits);
@@ -553,16 +559,19 @@ void main() {
 #else
     // The row's lights: the set bits of its words over the quarter's list.
     for (uint w = 0u; w * 32u < count; ++w)
-      for (uint bits = s_rowLights[row][w]; bits != 0u; bits &= bits - 1u)
-        color += shadePointLight(lights[s_lights[w * 32u + uint(findLSB(bits))]], s, V);
+      for (uint bits = s_rowLights[row][w]; bits != 0u; bits &= bits - 1u) {
+        const uint i = s_lights[w * 32u + uint(findLSB(bits))];
+        color += shadePointLight(lights[i], s, V) * lightVisibility(int(i), s);
+      }
 #endif
   } else {
     // More lights reach this tile than the list holds: shade them all (correct, slow;
     // FAR_FIELD: without their cut, so exact).
 #if defined(FAR_FIELD)
-    for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(farFieldUncut(lights[i]), s, V);
+    for (int i = 0; i < u_pointLightCount; ++i)
+      color += shadePointLight(farFieldUncut(lights[i]), s, V) * lightVisibility(i, s);
 #else
-    for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(lights[i], s, V);
+    for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(lights[i], s, V) * lightVisibility(i, s);
 #endif
   }
   imageStore(u_target, px, vec4(color, 1.0));

@@ -32,6 +32,7 @@
 #include "rgraph/passes/light_bins.h"
 #include "rgraph/passes/light_radii.h"
 #include "rgraph/passes/lighting_options.h"
+#include "rgraph/passes/shadow_sampling.h"
 #include "rgraph/registry.h"
 
 namespace {
@@ -102,6 +103,7 @@ class ClusteredDeferredPass final : public PassInstance {
     const Extent size = ctx.extent("color");
     const int lights = ctx.params().getBool("point_lights") ? static_cast<int>(scene.pointLightCount()) : 0;
     lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
+    shadows::bindInfo(ctx, shade_);
     if (buffer_) {
       bins_.build(lights, size);  // what the list build (and the far field) culls
       builder_.build(scene, buffer_, clusters::grid(ctx.params()), size, lights, lighting::threshold(ctx.params()),
@@ -155,6 +157,7 @@ PassTypeDesc makeClusteredDeferredPass() {
                            {"shade_all", "truncate"}));
   d.params.push_back(lighting::farFieldParam());
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
+  shadows::declareReader(d);
   d.programs = [](const ParamSet& p) {
     std::vector<ShaderProgramSpec> v;
     v.push_back(clusters::depthBoundedBuildProgram(p, lighting::binDefines(binGrid(p))));
@@ -166,6 +169,7 @@ PassTypeDesc makeClusteredDeferredPass() {
       if (p.getString("overflow") == "truncate") s.defines.push_back("CLUSTER_OVERFLOW_TRUNCATE");
       s.samplers = lighting::gbufferSamplers();
       s.drawsToAttachments = false;
+      shadows::addToProgram(s, p);
       v.push_back(std::move(s));
     }
     std::vector<std::string> defines = shadingDefines(p);

@@ -8,6 +8,7 @@
 #include "rgraph/passes/cluster_lists.h"
 #include "rgraph/passes/light_radii.h"
 #include "rgraph/passes/lighting_options.h"
+#include "rgraph/passes/shadow_sampling.h"
 #include "rgraph/passes/velocity.h"
 #include "rgraph/scene.h"
 
@@ -19,6 +20,7 @@ std::vector<ShaderProgramSpec> programs(const ParamSet& params, bool blendsSourc
   ShaderProgramSpec s = programSpec("scene.vert", "forward_lit.frag", std::move(defines));
   s.ownSamplers = lighting::materialSamplers();
   s.blendsSourceAlpha = blendsSourceAlpha;
+  shadows::addToProgram(s, params);
   return lighting::normalMapVariants(s);
 }
 
@@ -31,6 +33,7 @@ void SurfaceDrawer::draw(PassContext& ctx, bool blended) const {
   const GpuScene::Filter filter = blended ? GpuScene::Filter::blend : GpuScene::Filter::opaque;
   if (scene.primitiveCount(filter) == 0) return;
   lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
+  shadows::bindInfo(ctx, program_);
   const uint32_t prog = program_;
   gl::useProgram(ctx, prog);
   pointLightCount_.set(static_cast<int>(scene.pointLightCount()));

@@ -151,10 +151,30 @@ void adapt(const SceneFeatures& f, PassAdaptation& a) {
   std::string why;
   if (!f.shadowCasters) why = "no primitive casts a shadow";
   else if (f.shadowLights.empty()) why = "no casting light reaches the view";
-  if (why.empty()) return;
+  if (!why.empty()) compileOut(a, why);
+}
+
+void compileOut(PassAdaptation& a, const std::string& why) {
+  if (!a.params.getBool("shadows")) return;
   a.params.set("shadows", false);
   a.unbindSlots.insert(a.unbindSlots.end(), {"shadows", "shadow_info", "shadow_depths"});
   a.notes.push_back(why + ": shadow code compiled out");
+}
+
+void declareReader(PassTypeDesc& d) {
+  for (auto& s : slots()) d.slots.push_back(std::move(s));
+  for (auto& p : params()) d.params.push_back(std::move(p));
+  d.rules.push_back(rule());
+  d.adapt = [own = std::move(d.adapt)](const SceneFeatures& f, PassAdaptation& a) {
+    if (own) own(f, a);
+    // A disabled pass reads nothing (the graph keeps no writer alive for it).
+    if (!a.disable) adapt(f, a);
+  };
+}
+
+void addToProgram(ShaderProgramSpec& s, const ParamSet& p) {
+  for (auto& d : defines(p)) s.defines.push_back(std::move(d));
+  for (auto& sampler : samplers(p)) s.samplers.push_back(std::move(sampler));
 }
 
 float positionError(const PassContext& ctx) {

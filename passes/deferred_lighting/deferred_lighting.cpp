@@ -49,20 +49,14 @@ PassTypeDesc makeDeferredLightingPass() {
   d.params.push_back(param("radius_test", ParamType::boolean, false,
                            "skip a light's maths beyond its radius with a branch (LearnOpenGL's loop)"));
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
-  for (auto& s : shadows::slots()) d.slots.push_back(std::move(s));
-  for (auto& p : shadows::params()) d.params.push_back(std::move(p));
-  d.rules.push_back(shadows::rule());
-  d.adapt = [](const SceneFeatures& f, PassAdaptation& a) {
-    lighting::adaptPointLightShading(f, a);
-    shadows::adapt(f, a);
-  };
+  d.adapt = lighting::adaptPointLightShading;
+  shadows::declareReader(d);
   d.programs = [](const ParamSet& p) {
     ShaderProgramSpec s = gl::fullscreenProgram("deferred_lighting.frag", lighting::gbufferSamplers(),
                                                 lighting::shadingDefines(p));
     if (p.getBool("radius_test")) s.defines.push_back("LIGHT_RADIUS_BRANCH");
     s.samplers.push_back({"ao", "u_ao", 5, /*optional=*/true});  // u_hasAo says whether it is bound
-    for (auto& def : shadows::defines(p)) s.defines.push_back(std::move(def));
-    for (auto& sampler : shadows::samplers(p)) s.samplers.push_back(std::move(sampler));
+    shadows::addToProgram(s, p);
     return std::vector<ShaderProgramSpec>{std::move(s)};
   };
   d.create = [] { return std::make_unique<DeferredLightingPass>(); };

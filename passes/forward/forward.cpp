@@ -15,6 +15,7 @@
 #include "rgraph/passes/light_radii.h"
 #include "rgraph/passes/light_volume_meshes.h"
 #include "rgraph/passes/lighting_options.h"
+#include "rgraph/passes/shadow_sampling.h"
 #include "rgraph/registry.h"
 
 namespace {
@@ -86,12 +87,14 @@ PassTypeDesc makeForwardPass() {
       a.params.set("blend", false);
       a.notes.push_back("no BLEND materials: no forward blend");
       a.unbindSlots.push_back(clusters::kSlot);  // markers need no lists: their builder may be culled
+      shadows::compileOut(a, "no BLEND materials");  // markers are not shaded: nor are their shadows
     }
     if (!a.params.getBool("markers") && !a.params.getBool("blend")) {
       a.disable = true;
       a.notes.push_back("nothing left to draw forward: pass disabled");
     }
   };
+  shadows::declareReader(d);
   d.programs = [](const ParamSet& p) {
     std::vector<ShaderProgramSpec> v;
     if (p.getBool("markers")) v.push_back(programSpec("light_marker.vert", "light_marker.frag"));

@@ -12,6 +12,7 @@
 #include "rgraph/passes/cluster_lists.h"
 #include "rgraph/passes/forward_shading.h"
 #include "rgraph/passes/lighting_options.h"
+#include "rgraph/passes/shadow_sampling.h"
 #include "rgraph/passes/velocity.h"
 #include "rgraph/registry.h"
 
@@ -65,6 +66,7 @@ PassTypeDesc makeForwardLitPass() {
       a.notes.push_back("no BLEND materials: opaque surfaces only");
     }
   };
+  shadows::declareReader(d);
   d.programs = [](const ParamSet& p) { return forward::programs(p, p.getBool("blend")); };
   d.needsScene = true;
   d.create = [] { return std::make_unique<ForwardLitPass>(); };

@@ -14,6 +14,7 @@
 #include "rgraph/passes/light_radii.h"
 #include "rgraph/passes/light_volume_meshes.h"
 #include "rgraph/passes/lighting_options.h"
+#include "rgraph/passes/shadow_sampling.h"
 #include "rgraph/registry.h"
 
 namespace {
@@ -33,6 +34,7 @@ class LightVolumesPass final : public PassInstance {
     gl::bindPassFramebuffer(ctx);
     gl::useProgram(ctx, program_);
     lighting::bindPointLights(scene, lighting::threshold(ctx.params()));  // (the executor bound the Frame block)
+    shadows::bindInfo(ctx, program_);
 
     const std::string cull = ctx.params().getString("cull");
     glEnable(GL_CULL_FACE);
@@ -102,9 +104,12 @@ PassTypeDesc makeLightVolumesPass() {
     }
     lighting::adaptGBuffer(f, a);
   };
+  shadows::declareReader(d);
   d.programs = [](const ParamSet& p) {
-    return std::vector{programSpec("light_volume.vert", "light_volume.frag", lighting::shadingDefines(p),
-                                   lighting::gbufferSamplers())};
+    ShaderProgramSpec s =
+        programSpec("light_volume.vert", "light_volume.frag", lighting::shadingDefines(p), lighting::gbufferSamplers());
+    shadows::addToProgram(s, p);
+    return std::vector{std::move(s)};
   };
   d.create = [] { return std::make_unique<LightVolumesPass>(); };
   return d;

@@ -25,6 +25,7 @@
 #include "rgraph/passes/light_bins.h"
 #include "rgraph/passes/light_radii.h"
 #include "rgraph/passes/lighting_options.h"
+#include "rgraph/passes/shadow_sampling.h"
 #include "rgraph/registry.h"
 
 namespace {
@@ -112,6 +113,7 @@ class TiledDeferredPass final : public PassInstance {
     const bool points = ctx.params().getBool("point_lights");
     const int lights = points ? static_cast<int>(scene.pointLightCount()) : 0;
     lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
+    shadows::bindInfo(ctx, program_);
     bins_.build(lights, size);
     glUseProgram(program_);
     pointLightCount_.set(lights);
@@ -146,6 +148,7 @@ PassTypeDesc makeTiledDeferredPass() {
                             "more shades every light"));
   d.params.push_back(lighting::farFieldParam());
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
+  shadows::declareReader(d);
   d.programs = [](const ParamSet& p) {
     std::vector<ShaderProgramSpec> v;
     v.push_back(lighting::binProgram(commonDefines(p), binGrid(p)));
@@ -155,6 +158,7 @@ PassTypeDesc makeTiledDeferredPass() {
       s.defines = programDefines(p, target);
       s.samplers = lighting::gbufferSamplers();
       s.drawsToAttachments = false;
+      shadows::addToProgram(s, p);
       v.push_back(std::move(s));
     }
     return v;

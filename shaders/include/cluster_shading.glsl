@@ -1,7 +1,8 @@
 // Shading with the clustered light lists (include/clusters.glsl), for every
 // pass that reads them: clustered_deferred.comp per G-buffer pixel,
 // forward_lit.frag per fragment (forward+). Needs the includer's lights[]
-// (storage buffer 0), include/lighting.glsl and include/clusters.glsl.
+// (storage buffer 0), include/lighting.glsl, include/shadows.glsl (each
+// light times its visibility) and include/clusters.glsl.
 // A cluster whose count passed its list's length shades every light (correct,
 // slow; with FAR_FIELD, exact) unless CLUSTER_OVERFLOW_TRUNCATE, which keeps the listed ones (wrong
 // where the rest reach; the tests use it to show that overflow happened); so
@@ -30,11 +31,13 @@ vec3 shadeClusterLights(ivec2 px, float viewDepth, int lightCount, Surface s, ve
 #endif
     {
       const uint base = uint(clusterCount()) + uint(cluster) * uint(MAX_CLUSTER_LIGHTS);
-      for (uint i = 0u; i < min(count, uint(MAX_CLUSTER_LIGHTS)); ++i)
-        color += shadePointLight(clusterLight(data[base + i]), s, V);
+      for (uint i = 0u; i < min(count, uint(MAX_CLUSTER_LIGHTS)); ++i) {
+        const uint light = data[base + i];
+        color += shadePointLight(clusterLight(light), s, V) * lightVisibility(int(light), s);
+      }
       return color;
     }
   }
-  for (int i = 0; i < lightCount; ++i) color += shadePointLight(clusterLight(uint(i)), s, V);
+  for (int i = 0; i < lightCount; ++i) color += shadePointLight(clusterLight(uint(i)), s, V) * lightVisibility(i, s);
   return color;
 }

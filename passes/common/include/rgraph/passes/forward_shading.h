@@ -12,9 +12,9 @@
 
 namespace rgraph::forward {
 
-// The forward_lit programs for the pass's lighting params, for
-// PassTypeDesc::programs: without and with HAS_NORMAL_MAPS (which one runs
-// follows the scene: lighting::normalMapVariant).
+// The forward_lit programs for the pass's lighting and shadow params
+// (shadows::declareReader), for PassTypeDesc::programs: without and with
+// HAS_NORMAL_MAPS (which one runs follows the scene: lighting::normalMapVariant).
 std::vector<ShaderProgramSpec> programs(const ParamSet& params, bool blendsSourceAlpha);
 
 // Draws the scene's surfaces of one kind with a forward_lit program: opaque

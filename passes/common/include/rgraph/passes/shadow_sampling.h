@@ -84,4 +84,14 @@ void bindInfo(PassContext& ctx, uint32_t program);
 // half-float position target, 2^-23 from a float one, 2^-20 rebuilt from depth.
 float positionError(const PassContext& ctx);
 
+// The above, as a lighting pass type takes them: slots(), params() and
+// rule() added to `d`, and adapt() chained after the type's own hook (set
+// before this call; not run when that hook disables the pass).
+void declareReader(PassTypeDesc& d);
+// defines(p) and samplers(p) added to a program that includes shadows.glsl.
+void addToProgram(ShaderProgramSpec& s, const ParamSet& p);
+// "shadows" off and the inputs unbound, with `why` noted (adapt's reasons, or
+// a pass's own: forward with no blended surface to light).
+void compileOut(PassAdaptation& a, const std::string& why);
+
 }  // namespace rgraph::shadows
