@@ -139,6 +139,24 @@ class ShadowMapPass final : public PassInstance {
 
 std::string lightName(const SceneFeatures::ShadowLight& l) { return shadows::lightLabel(l.kind, l.light); }
 
+// "; does not cast: point0, point1, point2, point3 and 28 more; outside the
+// view: spot4": the unshadowed lights grouped by reason, a few named each.
+std::string byReason(const std::vector<SceneFeatures::UnshadowedLight>& lights) {
+  std::vector<std::pair<std::string, std::vector<std::string>>> groups;
+  for (const auto& u : lights) {
+    auto g = std::find_if(groups.begin(), groups.end(), [&](const auto& x) { return x.first == u.reason; });
+    if (g == groups.end()) g = groups.insert(groups.end(), {u.reason, {}});
+    g->second.push_back(lightName(u.light));
+  }
+  std::string text;
+  for (const auto& [reason, names] : groups) {
+    text += "; " + reason + ": ";
+    for (size_t i = 0; i < names.size() && i < 4; ++i) text += (i ? ", " : "") + names[i];
+    if (names.size() > 4) text += " and " + std::to_string(names.size() - 4) + " more";
+  }
+  return text;
+}
+
 // The shadow budget (shadow_budget.h) of this expansion, as table lines.
 std::vector<std::string> budgetReport(const SceneFeatures& f, const ParamSet& p, const std::vector<ShadowedLight>& lights,
                                       uint32_t layers) {
@@ -165,9 +183,7 @@ void expand(const SceneFeatures& f, PassAdaptation& a) {
     return;
   }
   if (f.shadowLights.empty()) {
-    std::string why = "no casting light reaches the view";
-    for (const auto& u : f.unshadowedLights) why += "; " + lightName(u.light) + ": " + u.reason;
-    a.notes.push_back(why + ": no shadow maps");
+    a.notes.push_back("no casting light reaches the view" + byReason(f.unshadowedLights) + ": no shadow maps");
     return;
   }
   const size_t maxLights = static_cast<size_t>(a.params.getInt("max_lights"));
