@@ -140,6 +140,12 @@ void printShadows(const SceneFeatures& f) {
     std::cout << "  unshadowed: " << lightLabel(u.light) << " (" << u.reason << ")\n";
 }
 
+nlohmann::json reportsJson(const AdaptReport& report) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const AdaptReport::Table& t : report.tables) out.push_back({{"pass", t.pass}, {"lines", t.lines}});
+  return out;
+}
+
 nlohmann::json shadowsJson(const SceneFeatures& f) {
   auto light = [](const SceneFeatures::ShadowLight& l) {
     const std::string label = lightLabel(l);
@@ -204,6 +210,7 @@ int runPlan(const std::string& path, const SizeOptions& size, bool json, const s
     out["scene"] = {{"source", scene.source},
                     {"adaptations", report.notes},
                     {"shadows", shadowsJson(features)},
+                    {"reports", reportsJson(report)},
                     {"gbuffer_bytes_per_pixel", {{"before", before}, {"after", after}}},
                     {"memory_before", memoryJson(result->second)}};
     std::cout << out.dump(2) << "\n";
@@ -212,6 +219,10 @@ int runPlan(const std::string& path, const SizeOptions& size, bool json, const s
     if (report.notes.empty()) std::cout << "  (nothing to drop)\n";
     for (const auto& n : report.notes) std::cout << "  " << n << "\n";
     printShadows(features);
+    for (const AdaptReport::Table& t : report.tables) {
+      std::cout << "pass '" << t.pass << "' reports:\n";
+      for (const std::string& line : t.lines) std::cout << "  " << line << "\n";
+    }
     std::cout << "G-buffer bytes per pixel: " << before << " before, " << after << " after\n";
     printPlanText(plan);
   }

@@ -103,7 +103,7 @@ class ClusteredDeferredPass final : public PassInstance {
     const Extent size = ctx.extent("color");
     const int lights = ctx.params().getBool("point_lights") ? static_cast<int>(scene.pointLightCount()) : 0;
     lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
-    shadows::bindInfo(ctx);
+    shadows::bindInfo(ctx, shade_);
     if (buffer_) {
       bins_.build(lights, size);  // what the list build (and the far field) culls
       builder_.build(scene, buffer_, clusters::grid(ctx.params()), size, lights, lighting::threshold(ctx.params()),

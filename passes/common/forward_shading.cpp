@@ -33,7 +33,7 @@ void SurfaceDrawer::draw(PassContext& ctx, bool blended) const {
   const GpuScene::Filter filter = blended ? GpuScene::Filter::blend : GpuScene::Filter::opaque;
   if (scene.primitiveCount(filter) == 0) return;
   lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
-  shadows::bindInfo(ctx);
+  shadows::bindInfo(ctx, program_);
   const uint32_t prog = program_;
   gl::useProgram(ctx, prog);
   pointLightCount_.set(static_cast<int>(scene.pointLightCount()));

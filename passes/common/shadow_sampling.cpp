@@ -177,9 +177,16 @@ void addToProgram(ShaderProgramSpec& s, const ParamSet& p) {
   for (auto& sampler : samplers(p)) s.samplers.push_back(std::move(sampler));
 }
 
-void bindInfo(PassContext& ctx) {
-  if (ctx.params().getBool("shadows") && ctx.bound("shadow_info"))
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInfoBinding, ctx.buffer("shadow_info"));
+float positionError(const PassContext& ctx) {
+  if (!ctx.bound("position")) return 1.0f / (1 << 20);  // rebuilt from depth: about a 20-bit mantissa's
+  const Format f = ctx.format("position");
+  return f == Format::rgba16f || f == Format::rgb16f ? 1.0f / (1 << 11) : 1.0f / (1 << 23);
+}
+
+void bindInfo(PassContext& ctx, uint32_t program) {
+  if (!ctx.params().getBool("shadows") || !ctx.bound("shadow_info")) return;
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInfoBinding, ctx.buffer("shadow_info"));
+  glProgramUniform1f(program, glGetUniformLocation(program, "u_shadowPositionError"), positionError(ctx));
 }
 
 }  // namespace rgraph::shadows

@@ -25,7 +25,7 @@ class DeferredLightingPass final : public gl::FullscreenPass {
     // Optional ambient occlusion (e.g. the ssao plugin's output) scales the ambient term.
     hasAo_.set(ctx.bound("ao"));
     lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
-    shadows::bindInfo(ctx);
+    shadows::bindInfo(ctx, program());
   }
   uint32_t changedState() const override { return 0; }  // uniforms and the scene's buffers only
   ProgramUniform pointLightCount_{this, "u_pointLightCount"}, ambientAndSun_{this, "u_ambientAndSun"};

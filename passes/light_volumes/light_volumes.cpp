@@ -34,7 +34,7 @@ class LightVolumesPass final : public PassInstance {
     gl::bindPassFramebuffer(ctx);
     gl::useProgram(ctx, program_);
     lighting::bindPointLights(scene, lighting::threshold(ctx.params()));  // (the executor bound the Frame block)
-    shadows::bindInfo(ctx);
+    shadows::bindInfo(ctx, program_);
 
     const std::string cull = ctx.params().getString("cull");
     glEnable(GL_CULL_FACE);

@@ -25,6 +25,7 @@
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/shadow_budget.h"
 #include "rgraph/passes/shadow_sampling.h"
 #include "rgraph/passes/shadow_views.h"
 #include "rgraph/registry.h"
@@ -136,11 +137,22 @@ class ShadowMapPass final : public PassInstance {
   uint32_t flat_ = 0, layered_ = 0;
 };
 
-const char* kindName(LightKind k) {
-  return k == LightKind::directional ? "directional" : k == LightKind::spot ? "spot" : "point";
-}
+std::string lightName(const SceneFeatures::ShadowLight& l) { return shadows::lightLabel(l.kind, l.light); }
 
-std::string lightName(const SceneFeatures::ShadowLight& l) { return kindName(l.kind) + std::to_string(l.light); }
+// The shadow budget (shadow_budget.h) of this expansion, as table lines.
+std::vector<std::string> budgetReport(const SceneFeatures& f, const ParamSet& p, const std::vector<ShadowedLight>& lights,
+                                      uint32_t layers) {
+  shadows::ShadowSettings s = settingsOf(p);
+  s.resolution = static_cast<uint32_t>(p.getInt("size"));
+  // 4 bytes a texel: depth24 and depth32f (the atlas's format is the
+  // pipeline's; depth32f_stencil8 would double it).
+  shadows::Budget b = shadows::budget(*f.scene, f.camera, f.aspect, s, lights, layers, 4);
+  const size_t maxLights = static_cast<size_t>(p.getInt("max_lights"));
+  for (size_t i = maxLights; i < f.shadowLights.size(); ++i)
+    b.unshadowed.push_back({lightName(f.shadowLights[i]), "budget (max_lights " + std::to_string(maxLights) + ")"});
+  for (const auto& u : f.unshadowedLights) b.unshadowed.push_back({lightName(u.light), u.reason});
+  return shadows::budgetTable(b);
+}
 
 // The expansion: which lights get maps (the first max_lights of the scene's
 // ranking), their layers, and one instance per info buffer, cascade, spot
@@ -201,9 +213,13 @@ void expand(const SceneFeatures& f, PassAdaptation& a) {
   // At least two layers: one alone would make a plain 2D texture, which the
   // lighting passes' sampler2DArrayShadow cannot read.
   a.reshape.push_back({"atlas", std::max(layer, 2u), static_cast<uint32_t>(a.params.getInt("size")), 0});
+  // A spare layer (one map alone) is bound by the last map pass, so that the
+  // whole atlas has a writer; it is never drawn nor sampled.
+  if (layer < 2) a.expand->back().bindings[0].part->layerCount = Subresource::kAll;
   a.reshape.push_back({"info", 0, 0, shadows::infoBytes(lightCount)});
   a.notes.push_back(std::to_string(lights.size()) + " shadowed light(s) in " + std::to_string(layer) +
                     " atlas layer(s): " + names);
+  if (f.scene) a.report = budgetReport(f, a.params, lights, std::max(layer, 2u));
 }
 
 PassTypeDesc makeShadowMapPass() {
@@ -226,7 +242,10 @@ PassTypeDesc makeShadowMapPass() {
              "view depth the cascades reach (0: the camera's far plane)"),
       param("stabilize", ParamType::boolean, true,
             "fit cascades to bounding spheres and snap them to whole texels (no shimmering edges)"),
-      param("cull", ParamType::enumeration, std::string("back"), "faces culled in the maps", {"back", "front", "none"}),
+      param("cull", ParamType::enumeration, std::string("none"),
+            "faces culled in the maps: none (a light inside a closed caster, one-sided walls facing the light: both "
+            "cast), back (fewer fragments) or front (a closed caster's far side)",
+            {"none", "back", "front"}),
       ranged("slope_bias", ParamType::number, 1.5, 0.0, 64.0, "depth bias scaled by the depth slope (glPolygonOffset factor)"),
       ranged("constant_bias", ParamType::number, 2.0, 0.0, 4096.0, "constant depth bias (glPolygonOffset units)"),
       ranged("normal_offset", ParamType::number, 1.0, 0.0, 16.0,

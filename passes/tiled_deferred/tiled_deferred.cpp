@@ -113,7 +113,7 @@ class TiledDeferredPass final : public PassInstance {
     const bool points = ctx.params().getBool("point_lights");
     const int lights = points ? static_cast<int>(scene.pointLightCount()) : 0;
     lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
-    shadows::bindInfo(ctx);
+    shadows::bindInfo(ctx, program_);
     bins_.build(lights, size);
     glUseProgram(program_);
     pointLightCount_.set(lights);

@@ -20,6 +20,12 @@ layout(std430, binding = 6) readonly buffer ShadowInfo {
   int lightShadow[];     // per light of the lights buffer: its map, -1: none
 };
 layout(binding = 6) uniform sampler2DArrayShadow u_shadowAtlas;
+// The G-buffer position's relative error (2^-11 for half floats: 0.003 units
+// at 6 units from the origin, more than a texel of a sharp map), set by the
+// pass from the position target's format (shadows::bindInfo): the lookup
+// moves that much towards the light, so quantised positions do not shadow
+// themselves.
+uniform float u_shadowPositionError;
 #if defined(SHADOW_FILTER_PCSS)
 layout(binding = 7) uniform sampler2DArray u_shadowDepths;
 #endif
@@ -61,8 +67,8 @@ float filteredShadow(vec2 uv, float layer, float depth, float receiverDistance) 
 #endif
 }
 
-// Visibility of shadow map m from surface point P (normal N).
-float shadowOfMap(int m, vec3 P, vec3 N) {
+// Visibility of shadow map m from surface point P (normal N, towards the light L).
+float shadowOfMap(int m, vec3 P, vec3 N, vec3 L) {
   int kind = shadowMaps[m].layers.z;
   int k = 0;
   float texel = shadowMaps[m].texel.x;
@@ -76,14 +82,15 @@ float shadowOfMap(int m, vec3 P, vec3 N) {
     vec3 d = P - shadowMaps[m].light.xyz;
     float distance = length(d);
     if (kind == 2) {
-      vec3 a = abs(d);
-      k = a.x >= a.y && a.x >= a.z ? (d.x >= 0.0 ? 0 : 1) : a.y >= a.z ? (d.y >= 0.0 ? 2 : 3) : (d.z >= 0.0 ? 4 : 5);
+      vec3 ad = abs(d);
+      k = ad.x >= ad.y && ad.x >= ad.z ? (d.x >= 0.0 ? 0 : 1) : ad.y >= ad.z ? (d.y >= 0.0 ? 2 : 3) : (d.z >= 0.0 ? 4 : 5);
     }
     texel *= distance;
   }
   // Normal offset: look the receiver up a few texels off its surface, so that
   // a lit surface is not shadowed by its own map's texels (acne).
-  vec3 offsetP = P + N * (u_shadowParams.x * texel);
+  vec3 a = abs(P);
+  vec3 offsetP = P + N * (u_shadowParams.x * texel) + L * (2.0 * u_shadowPositionError * max(a.x, max(a.y, a.z)));
   vec4 clip = shadowMaps[m].viewProj[k] * vec4(offsetP, 1.0);
   if (clip.w <= 0.0) return 1.0;
   vec3 ndc = clip.xyz / clip.w;
@@ -95,11 +102,11 @@ float shadowOfMap(int m, vec3 P, vec3 N) {
 // The first directional light's visibility, and light i's (of the lights buffer).
 float sunVisibility(Surface s) {
   int m = u_shadowCounts.y;
-  return m < 0 ? 1.0 : shadowOfMap(m, s.position, s.normal);
+  return m < 0 ? 1.0 : shadowOfMap(m, s.position, s.normal, normalize(-u_dirLightDir.xyz));
 }
 float lightVisibility(int i, Surface s) {
   int m = lightShadow[i];
-  return m < 0 ? 1.0 : shadowOfMap(m, s.position, s.normal);
+  return m < 0 ? 1.0 : shadowOfMap(m, s.position, s.normal, normalize(shadowMaps[m].light.xyz - s.position));
 }
 #else
 float sunVisibility(Surface s) { return 1.0; }

@@ -105,6 +105,7 @@ inline nlohmann::json pipelineDoc(const std::string& filter) {
         pass["params"]["shadows"] = false;
         pass["inputs"].erase("shadows");
         pass["inputs"].erase("shadow_info");
+        pass["inputs"].erase("shadow_depths");
       } else {
         pass["params"]["shadow_filter"] = filter;
       }

@@ -16,6 +16,11 @@ class PassRegistry;
 
 struct AdaptReport {
   std::vector<std::string> notes;  // "pass 'x': ..." one line per change
+  struct Table {
+    std::string pass;                // the pass (template) whose hook made it
+    std::vector<std::string> lines;  // PassAdaptation::report
+  };
+  std::vector<Table> tables;
 };
 
 // Applies every pass type's adapt hook to the pipeline in place.

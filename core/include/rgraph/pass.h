@@ -17,6 +17,7 @@
 #include "rgraph/params.h"
 #include "rgraph/pass_check.h"
 #include "rgraph/sampler_state.h"
+#include "rgraph/scene.h"  // Camera (SceneFeatures)
 
 namespace rgraph {
 
@@ -110,6 +111,13 @@ struct SceneFeatures {
   // caster in the scene").
   std::vector<ShadowLight> shadowLights;
   std::vector<UnshadowedLight> unshadowedLights;  // every other light, in scene order (directional first)
+
+  // What the facts above were derived from, for hooks that report on the
+  // view (the shadow budget): the scene (valid while adaptToScene runs; not
+  // compared when deciding to adapt again), its camera and the aspect.
+  const Scene* scene = nullptr;
+  Camera camera;
+  float aspect = 16.0f / 9.0f;
 };
 
 // What a pass type's adapt hook may change in one pass for a scene.
@@ -136,6 +144,9 @@ struct PassAdaptation {
   std::vector<std::string> unbindSlots;   // optional slots to drop (their resources may become unused)
   ParamSet params;                        // the pass's parameters, to modify
   std::vector<std::string> notes;         // why, one line each ("no point lights: ...")
+  // A table the hook reports on the scene (the shadow budget), one line per
+  // row: `rgraph plan --scene` prints it under the pass's name.
+  std::vector<std::string> report;
   // Set: the pass is replaced by these, at its place, in this order (above).
   std::optional<std::vector<ExpandedPass>> expand;
   // The resource a template's slot binds, reshaped for its instances: a

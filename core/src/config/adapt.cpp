@@ -23,7 +23,10 @@ ResourceDecl* resourceOfVersion(GraphDesc& graph, const std::string& version) {
     for (const PassDecl& p : graph.passes)
       for (const ResourceUse& u : p.uses) {
         if (u.input.empty() || u.output.empty() || !isWriteAccess(u.access) || of.count(u.output)) continue;
-        if (auto it = of.find(u.input); it != of.end()) changed = of.emplace(u.output, it->second).second;
+        if (auto it = of.find(u.input); it != of.end()) {
+          of.emplace(u.output, it->second);
+          changed = true;
+        }
       }
   }
   auto it = of.find(version);
@@ -35,7 +38,7 @@ ResourceDecl* resourceOfVersion(GraphDesc& graph, const std::string& version) {
 // their shape: a note says so.
 void applyReshape(PipelineConfig& pipeline, const PassDecl& pass, const PassAdaptation& a, AdaptReport& report) {
   for (const PassAdaptation::Reshape& r : a.reshape) {
-    if (r.layers == 0) continue;
+    if (r.layers == 0 && r.size == 0 && r.bytes == 0) continue;
     auto use = std::find_if(pass.uses.begin(), pass.uses.end(), [&](const ResourceUse& u) { return u.slot == r.slot; });
     const std::string prefix = "pass " + q(pass.name) + ": slot " + q(r.slot);
     if (use == pass.uses.end()) {
@@ -45,13 +48,21 @@ void applyReshape(PipelineConfig& pipeline, const PassDecl& pass, const PassAdap
     const std::string& version = use->output.empty() ? use->input : use->output;
     ResourceDecl* res = resourceOfVersion(pipeline.graph, version);
     if (!res) continue;  // an unknown name: the compiler reports it
-    if (res->imported || res->texture.cube || res->kind != ResourceKind::texture) {
-      const char* what = res->imported ? "imported" : res->kind != ResourceKind::texture ? "a buffer" : "a cube map";
-      report.notes.push_back(prefix + " binds " + q(res->name) + ", " + what + ": not reshaped to " +
+    if (res->imported) {
+      report.notes.push_back(prefix + " binds " + q(res->name) + ", imported: not reshaped");
+      continue;
+    }
+    if (res->kind == ResourceKind::buffer) {
+      if (r.bytes) res->bufferBytes = r.bytes;
+      continue;
+    }
+    if (res->texture.cube && r.layers) {
+      report.notes.push_back(prefix + " binds " + q(res->name) + ", a cube map: not reshaped to " +
                              std::to_string(r.layers) + " layers");
       continue;
     }
-    res->texture.layers = r.layers;
+    if (r.layers) res->texture.layers = r.layers;
+    if (r.size) res->texture.size = SizeSpec::absolute(r.size, r.size);
   }
 }
 
@@ -123,6 +134,7 @@ AdaptReport adaptToScene(PipelineConfig& pipeline, const PassRegistry& registry,
     PassAdaptation a;
     a.params = pipeline.params[i];
     type->adapt(features, a);
+    if (!a.report.empty()) report.tables.push_back({pass.name, a.report});
     if (a.expand && !a.disable) {
       applyReshape(pipeline, pass, a, report);
       // The instances are not adapted again: the hook made them for these features.

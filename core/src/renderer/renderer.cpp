@@ -35,10 +35,20 @@ std::string mib(uint64_t bytes) { return std::to_string((bytes + (1u << 19)) >> 
 
 // What the adapt hooks act on. unshadowedLights only explains the rest (its
 // reasons): adding a light that casts nothing must not rebuild the pipeline.
+// The casting lights in view as a set: lights that move and swap their
+// distance order keep their maps (no rebuild for an order alone; a budget
+// then keeps its earlier choice until the set itself changes).
+std::vector<std::pair<int, uint32_t>> shadowSet(const SceneFeatures& f) {
+  std::vector<std::pair<int, uint32_t>> set;
+  for (const auto& l : f.shadowLights) set.emplace_back(static_cast<int>(l.kind), l.light);
+  std::sort(set.begin(), set.end());
+  return set;
+}
+
 bool sameFeatures(const SceneFeatures& a, const SceneFeatures& b) {
   return a.pointLights == b.pointLights && a.blendMaterials == b.blendMaterials && a.normalMaps == b.normalMaps &&
          a.metallicRoughnessVariation == b.metallicRoughnessVariation && a.metallic == b.metallic &&
-         a.roughness == b.roughness && a.shadowCasters == b.shadowCasters && a.shadowLights == b.shadowLights;
+         a.roughness == b.roughness && a.shadowCasters == b.shadowCasters && shadowSet(a) == shadowSet(b);
 }
 
 }  // namespace

@@ -73,11 +73,15 @@ void addLightFacts(const Scene& scene, const Camera& camera, float aspect, Scene
   for (size_t i = 0; i < scene.pointLights.size(); ++i) {
     const PointLight& l = scene.pointLights[i];
     const ShadowLight light{l.spot ? ShadowLight::Kind::spot : ShadowLight::Kind::point, static_cast<uint32_t>(i)};
-    const float reach = shadowReach(l, bounds);
-    if (!casters) unshadowed(light, "no caster in the scene");
-    else if (!l.castsShadows()) unshadowed(light, "does not cast");
-    else if (!sphereMeetsFrustum(planes, l.position, reach)) unshadowed(light, "outside the view");
-    else kept.push_back({light, std::max(0.0f, glm::length(l.position - camera.position) - reach)});
+    if (!casters) {
+      unshadowed(light, "no caster in the scene");
+    } else if (!l.castsShadows()) {
+      unshadowed(light, "does not cast");
+    } else {
+      const float reach = shadowReach(l, bounds);
+      if (!sphereMeetsFrustum(planes, l.position, reach)) unshadowed(light, "outside the view");
+      else kept.push_back({light, std::max(0.0f, glm::length(l.position - camera.position) - reach)});
+    }
   }
   std::stable_sort(kept.begin(), kept.end(),
                    [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
@@ -90,6 +94,9 @@ SceneFeatures sceneFeatures(const Scene& scene) { return sceneFeatures(scene, sc
 
 SceneFeatures sceneFeatures(const Scene& scene, const Camera& camera, float aspect) {
   SceneFeatures f;
+  f.scene = &scene;
+  f.camera = camera;
+  f.aspect = aspect;
   f.pointLights = scene.hasPointLights();
   f.blendMaterials = scene.hasBlendMaterials();
   f.normalMaps = scene.hasNormalMaps();

@@ -77,8 +77,12 @@ PassRule rule();
 // No caster or no casting light in view: "shadows" off and the inputs
 // unbound (the template's expansion removes their writers alike).
 void adapt(const SceneFeatures& f, PassAdaptation& a);
-// Binds the info buffer at kInfoBinding when the pass reads shadows.
-void bindInfo(PassContext& ctx);
+// Binds the info buffer at kInfoBinding when the pass reads shadows, and
+// sets `program`'s u_shadowPositionError from the position target's format.
+void bindInfo(PassContext& ctx, uint32_t program);
+// The relative error of the surface positions a pass reads: 2^-11 from a
+// half-float position target, 2^-23 from a float one, 2^-20 rebuilt from depth.
+float positionError(const PassContext& ctx);
 
 // The above, as a lighting pass type takes them: slots(), params() and
 // rule() added to `d`, and adapt() chained after the type's own hook (set
