@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "rgraph/adapt.h"
 #include "rgraph/config.h"
 #include "rgraph/gl/context.h"
 #include "rgraph/gl/executor.h"
@@ -70,8 +71,11 @@ TEST(ProgramsBuilt, EveryShippedPipelineBuildsExactlyTheProgramsValidateChecks) 
       ASSERT_NE(loader.load(name, std::filesystem::path(file).parent_path().string(), error), nullptr) << error;
     }
     pluginPipelines += doc.plugins().empty() ? 0 : 1;
-    const PipelineConfig cfg = doc.build(registry, diags);
+    PipelineConfig cfg = doc.build(registry, diags);
     ASSERT_FALSE(hasErrors(diags)) << formatDiagnostic(diags.front());
+    // Adapted to the scene as `rgraph render` runs it: a shadow_map template
+    // runs only expanded, and validate then checks the expanded passes.
+    adaptToScene(cfg, registry, sceneFeatures(scene));
 
     ShaderLibrary shaders;
     Executor exec(cfg, registry, shaders, &scene);

@@ -52,7 +52,7 @@ std::vector<size_t> lightingPasses(const PipelineConfig& cfg) {
 }
 
 const char* const kPipelines[] = {"fullscreen.json", "light-volumes.json", "tiled.json", "clustered.json",
-                                  "forward-lit.json"};
+                                  "forward-lit.json", "forward-plus.json"};
 
 TEST(ShadowAdapt, ACastingSceneKeepsEveryLightingPassShadowed) {
   for (const char* name : kPipelines) {

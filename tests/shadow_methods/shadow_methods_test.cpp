@@ -7,7 +7,8 @@
 //   light_volumes       2/255 per channel (tests/render/light_volumes_test.cpp)
 //   tiled_deferred      1e-4 relative in HDR (tests/tiled/tiled_deferred_test.cpp)
 //   clustered_deferred  1/255 per channel (tests/render/clustered_test.cpp)
-//   forward_lit         2/255 per channel (tests/render/forward_vs_deferred_test.cpp)
+//   forward_lit         2/255 per channel (tests/render/forward_vs_deferred_test.cpp),
+//                       also as forward+ (its cluster lists)
 // and its shadowed frame must differ from its unshadowed one (the same
 // pipeline and scene with nothing casting: the adapt hooks compile the
 // shadow code out) on a stated share of pixels, so that two frames that both
@@ -167,6 +168,12 @@ TEST_F(ShadowMethods, ClusteredDeferredAgreesWithDeferredLighting) {
 
 TEST_F(ShadowMethods, ForwardLitAgreesWithDeferredLighting) {
   expectAgrees({"forward_lit", "forward-lit.json", "hdr", 2, 0.0});
+}
+
+// Forward+: the cluster lists' shading (include/cluster_shading.glsl, as in
+// clustered_deferred) per fragment; forward_lit's tolerance.
+TEST_F(ShadowMethods, ForwardPlusAgreesWithDeferredLighting) {
+  expectAgrees({"forward_plus", "forward-plus.json", "hdr", 2, 0.0});
 }
 
 }  // namespace
