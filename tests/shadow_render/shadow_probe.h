@@ -86,10 +86,10 @@ void forEachProbe(const Scene& scene, const Light& light, const shadows::Shadowe
       if (unLevel < o.minLevel) continue;
       const auto probe = probeAt(x, row);
       if (!probe) continue;
-      bool flat = true;  // silhouettes and creases: the neighbours on the same plane
+      bool flat = true;  // silhouettes and creases: the neighbours on about the same plane
       for (auto [dx, dr] : {std::pair{2, 0}, {-2, 0}, {0, 2}, {0, -2}}) {
         const auto n = probeAt(x + dx, row + dr);
-        if (!n || glm::dot(n->normal, probe->normal) < 0.999) flat = false;
+        if (!n || glm::dot(n->normal, probe->normal) < 0.98) flat = false;  // 11 degrees: a sphere's facets pass
       }
       if (!flat) continue;
       ProbeResult r;
