@@ -5,6 +5,7 @@
 #pragma once
 
 #include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
