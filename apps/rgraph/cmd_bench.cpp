@@ -424,11 +424,14 @@ int runBench(const BenchOptions& options) {
       failures += runPost(post, postPlan(options.quick), pipelineDir, shaders);
     }
     // Shadow methods against exact visibility (bench_shadows.h): on their own
-    // (--only shadows; with --smoke, four tiny rows for the tests) or in a
-    // timed run (their figures are times against errors).
+    // (--only shadows, --quick or not; with --smoke, four tiny rows for the
+    // tests) or in the full timed run. Not in a plain --quick run: it would
+    // double that run's CPU time (README), nor with --figures-only (its
+    // figures are times against errors).
     std::vector<ShadowRow> shadows;
     ShadowReference shadowReference;
-    if (options.only == "shadows" || (options.only.empty() && !options.figuresOnly && !options.smoke)) {
+    if (options.only == "shadows" ||
+        (options.only.empty() && !options.figuresOnly && !options.smoke && !options.quick)) {
       const ShadowPlan shadowSettings = shadowPlan(options.quick, options.smoke);
       shadows = planShadows(shadowSettings);
       failures += runShadows(shadows, shadowSettings, pipelineDir, shaders, shadowReference);
