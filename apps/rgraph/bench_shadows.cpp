@@ -378,6 +378,7 @@ size_t runShadows(std::vector<ShadowRow>& rows, const ShadowPlan& plan, const st
   Sums exact;
   try {
     std::ifstream in(file);
+    if (!in) throw RuntimeError("cannot read " + file);
     std::stringstream text;
     text << in.rdbuf();
     shipped = json::parse(text.str());

@@ -23,8 +23,8 @@
 // shadows off; vis_i is the ray caster's binary visibility
 // (rgraph_visibility_oracle, tests/support/visibility_oracle.h) at the
 // surface the camera ray through the pixel's centre meets. The ray caster is
-// fast enough for every pixel (a few million rays at 640x360), so no 8192^2
-// maps stand in for it. The pipeline with shadows off is the same sum with
+// fast enough for every pixel (about a million rays at 640x360, under a
+// second), so no 8192^2 maps stand in for it. The pipeline with shadows off is the same sum with
 // every vis_i = 1: ShadowReference::linearityMaxAbs checks the sum against it.
 // Only the lighting pass reads shadows; what the forward pass draws after it
 // (light markers, blended glass) is left out of the error images.
