@@ -248,6 +248,39 @@ TEST_F(ViewShadows, ACubeResourcesFacesAreLabelledAndCopied) {
   }
 }
 
+// A mip-mapped resource: the level picked is copied at its own size (level 2 of 8x8: 2x2).
+TEST_F(ViewShadows, AMipLevelIsCopiedAtItsSize) {
+  const std::string json = R"({ "version": 1,
+    "resources": { "chain": { "format": "rgba16f", "size": [8, 8], "mips": "full" },
+                   "output": { "format": "rgba8", "size": "output" } },
+    "passes": [
+      { "name": "level0", "type": "clear", "side_effect": true, "params": { "color": [0.25, 0, 0, 1] },
+        "outputs": { "color": "chain.mip[0]" } },
+      { "name": "level2", "type": "clear", "side_effect": true, "params": { "color": [0.75, 0, 0, 1] },
+        "outputs": { "color": "chain.mip[2]" } },
+      { "name": "fill_output", "type": "clear", "outputs": { "color": "output" } } ],
+    "output": "output" })";
+  RendererOptions options;
+  options.size = {8, 8};
+  Diagnostics diags;
+  auto r = Renderer::fromJson(json, "mips.json", options, diags);
+  ASSERT_TRUE(r) << (diags.empty() ? "" : formatDiagnostic(diags.front()));
+  ResourceInspector inspector;
+  inspector.attach(*r);
+  inspector.select("chain");
+  for (uint32_t mip : {0u, 2u}) {
+    inspector.setMip(mip);
+    r->render();
+    EXPECT_EQ(inspector.capturedExtent(), (Extent{8u >> mip, 8u >> mip}));
+    const std::vector<float> copy = inspector.readCaptured();
+    ASSERT_EQ(copy.size(), size_t(4) * (8 >> mip) * (8 >> mip));
+    EXPECT_NEAR(copy[0], mip == 0 ? 0.25f : 0.75f, 1e-3f) << "level " << mip;
+  }
+  inspector.setMip(4);  // 8x8 has levels 0..3
+  r->render();
+  EXPECT_EQ(inspector.capturedTexture(), 0u);
+}
+
 // The bias and filter parameters through ParamEditor::withParam (what `param PASS NAME VALUE` and the
 // panel's widgets produce) and Renderer::reloadJson: the template is expanded again with the new value
 // (its instances carry it) and the frame changes.
