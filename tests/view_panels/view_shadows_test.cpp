@@ -175,8 +175,8 @@ TEST_F(ViewShadows, TheInspectorCopiesTheChosenAtlasLayer) {
   const uint32_t layers = uint32_t(ResourceInspector::layerLabels(*r, "shadowAtlas").size());
   ASSERT_GE(layers, 20u);
   for (const PlannedResource& res : plan.resources) {
-    if (res.name == "shadowAtlas")
-      ASSERT_EQ(plan.physicalTexture(res.physical).resources.size(), 1u) << "the atlas alone in its memory";
+    if (res.name != "shadowAtlas") continue;
+    ASSERT_EQ(plan.physicalTexture(res.physical).resources.size(), 1u) << "the atlas alone in its memory";
   }
   std::vector<std::vector<float>> copies;
   for (uint32_t layer : {0u, 4u, layers - 3}) {
@@ -205,6 +205,9 @@ TEST_F(ViewShadows, TheInspectorCopiesTheChosenAtlasLayer) {
   inspector.setLayer(layers);
   r->render();
   EXPECT_EQ(inspector.capturedTexture(), 0u);
+  EXPECT_EQ(inspector.problem(), "'shadowAtlas' has " + std::to_string(layers) +
+                                     " layer(s) and 1 mip level(s): no layer " + std::to_string(layers) +
+                                     " at level 0");
   // Depth maps crowd near 1: fitting the range spreads the drawn texels over the display.
   inspector.setLayer(4);
   r->render();
@@ -281,6 +284,7 @@ TEST_F(ViewShadows, AMipLevelIsCopiedAtItsSize) {
   inspector.setMip(4);  // 8x8 has levels 0..3
   r->render();
   EXPECT_EQ(inspector.capturedTexture(), 0u);
+  EXPECT_EQ(inspector.problem(), "'chain' has 1 layer(s) and 4 mip level(s): no layer 0 at level 4");
 }
 
 // The bias and filter parameters through ParamEditor::withParam (what `param PASS NAME VALUE` and the

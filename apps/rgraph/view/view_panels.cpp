@@ -177,6 +177,9 @@ std::optional<std::string> drawPanels(Renderer& renderer, ParamEditor& editor, R
   ImGui::End();
   ImGui::SetNextWindowPos(ImVec2(display.x - kMargin, kMargin), ImGuiCond_FirstUseEver, ImVec2(1, 0));
   ImGui::SetNextWindowSize(ImVec2(side, std::max(display.y * 0.75f, 160.0f)), ImGuiCond_FirstUseEver);
+  // Folded until opened, unless something is already picked (a script's `inspect`): an empty window's area
+  // is fill time on a software renderer.
+  ImGui::SetNextWindowCollapsed(inspector.selected().empty(), ImGuiCond_FirstUseEver);
   if (ImGui::Begin("Inspector")) inspector.draw(renderer);
   ImGui::End();
   return edit;

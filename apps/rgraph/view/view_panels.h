@@ -37,7 +37,8 @@ class ResourceInspector;
 // The viewer's panel windows, placed for the display size at their first
 // appearance so that each lies within it from 960x540 up: "rgraph" on the
 // left (tabs: plan, parameters, shadows) above the camera window that
-// view_main.cpp keeps in the lower left, "Inspector" on the right. Returns the
+// view_main.cpp keeps in the lower left, "Inspector" on the right (folded
+// when it first appears with nothing picked). Returns the
 // parameter editor's edit (ParamEditor::draw). A non-empty `showTab`
 // ("plan", "parameters", "shadows": the script's `panel`) brings that tab to
 // the front, and is cleared.
@@ -122,6 +123,9 @@ class ResourceInspector {
   void setMip(uint32_t mip);
   uint32_t layer() const;
   uint32_t mip() const;
+  // Why this frame copied nothing ("" when it did or nothing is picked): no
+  // pass that runs writes it, a buffer, a layer or level it lacks. draw() shows it.
+  const std::string& problem() const;
   // One label per array layer of the resource `name` belongs to, in the
   // pipeline as adapted: for a shadow atlas what each layer holds
   // ("directional0 cascade 1", "spot0", "point2 face +y", from the

@@ -297,6 +297,7 @@ void ResourceInspector::setMip(uint32_t mip) {
 
 uint32_t ResourceInspector::layer() const { return impl_->layer; }
 uint32_t ResourceInspector::mip() const { return impl_->mip; }
+const std::string& ResourceInspector::problem() const { return impl_->problem; }
 
 std::vector<std::string> ResourceInspector::layerLabels(const Renderer& renderer, const std::string& name) {
   const Plan& plan = renderer.plan();
