@@ -12,6 +12,19 @@ std::string lightLabel(LightKind kind, uint32_t light) {
   return k + std::to_string(light);
 }
 
+std::string layerLabel(const std::vector<ShadowedLight>& lights, uint32_t layer) {
+  static const char* const kFaces[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+  for (const ShadowedLight& l : lights) {
+    if (layer < l.firstLayer || layer >= l.firstLayer + l.layers) continue;
+    const uint32_t i = layer - l.firstLayer;
+    const std::string name = lightLabel(l.kind, l.light);
+    if (l.kind == LightKind::directional) return name + " cascade " + std::to_string(i);
+    if (l.kind == LightKind::point) return name + " face " + kFaces[i % 6];
+    return name;
+  }
+  return {};
+}
+
 namespace {
 
 // Nearest and farthest view depth of the scene's bounds, within the camera's planes.

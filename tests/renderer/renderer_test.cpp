@@ -194,6 +194,24 @@ TEST_F(RendererApi, ChangingTheShadowedLightsAdaptsThePipelineAgain) {
   EXPECT_EQ(r->builds(), 3u) << "the shadowed light left the view";
 }
 
+// The tables the last adaptation reported (a shadow template's budget, which rgraph view shows): none
+// before a scene, the budget of the shadows scene, none again once nothing in the scene casts.
+TEST_F(RendererApi, AdaptTablesAreTheLastAdaptationsReports) {
+  auto r = makeRenderer(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/deferred-pbr-shadows.json");
+  EXPECT_TRUE(r->adaptTables().empty()) << "no scene: nothing adapted";
+  r->setScene(RenderScene::load(std::string(RGRAPH_SOURCE_DIR) + "/scenes/shadows.json"));
+  r->render();
+  ASSERT_EQ(r->adaptTables().size(), 1u);
+  const AdaptReport::Table& t = r->adaptTables()[0];
+  EXPECT_EQ(t.pass, "shadows");
+  // docs/shadows.md "The shadow budget": 6 lights in 24 layers of 2048^2, 4 bytes a texel.
+  EXPECT_NE(std::find(t.lines.begin(), t.lines.end(), "atlas: 24 of 24 layers used, 402653184 bytes"), t.lines.end());
+  r->setScene(RenderScene::load("learnopengl:overview"));  // 32 point lights, none casting
+  r->render();
+  EXPECT_TRUE(r->adaptTables().empty());
+  EXPECT_FALSE(r->adaptNotes().empty()) << "the notes say why there are no maps";
+}
+
 TEST_F(RendererApi, BadLightsAndCamerasAreRefusedAndChangeNothing) {
   auto scene = RenderScene::load("learnopengl:overview");
   PointLight bad = scene->pointLight(0);

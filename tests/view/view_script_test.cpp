@@ -33,6 +33,21 @@ TEST(ViewScript, ParsesEveryCommandWithItsLine) {
   EXPECT_EQ(cmds[7].line, 10);
 }
 
+TEST(ViewScript, InspectTakesAResourceALayerAndAMip) {
+  std::string error;
+  const auto cmds =
+      parseScript("inspect gDepth\ninspect shadowAtlas 5\ninspect bloom 0 3\npanel shadows\n", "s.txt", error);
+  ASSERT_EQ(cmds.size(), 4u) << error;
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(cmds[size_t(i)].kind, K::Inspect);
+  EXPECT_EQ(cmds[0].words, std::vector<std::string>{"gDepth"});
+  EXPECT_EQ(cmds[0].numbers, (std::vector<float>{0, 0})) << "layer and mip 0 when left out";
+  EXPECT_EQ(cmds[1].words, std::vector<std::string>{"shadowAtlas"});
+  EXPECT_EQ(cmds[1].numbers, (std::vector<float>{5, 0}));
+  EXPECT_EQ(cmds[2].numbers, (std::vector<float>{0, 3}));
+  EXPECT_EQ(cmds[3].kind, K::Panel);
+  EXPECT_EQ(cmds[3].words, std::vector<std::string>{"shadows"});
+}
+
 TEST(ViewScript, JsonValuesMayContainSpaces) {
   std::string error;
   const auto cmds = parseScript("param ambient color [0.1, 0.2, 0.3]\n", "s.txt", error);
@@ -54,6 +69,12 @@ TEST(ViewScript, ErrorsNameFileAndLine) {
            Case{"ui maybe\n", "s.txt:1: error: 'ui' expects on or off"},
            Case{"param a b\n", "s.txt:1: error: 'param' expects PASS NAME JSON-VALUE"},
            Case{"quit now\n", "s.txt:1: error: 'quit' takes no arguments"},
+           Case{"inspect\n", "s.txt:1: error: 'inspect' expects RESOURCE [LAYER [MIP]]"},
+           Case{"inspect atlas 1 2 3\n", "s.txt:1: error: 'inspect' expects RESOURCE [LAYER [MIP]]"},
+           Case{"inspect atlas x\n", "s.txt:1: error: 'inspect': 'x' is not a number"},
+           Case{"inspect atlas 1.5\n", "s.txt:1: error: 'inspect' needs whole numbers from 0 to 65535"},
+           Case{"inspect atlas -1\n", "s.txt:1: error: 'inspect' needs whole numbers from 0 to 65535"},
+           Case{"panel camera\n", "s.txt:1: error: 'panel' expects plan, parameters or shadows"},
        }) {
     std::string error;
     EXPECT_TRUE(parseScript(c.text, "s.txt", error).empty()) << c.text;

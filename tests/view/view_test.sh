@@ -20,6 +20,10 @@
 #                   good frame (not black) stays in the window
 #   shader_override a --shader-path override of tonemap.frag deleted (built-in used), then created broken and
 #                   fixed: error naming the override, then ok
+#   inspect_layers  at 960x540 with the panels on, `inspect shadowAtlas L` (deferred-pbr-shadows, the shadows
+#                   scene): the inspector's image (right half, below its pickers) differs between layers 0
+#                   and 6, the whole screenshot of layer 0 twice does not (the image is on screen and shows
+#                   the layer asked for); the Shadows tab is in front (the plan tab's times change each frame)
 #   script_errors   an unknown command, a bad number, a missing script, a folder: FILE:LINE error, exit 1, no window
 set -uo pipefail
 case_=$1; rgraph=$2; compare=$3; xvfb=$4; src=$5; out=$6/view-$1
@@ -255,6 +259,19 @@ resize)
   "$rgraph" render --width 200 --height 150 --out "$out/render.png" || fail "rgraph render: exit $?"
   "$compare" "$out/small.png" "$out/render.png" 1 || fail "the resized frame differs from rgraph render at 200x150"
   echo "ok: resized to 200x150" ;;
+inspect_layers)
+  printf '%s\n' 'param shadows size 256' 'panel shadows' 'inspect shadowAtlas 0' 'ui on' 'wait 3' \
+    "screenshot $out/layer0.png" 'inspect shadowAtlas 6' 'wait 3' "screenshot $out/layer6.png" \
+    'inspect shadowAtlas 0' 'wait 3' "screenshot $out/layer0-again.png" 'quit' >"$out/script.txt"
+  run_x "$rgraph" view "$src/pipelines/deferred-pbr-shadows.json" --scene "$src/scenes/shadows.json" \
+    --width 960 --height 540 --script "$out/script.txt" >"$out/view.log" 2>&1 || fail "rgraph view exited $?"
+  grep -q "error:" "$out/view.log" && fail "the viewer reported an error"
+  "$compare" "$out/layer0.png" "$out/layer0-again.png" 1 || fail "layer 0 shown twice differs (the UI is not steady)"
+  # Only the inspector's image (right half, below its pickers at 960x540): the layer's label above it differs
+  # whichever layer is copied.
+  "$compare" "$out/layer0.png" "$out/layer6.png" 1 --region 480,175,480,185; rc=$?
+  [[ $rc -eq 2 ]] || fail "layers 0 and 6 look the same in the inspector's image (compare exit $rc)"
+  echo "ok: two atlas layers shown differ, one layer twice does not" ;;
 script_errors)
   check() {  # SCRIPT-TEXT EXPECTED-REGEX
     printf '%b' "$1" >"$out/bad.txt"

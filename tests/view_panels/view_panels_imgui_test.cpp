@@ -206,6 +206,76 @@ TEST_F(ViewPanelsImgui, TheInspectorPrintsTheValueUnderTheCursor) {
   EXPECT_LT(seen[1].second, seen[0].second) << "the mouse moved up";
 }
 
+// At 960x540, the smallest window the viewer is laid out for, drawPanels keeps its windows inside the
+// display and the inspector's whole image on screen (it once sat below the visible part of one long window).
+TEST_F(ViewPanelsImgui, At960x540ThePanelsAndTheInspectorImageAreOnScreen) {
+  const ImVec2 display(960, 540);
+  ImGui::GetIO().DisplaySize = display;
+  auto r = viewtest::defaultRenderer({96, 54});
+  ASSERT_TRUE(r);
+  view::ResourceInspector inspector;
+  inspector.attach(*r);
+  inspector.select("gNormal");
+  view::ParamEditor editor(kDefault);
+  r->render();
+  ImDrawData* data = nullptr;
+  for (int i = 0; i < 2; ++i) {  // the second frame: sizes settled
+    ImGui::GetIO().DeltaTime = 1.0f / 60.0f;
+    ImGui::NewFrame();
+    view::drawPanels(*r, editor, inspector);
+    ImGui::Render();
+    data = ImGui::GetDrawData();
+  }
+  for (const char* name : {"rgraph", "Inspector"}) {
+    const ImGuiWindow* w = ImGui::FindWindowByName(name);
+    ASSERT_NE(w, nullptr) << name;
+    EXPECT_GE(w->Pos.x, 0.0f) << name;
+    EXPECT_GE(w->Pos.y, 0.0f) << name;
+    EXPECT_LE(w->Pos.x + w->Size.x, display.x) << name;
+    EXPECT_LE(w->Pos.y + w->Size.y, display.y) << name;
+  }
+  const ImTextureID image = reinterpret_cast<ImTextureID>(static_cast<intptr_t>(inspector.renderDisplay()));
+  size_t corners = 0;
+  for (int l = 0; l < data->CmdListsCount; ++l) {
+    const ImDrawList* list = data->CmdLists[l];
+    for (const ImDrawCmd& cmd : list->CmdBuffer) {
+      if (cmd.TextureId != image) continue;
+      for (unsigned i = 0; i < cmd.ElemCount; ++i) {
+        const ImVec2 p = list->VtxBuffer[list->IdxBuffer[cmd.IdxOffset + i] + cmd.VtxOffset].pos;
+        ++corners;
+        EXPECT_TRUE(p.x >= 0 && p.y >= 0 && p.x <= display.x && p.y <= display.y) << p.x << "," << p.y;
+        EXPECT_TRUE(p.x >= cmd.ClipRect.x && p.y >= cmd.ClipRect.y && p.x <= cmd.ClipRect.z && p.y <= cmd.ClipRect.w)
+            << "clipped by its window at " << p.x << "," << p.y;
+      }
+    }
+  }
+  EXPECT_EQ(corners, 6u) << "the image drawn once (two triangles)";
+}
+
+// The Shadows tab (brought to the front as the script's `panel shadows` does) shows the budget lines.
+TEST_F(ViewPanelsImgui, TheShadowsTabShowsTheBudget) {
+  auto r = viewtest::shadowRenderer(viewtest::smallMapsPipeline());
+  ASSERT_TRUE(r);
+  view::ResourceInspector inspector;
+  view::ParamEditor editor(viewtest::kShadowPipeline);
+  r->render();
+  ImGui::GetIO().SetClipboardTextFn = captureClipboard;
+  std::string tab = "shadows";
+  for (int i = 0; i < 2; ++i) {  // a tab asked for is shown from the next frame
+    ImGui::GetIO().DeltaTime = 1.0f / 60.0f;
+    ImGui::NewFrame();
+    ImGui::LogToClipboard();
+    view::drawPanels(*r, editor, inspector, &tab);
+    ImGui::LogFinish();
+    ImGui::Render();
+  }
+  EXPECT_TRUE(tab.empty()) << "the request is taken";
+  const std::vector<std::string> lines = view::shadowPanelLines(*r);
+  ASSERT_GT(lines.size(), 8u);
+  for (const std::string& l : lines)
+    EXPECT_NE(loggedText.find(l.substr(l.find_first_not_of(' '))), std::string::npos) << l << "\n" << loggedText;
+}
+
 // After an accepted edit the pipeline running is not the file's: the panel says so until the file is read again.
 TEST_F(ViewPanelsImgui, TheParametersPanelSaysWhenThePipelineIsEditedInMemory) {
   auto r = viewtest::defaultRenderer({48, 32});

@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "rgraph/renderer.h"
@@ -47,6 +49,31 @@ inline std::unique_ptr<Renderer> defaultRenderer(Extent size) {
   auto r = Renderer::fromFile(kDefaultPipeline, options, diags);
   EXPECT_TRUE(r) << (diags.empty() ? std::string("no diagnostics") : formatDiagnostic(diags.front()));
   if (r) r->setScene(RenderScene::load("learnopengl:overview"));
+  return r;
+}
+
+// The shipped shadow pipeline (issue 28) with small maps, as the parameter editor would write it, and a
+// renderer of it on the shadows scene at a small size.
+inline const std::string kShadowPipeline = std::string(RGRAPH_SOURCE_DIR) + "/pipelines/deferred-pbr-shadows.json";
+inline const std::string kShadowScene = std::string(RGRAPH_SOURCE_DIR) + "/scenes/shadows.json";
+constexpr int kMapSize = 128;  // texels per side of each map: small, for llvmpipe
+
+inline std::string smallMapsPipeline() {
+  std::ifstream in(kShadowPipeline);
+  auto json = nlohmann::ordered_json::parse(in);
+  for (auto& pass : json["passes"])
+    if (pass["name"] == "shadows") pass["params"]["size"] = kMapSize;
+  return json.dump(2);
+}
+
+inline std::unique_ptr<Renderer> shadowRenderer(const std::string& json, const std::string& scene = kShadowScene,
+                                                Extent size = {128, 72}) {
+  RendererOptions options;
+  options.size = size;
+  Diagnostics diags;
+  auto r = Renderer::fromJson(json, kShadowPipeline, options, diags);
+  EXPECT_TRUE(r) << (diags.empty() ? "" : formatDiagnostic(diags.front()));
+  if (r) r->setScene(RenderScene::load(scene));
   return r;
 }
 

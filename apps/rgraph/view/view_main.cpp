@@ -156,6 +156,7 @@ class Viewer {
   Extent goodSize_;                  // the size of the last frame drawn
   std::vector<double> uiOnMs_, uiOffMs_;
   bool ui_ = true;
+  std::string showTab_;  // a script's `panel`: the tab drawPanels brings to the front
 };
 
 void Viewer::report(const std::string& event, bool ok, const std::vector<std::string>& errors) {
@@ -295,6 +296,14 @@ bool Viewer::runScript(std::string& shot) {
       case K::Param:
         applyParam(c);
         break;
+      case K::Inspect:
+        inspector_.select(c.words[0]);
+        inspector_.setLayer(uint32_t(n[0]));
+        inspector_.setMip(uint32_t(n[1]));
+        break;
+      case K::Panel:
+        showTab_ = c.words[0];
+        break;
       case K::Resize:
         glfwSetWindowSize(window_.handle, int(n[0]), int(n[1]));
         renderer_->setSize(Extent{uint32_t(n[0]), uint32_t(n[1])});
@@ -310,7 +319,7 @@ void Viewer::drawUi() {
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
-  // Lower left: the panels (view_panels.cpp) take the upper part of the window.
+  // Lower left, below the panels' left window (view::drawPanels).
   ImGui::SetNextWindowPos(ImVec2(10, ImGui::GetIO().DisplaySize.y - 10), ImGuiCond_FirstUseEver, ImVec2(0, 1));
   ImGui::Begin("Camera");
   const Camera& c = camera_.camera();
@@ -327,9 +336,8 @@ void Viewer::drawUi() {
     ImGui::TextWrapped("The last good pipeline keeps rendering.");
     ImGui::End();
   }
-  view::drawPlanPanel(*renderer_);
-  if (std::optional<std::string> text = editor_.draw(*renderer_)) applyPanelEdit(*text);
-  inspector_.draw(*renderer_);
+  if (std::optional<std::string> text = view::drawPanels(*renderer_, editor_, inspector_, &showTab_))
+    applyPanelEdit(*text);
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }

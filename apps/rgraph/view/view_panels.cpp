@@ -145,4 +145,44 @@ void drawPlanPanel(Renderer& renderer) {
   if (ImGui::CollapsingHeader("Resources", ImGuiTreeNodeFlags_DefaultOpen)) drawLifetimes(plan);
 }
 
+std::optional<std::string> drawPanels(Renderer& renderer, ParamEditor& editor, ResourceInspector& inspector,
+                                      std::string* showTab) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  constexpr float kMargin = 10.0f, kCameraWindow = 120.0f;  // view_main.cpp's camera window, lower left
+  const float side = std::clamp(display.x * 0.4f, 280.0f, 620.0f);
+  ImGui::SetNextWindowPos(ImVec2(kMargin, kMargin), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(side, std::max(display.y - 2 * kMargin - kCameraWindow, 160.0f)),
+                           ImGuiCond_FirstUseEver);
+  std::optional<std::string> edit;
+  auto tab = [&](const char* label, const char* name) {
+    const bool show = showTab && *showTab == name;
+    if (show) showTab->clear();
+    return ImGui::BeginTabItem(label, nullptr, show ? ImGuiTabItemFlags_SetSelected : 0);
+  };
+  if (ImGui::Begin("rgraph") && ImGui::BeginTabBar("panels")) {
+    if (tab("Plan", "plan")) {
+      drawPlanPanel(renderer);
+      ImGui::EndTabItem();
+    }
+    if (tab("Parameters", "parameters")) {
+      edit = editor.draw(renderer);
+      ImGui::EndTabItem();
+    }
+    if (tab("Shadows", "shadows")) {
+      drawShadowsPanel(renderer);
+      ImGui::EndTabItem();
+    }
+    ImGui::EndTabBar();
+  }
+  ImGui::End();
+  ImGui::SetNextWindowPos(ImVec2(display.x - kMargin, kMargin), ImGuiCond_FirstUseEver, ImVec2(1, 0));
+  ImGui::SetNextWindowSize(ImVec2(side, std::max(display.y * 0.75f, 160.0f)), ImGuiCond_FirstUseEver);
+  // Folded until opened, unless something is already picked (a script's `inspect`): an empty window's area
+  // is fill time on a software renderer.
+  ImGui::SetNextWindowCollapsed(inspector.selected().empty(), ImGuiCond_FirstUseEver);
+  if (ImGui::Begin("Inspector")) inspector.draw(renderer);
+  ImGui::End();
+  return edit;
+}
+
 }  // namespace rgraph::view

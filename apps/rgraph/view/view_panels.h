@@ -23,6 +23,28 @@ namespace rgraph::view {
 // (Renderer::cpuTimed()) and, with GPU timer queries, which frame they are of.
 void drawPlanPanel(Renderer& renderer);
 
+// The shadows panel (view_panels_shadows.cpp): per shadow_map template the
+// shadow budget it reported at adapt time (Renderer::adaptTables: per light
+// its map size, atlas layers and texel footprints, the atlas's occupancy and
+// bytes, the lights left unshadowed and why), "no shadow maps" when there is
+// none, then the adaptation's notes. The lines are the panel's text.
+std::vector<std::string> shadowPanelLines(const Renderer& renderer);
+void drawShadowsPanel(const Renderer& renderer);
+
+class ParamEditor;
+class ResourceInspector;
+
+// The viewer's panel windows, placed for the display size at their first
+// appearance so that each lies within it from 960x540 up: "rgraph" on the
+// left (tabs: plan, parameters, shadows) above the camera window that
+// view_main.cpp keeps in the lower left, "Inspector" on the right (folded
+// when it first appears with nothing picked). Returns the
+// parameter editor's edit (ParamEditor::draw). A non-empty `showTab`
+// ("plan", "parameters", "shadows": the script's `panel`) brings that tab to
+// the front, and is cleared.
+std::optional<std::string> drawPanels(Renderer& renderer, ParamEditor& editor, ResourceInspector& inspector,
+                                      std::string* showTab = nullptr);
+
 // Every pass parameter with a widget from its declaration (type, range, enum
 // values). An edit gives new pipeline JSON text for Renderer::reloadJson; the
 // file is written only by save().
@@ -90,8 +112,27 @@ class ResourceInspector {
   // detaches. Attaching to another renderer leaves the old one's hook inert.
   void attach(Renderer& renderer);
   void detach();
+  // A new name starts at layer 0 and mip level 0.
   void select(const std::string& resourceOrVersion);
   const std::string& selected() const;
+  // Which array layer and mip level of the selection is copied. Layers count
+  // as the graph counts them (rgraph/graph.h arrayLayers): a cube's faces are
+  // layers (+x -x +y -y +z -z), cube c's face f is layer 6c + f. One the
+  // resource lacks copies nothing, and draw() says why.
+  void setLayer(uint32_t layer);
+  void setMip(uint32_t mip);
+  uint32_t layer() const;
+  uint32_t mip() const;
+  // Why this frame copied nothing ("" when it did or nothing is picked): no
+  // pass that runs writes it, a buffer, a layer or level it lacks. draw() shows it.
+  const std::string& problem() const;
+  // One label per array layer of the resource `name` belongs to, in the
+  // pipeline as adapted: for a shadow atlas what each layer holds
+  // ("directional0 cascade 1", "spot0", "point2 face +y", from the
+  // shadow_map expansion's assignment), for a cube map its faces ("face +y";
+  // "cube 1 face -x" in a cube array), "" where nothing is known. Empty for
+  // an unknown name or a buffer.
+  static std::vector<std::string> layerLabels(const Renderer& renderer, const std::string& name);
   // Every name select() takes, for the plan of `renderer`: each resource
   // (meaning its last write), then its later versions (that version's write).
   static std::vector<std::string> selectableNames(const Plan& plan);
@@ -110,6 +151,10 @@ class ResourceInspector {
   // its size (0 when nothing was copied). draw() shows it.
   ValueMapping& mapping();
   uint32_t renderDisplay();
+  // Sets the mapping's range to the copy's values (raw mode): depth maps,
+  // whose values crowd near 1, spread over the display. Depth texels at 1 (a
+  // map's clear: nothing drawn there) are left out. false without a copy.
+  bool fitRange();
   // How many frames copied the selection (tests: one copy per frame).
   uint64_t captureCount() const;
   // How many times the copy texture was (re)created: only when the selection's format or size changes.
@@ -117,6 +162,7 @@ class ResourceInspector {
   void draw(Renderer& renderer);
 
  private:
+  void drawSubresourcePickers(const Renderer& renderer);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -2,7 +2,9 @@
 // in the frame (Renderer::setAfterPass), so that even a transient whose
 // memory is aliased and overwritten later shows what it held then, and
 // draws that copy through a value mapping (view_panels_map.h) into an RGBA8
-// texture shown with ImGui::Image.
+// texture shown with ImGui::Image. One layer (a cube's face) and one mip
+// level of an array, cube or mip-mapped resource is copied: a 2D texture the
+// display shader reads as any other.
 #include <GL/glcorearb.h>
 #include <imgui.h>
 
@@ -15,6 +17,7 @@
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gl_state.h"
 #include "rgraph/gl/uniform.h"
+#include "rgraph/passes/shadow_budget.h"
 #include "view_panels.h"
 #include "view_panels_map.h"
 
@@ -118,13 +121,15 @@ ResourceIndex findResource(const Plan& plan, const std::string& name) {
 struct ResourceInspector::Impl {
   Renderer* renderer = nullptr;
   std::string selected;
-  StepIndex target;  // this frame's capture step
-  // The copy: single-sample, level 0, the resource's format and size.
+  uint32_t layer = 0, mip = 0;  // of the selection
+  StepIndex target;             // this frame's capture step
+  // The copy: single-sample, one level and layer of the resource, its format and that level's size.
   gl::Texture copy;
   Format copyFormat = Format::rgba8;
   Extent copyExtent;
   bool hasCopy = false;
   uint64_t captures = 0, creations = 0;
+  bool fitPending = false;             // draw(): fit the range to the next copy (a shadow map was picked)
   gl::Framebuffer blitRead, blitDraw;  // multisampled resources are resolved by a blit
   std::string problem;                 // why nothing was copied (shown by draw())
   // Display.
@@ -136,7 +141,8 @@ struct ResourceInspector::Impl {
   ValueMapping mapping;
 
   void afterPass(size_t step);
-  void copyOut(uint32_t source, Format format, Extent extent, uint32_t samples);
+  // `source` is a texture of GL target `sourceTarget`; its level `level` is `extent`.
+  void copyOut(uint32_t source, unsigned sourceTarget, Format format, Extent extent, uint32_t samples, uint32_t level);
   void render();
 };
 
@@ -155,11 +161,21 @@ void ResourceInspector::Impl::afterPass(size_t step) {
     problem = "'" + selected + "' is a buffer";
     return;
   }
-  copyOut(renderer->executor()->textureOf(selected), decl.texture.format, plan.resource(r).extent,
-          decl.texture.samples);
+  const TextureDesc& t = decl.texture;
+  const Extent base = plan.resource(r).extent;
+  const uint32_t layers = arrayLayers(t), levels = mipLevels(t, base);
+  if (layer >= layers || mip >= levels) {
+    problem = "'" + selected + "' has " + std::to_string(layers) + " layer(s) and " + std::to_string(levels) +
+              " mip level(s): no layer " + std::to_string(layer) + " at level " + std::to_string(mip);
+    return;
+  }
+  const Extent extent{std::max(base.width >> mip, 1u), std::max(base.height >> mip, 1u)};
+  copyOut(renderer->executor()->textureOf(selected), gl::textureTarget(t.samples, t.layers, t.cube), t.format, extent,
+          t.samples, mip);
 }
 
-void ResourceInspector::Impl::copyOut(uint32_t source, Format format, Extent extent, uint32_t samples) {
+void ResourceInspector::Impl::copyOut(uint32_t source, unsigned sourceTarget, Format format, Extent extent,
+                                      uint32_t samples, uint32_t level) {
   if (!copy || copyFormat != format || copyExtent != extent) {
     copy = gl::createTexture2D(format, extent);
     copyFormat = format;
@@ -168,12 +184,17 @@ void ResourceInspector::Impl::copyOut(uint32_t source, Format format, Extent ext
   }
   const GLsizei w = GLsizei(extent.width), h = GLsizei(extent.height);
   if (samples <= 1) {
-    glCopyImageSubData(source, GL_TEXTURE_2D, 0, 0, 0, 0, copy.id(), GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
+    // The z of an array, cube or cube array source is its layer (a cube's: its face).
+    const GLint z = sourceTarget == GL_TEXTURE_2D ? 0 : GLint(layer);
+    glCopyImageSubData(source, sourceTarget, GLint(level), 0, 0, z, copy.id(), GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
   } else {
     // A resolve: only a blit reads a multisampled texture into a single-sampled one.
     if (!blitRead) blitRead = gl::createFramebuffer(), blitDraw = gl::createFramebuffer();
     const GLenum attachment = gl::attachmentPoint(format);
-    glNamedFramebufferTexture(blitRead.id(), attachment, source, 0);
+    if (sourceTarget == GL_TEXTURE_2D_MULTISAMPLE_ARRAY)
+      glNamedFramebufferTextureLayer(blitRead.id(), attachment, source, 0, GLint(layer));
+    else
+      glNamedFramebufferTexture(blitRead.id(), attachment, source, 0);
     glNamedFramebufferTexture(blitDraw.id(), attachment, copy.id(), 0);
     const bool depth = gl::isDepth(format);
     const GLbitfield mask =
@@ -238,10 +259,78 @@ void ResourceInspector::detach() {
 }
 
 void ResourceInspector::select(const std::string& name) {
-  if (name == impl_->selected) return;
-  impl_->selected = name;
+  Impl& im = *impl_;
+  if (name == im.selected) return;
+  im.selected = name;
+  im.layer = im.mip = 0;
+  im.hasCopy = false;
+  im.problem.clear();
+  if (!im.renderer) return;
+  const ResourceIndex r = findResource(im.renderer->plan(), name);
+  if (!r.valid()) return;
+  const ResourceDecl& decl = im.renderer->pipeline().graph.resources[r.value()];
+  // The camera's depth linearised with its planes; the layers of a depth array or cube (shadow maps, drawn
+  // from other views with other planes) fitted to their own values instead, once copied.
+  const bool depth = decl.kind == ResourceKind::texture && isDepthFormat(decl.texture.format);
+  im.mapping.mode = depth ? ValueMapping::Mode::depth : ValueMapping::Mode::raw;
+  im.mapping.channel = ValueMapping::Channel::rgba;
+  im.mapping.min = 0.0f, im.mapping.max = 1.0f;
+  im.mapping.log = false;
+  im.fitPending = depth && arrayLayers(decl.texture) > 1;
+}
+
+void ResourceInspector::setLayer(uint32_t layer) {
+  if (layer == impl_->layer) return;
+  // A depth layer shown raw (fitted) is fitted again: another map, another range.
+  const bool copied = impl_->hasCopy || impl_->fitPending;
+  if (copied && gl::isDepth(impl_->copyFormat) && impl_->mapping.mode == ValueMapping::Mode::raw)
+    impl_->fitPending = true;
+  impl_->layer = layer;
   impl_->hasCopy = false;
-  impl_->problem.clear();
+}
+
+void ResourceInspector::setMip(uint32_t mip) {
+  if (mip == impl_->mip) return;
+  impl_->mip = mip;
+  impl_->hasCopy = false;
+}
+
+uint32_t ResourceInspector::layer() const { return impl_->layer; }
+uint32_t ResourceInspector::mip() const { return impl_->mip; }
+const std::string& ResourceInspector::problem() const { return impl_->problem; }
+
+std::vector<std::string> ResourceInspector::layerLabels(const Renderer& renderer, const std::string& name) {
+  const Plan& plan = renderer.plan();
+  const PipelineConfig& pipeline = renderer.pipeline();
+  const ResourceIndex r = findResource(plan, name);
+  if (!r.valid() || pipeline.graph.resources[r.value()].kind != ResourceKind::texture) return {};
+  const TextureDesc& t = pipeline.graph.resources[r.value()].texture;
+  std::vector<std::string> labels(arrayLayers(t));
+  if (t.cube) {
+    static const char* const kFaces[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+    for (size_t i = 0; i < labels.size(); ++i)
+      labels[i] = (t.layers > 1 ? "cube " + std::to_string(i / 6) + " " : std::string()) + "face " + kFaces[i % 6];
+    return labels;
+  }
+  // A shadow atlas: the expansion's map passes carry which light owns which layers.
+  for (size_t p = 0; p < pipeline.graph.passes.size(); ++p) {
+    const PassDecl& pass = pipeline.graph.passes[p];
+    if (pass.type != "shadow_map" || p >= pipeline.params.size()) continue;
+    const ParamSet& params = pipeline.params[p];
+    if (params.getString("role") != "map") continue;
+    const bool writesIt = std::any_of(pass.uses.begin(), pass.uses.end(), [&](const ResourceUse& u) {
+      return u.slot == "atlas" && findResource(plan, u.output) == r;
+    });
+    if (!writesIt) continue;
+    try {
+      const std::vector<shadows::ShadowedLight> lights = shadows::decode(params.getString("lights"));
+      for (size_t i = 0; i < labels.size(); ++i) labels[i] = shadows::layerLabel(lights, uint32_t(i));
+    } catch (const RuntimeError&) {
+      // Not an assignment the expansion wrote (a hand-written instance): no labels, the layers still show.
+    }
+    break;
+  }
+  return labels;
 }
 
 const std::string& ResourceInspector::selected() const { return impl_->selected; }
@@ -314,6 +403,16 @@ glm::vec4 ResourceInspector::readCapturedTexel(uint32_t x, uint32_t yTop) const 
 
 ValueMapping& ResourceInspector::mapping() { return impl_->mapping; }
 
+bool ResourceInspector::fitRange() {
+  if (!capturedTexture()) return false;
+  const glm::vec2 range = valueRange(readCaptured(), gl::isDepth(impl_->copyFormat));
+  impl_->mapping.mode = ValueMapping::Mode::raw;
+  if (gl::isDepth(impl_->copyFormat)) impl_->mapping.channel = ValueMapping::Channel::r;  // grey, not red
+  impl_->mapping.min = range.x;
+  impl_->mapping.max = range.y;
+  return true;
+}
+
 uint32_t ResourceInspector::renderDisplay() {
   if (!capturedTexture()) return 0;
   impl_->render();
@@ -325,6 +424,27 @@ const char* const kModeNames[] = {"raw", "depth (linear)", "normal", "position"}
 const char* const kChannelNames[] = {"RGBA", "R", "G", "B", "A"};
 }  // namespace
 
+// The layer and mip pickers of an array, cube or mip-mapped selection.
+void ResourceInspector::drawSubresourcePickers(const Renderer& renderer) {
+  Impl& im = *impl_;
+  const Plan& plan = renderer.plan();
+  const ResourceIndex r = findResource(plan, im.selected);
+  if (!r.valid() || renderer.pipeline().graph.resources[r.value()].kind != ResourceKind::texture) return;
+  const TextureDesc& t = renderer.pipeline().graph.resources[r.value()].texture;
+  const std::vector<std::string> labels = layerLabels(renderer, im.selected);
+  auto layerName = [&](uint32_t i) {
+    return "layer " + std::to_string(i) + (i < labels.size() && !labels[i].empty() ? ": " + labels[i] : "");
+  };
+  if (labels.size() > 1 && ImGui::BeginCombo("layer", layerName(im.layer).c_str())) {
+    for (uint32_t i = 0; i < labels.size(); ++i)
+      if (ImGui::Selectable(layerName(i).c_str(), i == im.layer)) setLayer(i);
+    ImGui::EndCombo();
+  }
+  const uint32_t levels = mipLevels(t, plan.resource(r).extent);
+  int mip = int(im.mip);
+  if (levels > 1 && ImGui::SliderInt("mip", &mip, 0, int(levels) - 1)) setMip(uint32_t(mip));
+}
+
 void ResourceInspector::draw(Renderer& renderer) {
   Impl& im = *impl_;
   const Plan& plan = renderer.plan();
@@ -333,19 +453,17 @@ void ResourceInspector::draw(Renderer& renderer) {
       const ResourceIndex r = findResource(plan, name);
       const bool version = plan.resource(r).name != name;
       const std::string label = (version ? "    " : "") + name;
-      if (ImGui::Selectable(label.c_str(), name == im.selected)) {
-        select(name);
-        const Format f = renderer.pipeline().graph.resources[r.value()].texture.format;
-        im.mapping.mode = isDepthFormat(f) ? ValueMapping::Mode::depth : ValueMapping::Mode::raw;
-      }
+      if (ImGui::Selectable(label.c_str(), name == im.selected)) select(name);
     }
     ImGui::EndCombo();
   }
   if (im.selected.empty()) return ImGui::TextDisabled("pick a resource to see it after its last write");
+  drawSubresourcePickers(renderer);
   const StepIndex step = captureStep(plan, im.selected);
   if (step.valid()) ImGui::Text("copied after step %u (%s)", step.value(), plan.pass(plan.step(step)).name.c_str());
   if (!im.problem.empty()) return ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.3f, 1.0f), "%s", im.problem.c_str());
   if (!capturedTexture()) return ImGui::TextDisabled("not copied yet (next frame)");
+  if (im.fitPending) im.fitPending = !fitRange();
 
   ValueMapping& m = im.mapping;
   int mode = int(m.mode), channel = int(m.channel);
@@ -355,6 +473,9 @@ void ResourceInspector::draw(Renderer& renderer) {
   ImGui::DragFloatRange2("range", &m.min, &m.max, 0.01f);
   ImGui::SameLine();
   ImGui::Checkbox("log", &m.log);
+  ImGui::SameLine();
+  if (ImGui::Button("fit")) fitRange();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("range from this copy's values (depth: without the cleared 1s)");
   m.near = renderer.camera().near;
   m.far = renderer.camera().far;
   if (renderer.scene()) {
@@ -364,8 +485,12 @@ void ResourceInspector::draw(Renderer& renderer) {
 
   const uint32_t display = renderDisplay();
   const Extent e = im.copyExtent;
-  const float width = std::max(ImGui::GetContentRegionAvail().x, 16.0f);
-  const ImVec2 size(width, width * float(e.height) / float(std::max(e.width, 1u)));
+  // The whole image within the window: as wide as it is, as high as the lines below leave.
+  const ImVec2 avail = ImGui::GetContentRegionAvail();
+  const float aspect = float(e.height) / float(std::max(e.width, 1u));
+  const float width =
+      std::max(std::min(avail.x, (avail.y - 2.5f * ImGui::GetTextLineHeightWithSpacing()) / aspect), 16.0f);
+  const ImVec2 size(width, width * aspect);
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   // GL's first row is the bottom one: flip v.
   ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(display)), size, ImVec2(0, 1), ImVec2(1, 0));

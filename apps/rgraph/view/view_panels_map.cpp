@@ -51,4 +51,16 @@ glm::vec4 mapValue(const ValueMapping& m, glm::vec4 v) {
   return v;
 }
 
+glm::vec2 valueRange(const std::vector<float>& rgba, bool depth) {
+  float lo = INFINITY, hi = -INFINITY;
+  for (size_t i = 0; i + 3 < rgba.size(); i += 4)
+    for (size_t c = 0; c < (depth ? 1u : 3u); ++c) {
+      const float v = rgba[i + c];
+      if (!std::isfinite(v) || (depth && v >= 1.0f)) continue;
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  return lo <= hi ? glm::vec2(lo, hi) : glm::vec2(0.0f, 1.0f);
+}
+
 }  // namespace rgraph::view

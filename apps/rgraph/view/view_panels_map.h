@@ -4,6 +4,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <vector>
 
 namespace rgraph::view {
 
@@ -25,5 +26,9 @@ struct ValueMapping {
 float linearizeDepth(float depth, float near, float far);
 // The displayed colour (each component in [0,1], alpha 1 unless the channel is rgba).
 glm::vec4 mapValue(const ValueMapping& m, glm::vec4 texel);
+// The smallest and largest value of RGBA texels (x = min, y = max): colour
+// over R, G and B; depth (`depth`) over R without the texels at 1, a depth
+// map's clear where nothing was drawn. (0, 1) when no texel counts.
+glm::vec2 valueRange(const std::vector<float>& rgba, bool depth);
 
 }  // namespace rgraph::view

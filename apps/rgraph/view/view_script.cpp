@@ -89,11 +89,31 @@ std::string parseLine(const std::vector<std::string>& w, ScriptCommand& c) {
     c.words = {w[1], w[2], value};
     return "";
   }
+  if (op == "inspect") {  // the inspector's resource (or version), array layer and mip level
+    c.kind = K::Inspect;
+    if (args < 1 || args > 3) return "'inspect' expects RESOURCE [LAYER [MIP]]";
+    c.words = {w[1]};
+    for (size_t i = 2; i < w.size(); ++i) {
+      float v = 0;
+      if (!toNumber(w[i], v)) return "'inspect': '" + w[i] + "' is not a number (expected RESOURCE [LAYER [MIP]])";
+      c.numbers.push_back(v);
+    }
+    while (c.numbers.size() < 2) c.numbers.push_back(0.0f);
+    return whole(0, 65535);
+  }
+  if (op == "panel") {
+    c.kind = K::Panel;
+    if (args != 1 || (w[1] != "plan" && w[1] != "parameters" && w[1] != "shadows"))
+      return "'panel' expects plan, parameters or shadows";
+    c.words = {w[1]};
+    return "";
+  }
   if (op == "quit") {
     c.kind = K::Quit;
     return args ? "'quit' takes no arguments" : "";
   }
-  return "unknown command '" + op + "' (commands: camera, wait, waitfile, screenshot, ui, param, resize, quit)";
+  return "unknown command '" + op +
+         "' (commands: camera, wait, waitfile, screenshot, ui, param, resize, inspect, panel, quit)";
 }
 
 }  // namespace

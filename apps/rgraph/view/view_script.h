@@ -9,11 +9,12 @@
 namespace rgraph::view {
 
 struct ScriptCommand {
-  enum class Kind { Camera, Wait, WaitFile, Screenshot, Ui, Param, Resize, Quit };
+  enum class Kind { Camera, Wait, WaitFile, Screenshot, Ui, Param, Resize, Inspect, Panel, Quit };
   Kind kind = Kind::Quit;
   int line = 0;
-  std::vector<float> numbers;      // camera: 6 (or 7 with fov); wait: 1; resize: 2
-  std::vector<std::string> words;  // screenshot, waitfile: file; ui: on|off; param: pass, name, JSON value
+  std::vector<float> numbers;  // camera: 6 (or 7 with fov); wait: 1; resize: 2; inspect: layer, mip
+  // screenshot, waitfile: file; ui: on|off; param: pass, name, JSON value; inspect: resource; panel: its tab
+  std::vector<std::string> words;
 };
 
 // Parses script text; `name` is the file named in messages. On the first

@@ -82,6 +82,7 @@
 
 #include <glm/glm.hpp>
 
+#include "rgraph/adapt.h"
 #include "rgraph/config.h"
 #include "rgraph/diagnostics.h"
 #include "rgraph/graph.h"
@@ -280,6 +281,10 @@ class Renderer {
   // The pipeline as adapted to the scene, and the notes the adaptation made.
   const PipelineConfig& pipeline() const;
   const std::vector<std::string>& adaptNotes() const;
+  // The tables pass types reported while adapting (AdaptReport::tables: a
+  // shadow_map template's shadow budget), as `rgraph plan --scene` prints
+  // them; empty without a scene or with adaptToScene off.
+  const std::vector<AdaptReport::Table>& adaptTables() const;
   // The compiled plan of the last frame (before the first frame: compiled
   // now at size(), GL-free). Memory: Plan::naiveBytes / allocatedBytes.
   const Plan& plan() const;

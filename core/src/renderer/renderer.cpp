@@ -62,7 +62,7 @@ struct Renderer::Impl {
 
   PipelineConfig source;   // as loaded
   PipelineConfig adapted;  // as adapted to the scene (what runs)
-  std::vector<std::string> notes;
+  AdaptReport report;  // the last adaptation's notes and tables
   std::optional<SceneFeatures> adaptedFor;
 
   std::shared_ptr<RenderScene> scene;
@@ -196,10 +196,10 @@ bool Renderer::Impl::replace(PipelineConfig next, Diagnostics& diags) {
 // "Model no more than a scene needs", from the pipeline as loaded each time.
 void Renderer::Impl::adapt() {
   adapted = source;
-  notes.clear();
+  report = {};
   if (scene && options.adaptToScene) {
     const SceneFeatures now = features();
-    notes = adaptToScene(adapted, PassRegistry::builtins(), now).notes;
+    report = adaptToScene(adapted, PassRegistry::builtins(), now);
     adaptedFor = now;
   } else {
     adaptedFor.reset();
@@ -269,7 +269,7 @@ void Renderer::Impl::prepareFrame() {
 
 void Renderer::Impl::buildExecutor() {
   adapt();
-  for (const auto& note : notes) spdlog::debug("{}", note);
+  for (const auto& note : report.notes) spdlog::debug("{}", note);
   const Plan plan = rgraph::compile(adapted.graph, compileOptions());
   const std::string overBudget = plan.ok() ? memoryRefusal(plan) : std::string();
   sizeRefused = !plan.ok() || !overBudget.empty();  // a graph with errors: the executor throws, with its messages
@@ -486,7 +486,8 @@ const PipelineConfig& Renderer::pipeline() const {
   return impl_->executor && !impl_->rebuild ? impl_->adapted : impl_->source;
 }
 
-const std::vector<std::string>& Renderer::adaptNotes() const { return impl_->notes; }
+const std::vector<std::string>& Renderer::adaptNotes() const { return impl_->report.notes; }
+const std::vector<AdaptReport::Table>& Renderer::adaptTables() const { return impl_->report.tables; }
 
 const Plan& Renderer::plan() const {
   if (impl_->executor && !impl_->rebuild && impl_->executor->plan().output == impl_->size)

@@ -46,4 +46,10 @@ std::vector<std::string> budgetTable(const Budget& b);
 
 std::string lightLabel(LightKind kind, uint32_t light);  // "directional0", "spot3", "point5"
 
+// What atlas layer `layer` holds under the assignment `lights` (the
+// expansion's "lights" param): "directional0 cascade 2", "spot3", "point5
+// face +y" (faces in ShadowedLight's order); "" for a layer no light owns
+// (the spare layer of a one-map atlas).
+std::string layerLabel(const std::vector<ShadowedLight>& lights, uint32_t layer);
+
 }  // namespace rgraph::shadows
