@@ -195,7 +195,7 @@ PipelineConfig evsmVariant(const std::string& file) {
   doc["resources"]["shadowMoments"] = {{"format", "rgba32f"}, {"size", {16, 16}}, {"layers", 2}, {"mips", "full"}};
   nlohmann::json passes = nlohmann::json::array();
   for (auto& pass : doc["passes"]) {
-    if (pass["params"].contains("shadow_filter")) {
+    if (pass.contains("params") && pass["params"].contains("shadow_filter")) {
       pass["params"]["shadow_filter"] = "evsm";
       pass["inputs"]["shadow_moments"] = "shadowMoments";
     }
