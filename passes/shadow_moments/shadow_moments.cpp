@@ -20,11 +20,12 @@
 
 #include <algorithm>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "rgraph/error.h"
 #include "rgraph/format_sets.h"
 #include "rgraph/gl/fullscreen.h"
-#include "rgraph/gl/uniform.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/passes/shadow_sampling.h"
 #include "rgraph/registry.h"
