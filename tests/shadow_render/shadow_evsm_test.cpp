@@ -170,13 +170,17 @@ Moments renderMoments(int blur) {
   const Extent size{96, 64};
   adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene, scene.camera, 1.5f));
   ShaderLibrary shaders;
+  Executor exec(cfg, PassRegistry::builtins(), shaders, &scene);
+  exec.setStateChecks(true);  // the pass's changedState() answer (0) is read back and checked too
+  exec.resize(size);
+  exec.renderFrame();
   Moments m;
-  rtest::render(cfg, scene, size, shaders, [&](Executor& exec) {
-    const uint32_t texture = exec.textureOf("shadowMoments");
-    ASSERT_NE(texture, 0u);
+  const uint32_t texture = exec.textureOf("shadowMoments");
+  EXPECT_NE(texture, 0u);
+  if (texture) {
     m.level0 = readLevel(texture, 0, m.size0);
     m.level1 = readLevel(texture, 1, m.size1);
-  });
+  }
   return m;
 }
 
