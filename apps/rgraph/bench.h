@@ -229,8 +229,11 @@ void drawAaChart(const std::string& dir, const std::vector<AaRow>& rows, const s
 
 // ---------------------------------------------------------------- results
 
-// Sweep points, then aa rows (their own columns scene, aa, edge_psnr_db, edge_pixels; empty on points).
-void writeCsv(const std::string& path, const std::vector<Point>& points, const std::vector<AaRow>& aa);
+// Sweep points, then aa rows (their own columns scene, aa, edge_psnr_db, edge_pixels; empty on points), then
+// shadows rows (bench_shadows.h; their own columns map_size, cascades, shadow_ms, atlas_bytes).
+struct ShadowRow;
+void writeCsv(const std::string& path, const std::vector<Point>& points, const std::vector<AaRow>& aa,
+              const std::vector<ShadowRow>& shadows);
 nlohmann::json pointJson(const Point& p);
 Point pointFromJson(const nlohmann::json& j, const Config& def);
 Config defaultPointFromJson(const nlohmann::json& results);

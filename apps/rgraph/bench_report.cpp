@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "bench.h"
+#include "bench_shadows.h"
 #include "rgraph/error.h"
 #include "rgraph/output_file.h"
 
@@ -37,12 +38,14 @@ std::string joined(const std::vector<std::string>& v, const char* sep) {
 
 }  // namespace
 
-void writeCsv(const std::string& path, const std::vector<Point>& points, const std::vector<AaRow>& aa) {
+void writeCsv(const std::string& path, const std::vector<Point>& points, const std::vector<AaRow>& aa,
+              const std::vector<ShadowRow>& shadows) {
   std::ostringstream f;
   f << "axes,method,layout,threshold,lights,width,height,frames,median_ms,min_"
        "ms,max_ms,psnr_db,max_abs_error,"
        "share_over_1,gbuffer_bytes_per_pixel,gbuffer_bytes_per_pixel_adapted,"
-       "allocated_bytes,naive_bytes,status,scene,aa,edge_psnr_db,edge_pixels,psnr_exact_db,max_abs_error_exact\n";
+       "allocated_bytes,naive_bytes,status,scene,aa,edge_psnr_db,edge_pixels,psnr_exact_db,max_abs_error_exact,"
+       "map_size,cascades,shadow_ms,atlas_bytes\n";
   char buf[64];
   auto n = [&](double v, const char* fmt = "%.4f") {
     std::snprintf(buf, sizeof buf, fmt, v);
@@ -57,7 +60,7 @@ void writeCsv(const std::string& path, const std::vector<Point>& points, const s
       << fr.size() << "," << n(median(fr)) << "," << n(mn) << "," << n(mx) << "," << n(p.err.psnr, "%.3f") << ","
       << p.err.maxAbs << "," << n(p.err.over1, "%.6f") << "," << p.m.gbufferBytes << "," << p.m.gbufferBytesAdapted
       << "," << p.m.allocatedBytes << "," << p.m.naiveBytes << "," << csvEscape(p.ok() ? "ok" : "error: " + p.error)
-      << "," << (p.cfg.pillars ? "pillars" : "") << ",,,," << (p.hasExact ? n(p.errExact.psnr, "%.3f") + "," + std::to_string(p.errExact.maxAbs) : ",") << "\n";
+      << "," << (p.cfg.pillars ? "pillars" : "") << ",,,," << (p.hasExact ? n(p.errExact.psnr, "%.3f") + "," + std::to_string(p.errExact.maxAbs) : ",") << ",,,,\n";
   }
   // aa rows: the pipeline file in the method column, the scene's point lights
   // unknown here (empty), no G-buffer figures.
@@ -68,7 +71,19 @@ void writeCsv(const std::string& path, const std::vector<Point>& points, const s
     f << "aa," << csvEscape(r.pipeline) << ",,,," << r.size.width << "," << r.size.height << "," << fr.size() << ","
       << n(median(fr)) << "," << n(mn) << "," << n(mx) << "," << n(r.psnr, "%.3f") << "," << r.maxAbs << ",,,,,,"
       << csvEscape(r.ok() ? "ok" : "error: " + r.error) << "," << csvEscape(r.scene) << "," << r.aa << ","
-      << n(r.edgePsnr, "%.3f") << "," << r.edgePixels << ",,\n";
+      << n(r.edgePsnr, "%.3f") << "," << r.edgePixels << ",,,,,,\n";
+  }
+  // shadows rows: the filter in the method column (none: shadows off), the
+  // scene file in the scene column, their own last four columns.
+  for (const auto& r : shadows) {
+    const auto& fr = r.frameMs;
+    const double mn = fr.empty() ? 0 : *std::min_element(fr.begin(), fr.end());
+    const double mx = fr.empty() ? 0 : *std::max_element(fr.begin(), fr.end());
+    const std::string status = !r.skipped.empty() ? "skipped: " + r.skipped : r.ok() ? "ok" : "error: " + r.error;
+    f << "shadows," << r.method << ",,,," << r.size.width << "," << r.size.height << "," << fr.size() << ","
+      << n(median(fr)) << "," << n(mn) << "," << n(mx) << "," << n(r.err.psnr, "%.3f") << "," << r.err.maxAbs << ","
+      << n(r.err.over1, "%.6f") << ",,," << r.allocatedBytes << ",," << csvEscape(status) << ",shadows.json,,,,,,"
+      << r.mapSize << "," << r.cascades << "," << n(median(r.shadowMs)) << "," << r.atlasBytes << "\n";
   }
   writeOutputFile(path, f.str());
 }

@@ -7,7 +7,10 @@
 // results.json, figures.md (the deterministic figures as the tables the docs
 // quote) and three charts (SVG + PNG, drawn in C++: bench_chart.h). The aa
 // axis (bench_aa.cpp) measures anti-aliasing methods on two scenes of its own
-// against a 16-sample reference, with a fourth chart.
+// against a 16-sample reference, with a fourth chart; the post axis
+// (bench_post.h) bloom and SSAO methods; the shadows axis (bench_shadows.h)
+// shadow filters, map sizes and cascades against exact visibility, with a
+// chart of its own.
 // This file runs the sweep; bench.h names the parts.
 #include <unistd.h>
 
@@ -25,6 +28,7 @@
 #include "bench.h"
 #include "bench_aa_metrics.h"
 #include "bench_post.h"
+#include "bench_shadows.h"
 #include "cli_common.h"
 #include "cli_outputs.h"
 #include "commands.h"
@@ -121,7 +125,8 @@ std::string glText(const json& m) {
 // (tests/bench_cli).
 std::string figuresMarkdown(const std::vector<Point>& points, const Config& def,
                             const std::vector<ShippedResult>& shipped, const std::vector<AaRow>& aa,
-                            const std::string& sceneSpec, const json& machine) {
+                            const std::vector<ShadowRow>& shadows, const std::string& sceneSpec,
+                            const json& machine) {
   std::string s = "# rgraph bench: deterministic figures\n\nScene " + sceneSpec + "; default point " + describe(def) +
                   ". Error: 8-bit RGB against forward_lit with no cut-off into "
                   "an rgba32f target.\n" + glText(machine) + "\n";
@@ -129,7 +134,13 @@ std::string figuresMarkdown(const std::vector<Point>& points, const Config& def,
     s += "aa: each method against its own pipeline rendered at 4x4 the size with no jitter, box-filtered down "
          "(8-bit values); edge pixels: luma step of " +
          std::to_string(kEdgeThreshold) + "/255 to a neighbour in the reference.\n";
-  for (const auto& [name, table] : figureTables(points, def, shipped, aa))
+  if (!shadows.empty())
+    s += "shadows: the lighting pass's image of scenes/shadows.json under each shadow method against the "
+         "exact-visibility image (the ray caster's visibility per pixel and casting light), both tone-mapped as the "
+         "pipeline does, 8-bit.\n";
+  std::map<std::string, std::string> tables = figureTables(points, def, shipped, aa);
+  if (!shadows.empty()) tables["shadows"] = shadowTable(shadows);
+  for (const auto& [name, table] : tables)
     s += "\n<!-- bench-figures:" + name + " -->\n" + table + "<!-- /bench-figures:" + name + " -->\n";
   return s;
 }
@@ -170,12 +181,15 @@ int replot(const BenchOptions& options) {
     for (const json& sj : j.value("shipped", json::array())) shipped.push_back(shippedFromJson(sj));
     std::vector<AaRow> aa;
     for (const json& aj : j.value("aa", json::array())) aa.push_back(aaFromJson(aj));
+    std::vector<ShadowRow> shadows;
+    for (const json& sj : j.value("shadows", json::array())) shadows.push_back(shadowFromJson(sj));
     writeText(std::filesystem::path(options.out) / "figures.md",
-              figuresMarkdown(points, def, shipped, aa, spec, j.at("machine")));
+              figuresMarkdown(points, def, shipped, aa, shadows, spec, j.at("machine")));
     if (!points.empty())
       drawCharts(options.out, points, def, machineText(j.at("machine")),
                  sceneNote(spec, spec.rfind("many-lights", 0) == 0));
     if (!aa.empty()) drawAaChart(options.out, aa, machineText(j.at("machine")));
+    if (!shadows.empty()) drawShadowChart(options.out, shadows, machineText(j.at("machine")));
   } catch (const std::exception& e) {
     std::cerr << "error: " << options.replot << ": " << e.what() << "\n";
     return kExitFailure;
@@ -320,7 +334,7 @@ size_t runSweep(std::vector<Point>& points, Scenes& scenes, const RunPlan& plan,
 }
 
 const std::vector<std::string> kAxes = {"lights",    "lights_exact", "layout", "layout_exact",
-                                        "threshold", "resolution",   "pillars",     "aa",          "post"};
+                                        "threshold", "resolution",   "pillars",     "aa",          "post", "shadows"};
 
 // --only lights keeps the exact loop at each N too (the methods' psnr_exact_db
 // and the reference time need it); --only pillars keeps tiled and clustered
@@ -409,6 +423,19 @@ int runBench(const BenchOptions& options) {
       post = planPost(postPlan(options.quick));
       failures += runPost(post, postPlan(options.quick), pipelineDir, shaders);
     }
+    // Shadow methods against exact visibility (bench_shadows.h): on their own
+    // (--only shadows, --quick or not; with --smoke, four tiny rows for the
+    // tests) or in the full timed run. Not in a plain --quick run: it would
+    // double that run's CPU time (README), nor with --figures-only (its
+    // figures are times against errors).
+    std::vector<ShadowRow> shadows;
+    ShadowReference shadowReference;
+    if (options.only == "shadows" ||
+        (options.only.empty() && !options.figuresOnly && !options.smoke && !options.quick)) {
+      const ShadowPlan shadowSettings = shadowPlan(options.quick, options.smoke);
+      shadows = planShadows(shadowSettings);
+      failures += runShadows(shadows, shadowSettings, pipelineDir, shaders, shadowReference);
+    }
     // The shipped pipelines as they come, on the default scene and size.
     std::vector<ShippedResult> shipped;
     if (!options.smoke && options.only.empty()) {
@@ -422,11 +449,12 @@ int runBench(const BenchOptions& options) {
 
     // ---- outputs
     const std::filesystem::path dir(options.out);
-    writeCsv((dir / "results.csv").string(), points, aa);
+    writeCsv((dir / "results.csv").string(), points, aa, shadows);
     std::vector<std::string> summary;
     json checks = headlineChecks(points, def, summary);
     aaChecks(aa, checks, summary);
     postChecks(post, checks, summary);
+    shadowChecks(shadows, checks, summary);
     const double wallS = std::chrono::duration<double>(Clock::now() - start).count();
     json results = {{"tool", "rgraph bench"},
                     {"quick", options.quick},
@@ -468,13 +496,18 @@ int runBench(const BenchOptions& options) {
     for (const auto& r : aa) results["aa"].push_back(aaJson(r));
     results["post"] = json::array();
     for (const auto& r : post) results["post"].push_back(postJson(r));
+    results["shadows"] = json::array();
+    for (const auto& r : shadows) results["shadows"].push_back(shadowJson(r));
+    if (!shadows.empty()) results["shadow_reference"] = shadowReferenceJson(shadowReference);
     writeText(dir / "results.json", results.dump(2) + "\n");
-    writeText(dir / "figures.md", figuresMarkdown(points, def, shipped, aa, scenes.spec(), machine));
+    writeText(dir / "figures.md", figuresMarkdown(points, def, shipped, aa, shadows, scenes.spec(), machine));
     if (!options.figuresOnly && !points.empty())
       drawCharts(options.out, points, def, machineText(machine), sceneNote(scenes.spec(), scenes.procedural()));
     if (!options.figuresOnly && !aa.empty()) drawAaChart(options.out, aa, machineText(machine));
+    if (!shadows.empty()) drawShadowChart(options.out, shadows, machineText(machine));
 
-    std::cout << "rgraph bench: " << points.size() << " points, " << aa.size() << " aa rows in "
+    std::cout << "rgraph bench: " << points.size() << " points, " << aa.size() << " aa rows, " << shadows.size()
+              << " shadows rows in "
               << static_cast<int>(wallS) << " s on " << describeContext(context->device())
               << (options.quick ? " (--quick)" : "") << (options.figuresOnly ? " (--figures-only)" : "") << "\n";
     for (const auto& s : summary) std::cout << "  " << s << "\n";
@@ -482,7 +515,8 @@ int runBench(const BenchOptions& options) {
               << (options.figuresOnly || points.empty() ? ""
                                                         : ", frame_ms_vs_lights, frame_ms_vs_error, "
                                                           "bytes_vs_error (.svg, .png)")
-              << (options.figuresOnly || aa.empty() ? "" : ", aa_ms_vs_error (.svg, .png)") << "\n";
+              << (options.figuresOnly || aa.empty() ? "" : ", aa_ms_vs_error (.svg, .png)")
+              << (shadows.empty() ? "" : ", shadows_ms_vs_error (.svg, .png)") << "\n";
     if (failures) {
       std::cerr << "error: " << failures << " point(s) failed; see results.csv\n";
       for (const auto& p : points)
@@ -491,6 +525,8 @@ int runBench(const BenchOptions& options) {
         if (!r.ok()) std::cerr << "  aa " << r.aa << " on " << r.scene << ": " << r.error << "\n";
       for (const auto& r : post)
         if (!r.ok()) std::cerr << "  post " << r.effect << " " << r.method << ": " << r.error << "\n";
+      for (const auto& r : shadows)
+        if (!r.ok()) std::cerr << "  shadows " << r.label() << ": " << r.error << "\n";
       return kExitFailure;
     }
   } catch (const RuntimeError& e) {

@@ -173,7 +173,8 @@ CLI::App* addBench(CLI::App& app, Options& o) {
       ->check(kNotEmpty);
   cmd->add_option("--only", b.only,
                   "run one axis only: lights (with lights_exact), lights_exact (the exact loop at each light count), "
-                  "layout, layout_exact, threshold, resolution or aa (anti-aliasing against a 16-sample reference)")
+                  "layout, layout_exact, threshold, resolution, pillars, aa (anti-aliasing against a 16-sample reference), "
+                  "post (bloom and SSAO methods) or shadows (shadow methods against exact visibility)")
       ->type_name("AXIS");
   cmd->add_flag("--figures-only", b.figuresOnly,
                 "render each point once, untimed: errors and bytes only (the figures docs quote), no charts");

@@ -395,6 +395,9 @@ std::vector<float> cascadeSplits(float near, float far, uint32_t cascades, float
 std::vector<ShadowView> shadowViews(const Scene& scene, const Camera& camera, float aspect,
                                     const ShadowSettings& settings, const std::vector<ShadowedLight>& lights) {
   std::vector<ShadowView> out;
+  size_t layers = 0;
+  for (const ShadowedLight& l : lights) layers += l.layers;
+  out.reserve(layers);
   const Bounds bounds = scene.bounds();  // once: every spot and point light's reach is capped by it
   for (const ShadowedLight& l : lights) {
     switch (l.kind) {

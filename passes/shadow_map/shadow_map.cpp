@@ -66,6 +66,11 @@ class ShadowMapPass final : public PassInstance {
     firstLayer_ = static_cast<uint32_t>(p.getInt("first_layer"));
     layerCount_ = static_cast<uint32_t>(p.getInt("layer_count"));
     if (role_ == "map") {
+      // A map pass fits only the views of the light that owns its layers:
+      // every light's would make each frame cost maps x lights fits.
+      std::erase_if(lights_, [&](const ShadowedLight& l) {
+        return l.firstLayer + l.layers <= firstLayer_ || l.firstLayer >= firstLayer_ + layerCount_;
+      });
       flat_ = ctx.program(0);
       layered_ = ctx.program(1);
     }
@@ -134,7 +139,7 @@ class ShadowMapPass final : public PassInstance {
   }
 
   std::string role_;
-  std::vector<ShadowedLight> lights_;
+  std::vector<ShadowedLight> lights_;  // info: every shadowed light; map: the one owning its layers
   uint32_t firstLayer_ = 0, layerCount_ = 0;
   uint32_t flat_ = 0, layered_ = 0;
 };

@@ -279,3 +279,42 @@ TEST_F(ShadowStability, HugeAndTinyScenesAgreeWithExactVisibility) {
 }
 
 }  // namespace
+
+namespace {
+
+// The light's near and far planes. A spot light's map spans its reach (here
+// set to just past the floor, so the floor lies at 75-98% of the far plane)
+// with its near plane at a thousandth of that: a small plate a tenth of a
+// unit below the lamp (a hundred times the near plane) still casts its wide
+// shadow, and the pillars' shadows at the far end of the reach are where
+// exact visibility puts them. A directional light's maps reach back along the
+// light to every caster: a slab 40 units up towards the sun, far outside the
+// view, still shadows the floor.
+TEST_F(ShadowStability, CastersAtTheLightsNearPlaneAndReceiversAtItsFarPlaneAgreeWithExactVisibility) {
+  Scene scene = shadowtest::testScene();
+  PointLight spot = shadowtest::spot();
+  spot.position = {0.3f, 6.0f, 0.2f};
+  spot.direction = {0.0f, -1.0f, 0.0f};
+  spot.outerConeDeg = 40.0f;
+  spot.innerConeDeg = 35.0f;
+  spot.radius = 8.0f;  // the cone's rim reaches the floor at 6 / cos(40) = 7.83
+  spot.intensity = 30.0f;
+  scene.pointLights.push_back(spot);
+  shadowtest::addBox(scene, spot.position - glm::vec3(0.0f, 0.1f, 0.0f), {0.03f, 0.002f, 0.03f});
+  const shadowtest::Agreement near =
+      agreement(scene, scene.pointLights[0], {LightKind::spot, 0, 0, 1}, {}, "spot-near-and-far-planes");
+  EXPECT_GE(near.shadowed, 500) << "the plate near the lamp should shadow the floor";
+  EXPECT_GE(near.lit, 500);
+  EXPECT_GE(near.share(), 0.995);
+
+  Scene sunScene = shadowtest::testScene();
+  sunScene.directionalLights.push_back(shadowtest::sun());
+  shadowtest::addBox(sunScene, -40.0f * sunScene.directionalLights[0].direction + glm::vec3(1.0f, 0.0f, 1.0f),
+                     {1.0f, 0.05f, 1.0f});
+  const shadowtest::Agreement far = agreement(sunScene, sunScene.directionalLights[0],
+                                              {LightKind::directional, 0, 0, 4}, {}, "directional-far-caster");
+  EXPECT_GE(far.shadowed, 500) << "the slab's shadow should reach the view";
+  EXPECT_GE(far.share(), 0.995);
+}
+
+}  // namespace

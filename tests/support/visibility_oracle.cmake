@@ -1,6 +1,7 @@
 # The exact-visibility oracle (issue 28: tests/support/visibility_oracle.h), a
-# GL-free library for the test suites and the benchmarks. Included by
-# tests/CMakeLists.txt and bench/CMakeLists.txt (either may be built alone).
+# GL-free library for the test suites, the benchmarks and `rgraph bench`'s
+# shadows axis. Included by tests/CMakeLists.txt, bench/CMakeLists.txt and
+# apps/rgraph/CMakeLists.txt (any may be built alone).
 if(NOT TARGET rgraph_visibility_oracle)
   find_package(Threads REQUIRED)
   add_library(rgraph_visibility_oracle STATIC

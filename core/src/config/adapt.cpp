@@ -1,6 +1,7 @@
 #include "rgraph/adapt.h"
 
 #include <algorithm>
+#include <iterator>
 #include <map>
 #include <set>
 
@@ -84,7 +85,7 @@ PassDecl makeInstance(const PassDecl& pass, const ExpandedPass& e) {
 
 // Replaces pass `i` by its instances (parallel vectors kept in step) and
 // returns how many there are.
-size_t expandPass(PipelineConfig& pipeline, size_t i, const std::vector<ExpandedPass>& expand,
+size_t expandPass(PipelineConfig& pipeline, size_t i, std::vector<ExpandedPass>& expand,
                   const std::vector<std::string>& hookNotes, AdaptReport& report) {
   const PassDecl pass = pipeline.graph.passes[i];
   std::vector<PassDecl> passes;
@@ -92,9 +93,9 @@ size_t expandPass(PipelineConfig& pipeline, size_t i, const std::vector<Expanded
   std::vector<std::vector<SamplerOverride>> samplers;
   const bool hasSamplers = i < pipeline.samplers.size();
   std::string names;
-  for (const ExpandedPass& e : expand) {
+  for (ExpandedPass& e : expand) {
     passes.push_back(makeInstance(pass, e));
-    params.push_back(e.params);
+    params.push_back(std::move(e.params));  // moved, here and below: an expansion can make dozens
     names += (names.empty() ? "" : ", ") + passes.back().name;
     if (!hasSamplers) continue;
     std::vector<SamplerOverride>& kept = samplers.emplace_back();
@@ -105,7 +106,8 @@ size_t expandPass(PipelineConfig& pipeline, size_t i, const std::vector<Expanded
   }
   auto replace = [i](auto& vec, auto& with) {
     vec.erase(vec.begin() + static_cast<std::ptrdiff_t>(i));
-    vec.insert(vec.begin() + static_cast<std::ptrdiff_t>(i), with.begin(), with.end());
+    vec.insert(vec.begin() + static_cast<std::ptrdiff_t>(i), std::make_move_iterator(with.begin()),
+               std::make_move_iterator(with.end()));
   };
   replace(pipeline.graph.passes, passes);
   replace(pipeline.params, params);
