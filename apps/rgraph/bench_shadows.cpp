@@ -29,6 +29,10 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* kPipeline = "deferred-pbr-shadows.json";
+// evsm rows: the moments pass and its resources of the shipped EVSM example,
+// grafted onto the varied file (the filter needs the moments bound).
+const char* kEvsmPipeline = "deferred-pbr-shadows-evsm.json";
+const char* kMomentsPass = "moments";
 const char* kScene = "shadows.json";  // under scenes/, next to pipelines/
 const char* kLightingPass = "lighting";
 const char* kShadowPass = "shadows";  // the shadow_map template: its expansions are "shadows.<light>..."
@@ -65,9 +69,27 @@ json shadowsOff(const json& shipped) {
   return p;
 }
 
-std::string variant(const json& shipped, const ShadowRow& row) {
+// The EVSM example's moments pass, inserted before the lighting pass with
+// the resources it binds, and the lighting pass reading its moments.
+void addMoments(json& p, const json& evsm) {
+  if (evsm.is_null()) throw RuntimeError(std::string("bench: evsm needs ") + kEvsmPipeline + " beside " + kPipeline);
+  json source = evsm;
+  const json moments = passNamed(source, kMomentsPass);
+  for (const auto& [slot, resource] : moments.at("outputs").items())
+    p["resources"][resource.get<std::string>()] = source.at("resources").at(resource.get<std::string>());
+  json& passes = p.at("passes");
+  for (auto it = passes.begin(); it != passes.end(); ++it)
+    if (it->at("name") == kLightingPass) {
+      passes.insert(it, moments);
+      break;
+    }
+  passNamed(p, kLightingPass)["inputs"]["shadow_moments"] = moments.at("outputs").at("moments");
+}
+
+std::string variant(const json& shipped, const json& evsm, const ShadowRow& row) {
   if (row.method == "none") return shadowsOff(shipped).dump();
   json p = shipped;
+  if (row.method == "evsm") addMoments(p, evsm);
   json& params = passNamed(p, kShadowPass)["params"];
   params["size"] = row.mapSize;
   params["cascades"] = row.cascades;
@@ -284,9 +306,10 @@ void dumpImage(const std::string& name, Extent size, const std::vector<uint8_t>&
 
 // Times the row's frames (appended to those of earlier rounds); in the first
 // round (exact non-null) also its error, and for "none" its lit image.
-void runRow(ShadowRow& row, const ShadowPlan& plan, const json& shipped, const Scene& scene, ShaderLibrary& shaders,
-            const std::vector<float>* exact, const ToneMap& tone, std::vector<float>* keepLit) {
-  PipelineConfig cfg = build(variant(shipped, row), row.label());
+void runRow(ShadowRow& row, const ShadowPlan& plan, const json& shipped, const json& evsm, const Scene& scene,
+            ShaderLibrary& shaders, const std::vector<float>* exact, const ToneMap& tone,
+            std::vector<float>* keepLit) {
+  PipelineConfig cfg = build(variant(shipped, evsm, row), row.label());
   const std::unique_ptr<Executor> exec = makeExecutor(cfg, scene, row.size, shaders);
   const Plan& p = exec->plan();
   row.allocatedBytes = p.allocatedBytes;
@@ -373,7 +396,7 @@ size_t runShadows(std::vector<ShadowRow>& rows, const ShadowPlan& plan, const st
                   ShaderLibrary& shaders, ShadowReference& reference) {
   const std::string file = (fs::path(pipelineDir) / kPipeline).string();
   const std::string sceneFile = (fs::path(pipelineDir).parent_path() / "scenes" / kScene).string();
-  json shipped;
+  json shipped, evsm;  // evsm: null without the EVSM example (its rows then fail, saying so)
   Scene scene;
   Sums exact;
   try {
@@ -382,6 +405,11 @@ size_t runShadows(std::vector<ShadowRow>& rows, const ShadowPlan& plan, const st
     std::stringstream text;
     text << in.rdbuf();
     shipped = json::parse(text.str());
+    if (std::ifstream e{(fs::path(pipelineDir) / kEvsmPipeline).string()}) {
+      std::stringstream evsmText;
+      evsmText << e.rdbuf();
+      evsm = json::parse(evsmText.str());
+    }
     scene = loadSceneAny(sceneFile);
     std::fprintf(stderr, "[shadows] exact-visibility image of %s at %s: ", sceneFile.c_str(),
                  sizeText(plan.size).c_str());
@@ -411,7 +439,7 @@ size_t runShadows(std::vector<ShadowRow>& rows, const ShadowPlan& plan, const st
       }
       try {
         std::vector<float> lit;
-        runRow(row, plan, shipped, scene, shaders, round == 0 ? &exact.exact : nullptr, tone,
+        runRow(row, plan, shipped, evsm, scene, shaders, round == 0 ? &exact.exact : nullptr, tone,
                row.method == "none" && round == 0 ? &lit : nullptr);
         if (!lit.empty()) {  // the same sum with every visibility 1 (bench_shadows.h)
           double worst = 0.0;

@@ -2,6 +2,7 @@
 
 #include <GL/glcorearb.h>
 
+#include <cstdio>
 #include <cstring>
 
 #include "rgraph/format_sets.h"
@@ -38,7 +39,7 @@ std::vector<uint8_t> packInfo(const Scene& scene, const std::vector<ShadowedLigh
   GpuShadowHeader header;
   header.counts = glm::ivec4(static_cast<int>(std::min<size_t>(lights.size(), kMaxMaps)), -1,
                              static_cast<int>(lightCount), 0);
-  header.params = glm::vec4(options.normalOffset, options.pcssLightSize, 0.0f, 0.0f);
+  header.params = glm::vec4(options.normalOffset, options.pcssLightSize, options.evsmPositive, options.evsmNegative);
   std::vector<GpuShadowMap> maps(kMaxMaps, GpuShadowMap{});
   std::vector<int32_t> lightMap(std::max(lightCount, 1u), -1);
   const std::vector<uint32_t> atBuffer = bufferIndices(scene);
@@ -58,6 +59,7 @@ std::vector<uint8_t> packInfo(const Scene& scene, const std::vector<ShadowedLigh
         }
       } else {
         g.texel.x = v.texelWorld;
+        g.texel.y = v.nearPlane;
         g.light = glm::vec4(v.lightPosition, v.farPlane);
       }
     }
@@ -75,12 +77,16 @@ std::vector<uint8_t> packInfo(const Scene& scene, const std::vector<ShadowedLigh
   return bytes;
 }
 
+float evsmMaxExponent(Format moments) { return moments == Format::rgba16f ? 5.5f : 42.0f; }
+
 std::vector<SlotDecl> slots() {
   using namespace rgraph::decl;
   SamplerState compare;
   compare.compare = SamplerState::Compare::less_equal;  // linear: each tap a hardware 2x2 comparison
   SamplerState raw;
   raw.filter = SamplerState::Filter::nearest;
+  SamplerState trilinear;  // moments filter linearly, and the lookup picks the receiver's mip level
+  trilinear.mip = SamplerState::MipFilter::linear;
   return {
       sampledWith(slot("shadows", Access::sampled, false, SlotDecl::Load::never,
                        "shadow atlas (depth array, every shadow map's layers) read with a compare sampler",
@@ -92,6 +98,11 @@ std::vector<SlotDecl> slots() {
                        "the shadow atlas again, its raw depths (shadow_filter pcss: the blocker search)",
                        depthFormats()),
                   raw),
+      sampledWith(slot("shadow_moments", Access::sampled, false, SlotDecl::Load::never,
+                       "EVSM moments of every shadow map's layers, blurred and mip-mapped (the shadow_moments pass; "
+                       "shadow_filter evsm)",
+                       {Format::rgba32f, Format::rgba16f}),
+                  trilinear),
   };
 }
 
@@ -101,10 +112,14 @@ std::vector<ParamDecl> params() {
       param("shadows", ParamType::boolean, false,
             "multiply each shadowed light by its visibility (bind shadows and shadow_info); off: no shadow code"),
       param("shadow_filter", ParamType::enumeration, std::string("pcf"),
-            "hard (one comparison per pixel), pcf (NxN bilinear comparisons) or pcss (blocker search, then a "
-            "kernel widening with the receiver's distance from its blocker)",
-            {"hard", "pcf", "pcss"}),
+            "hard (one comparison per pixel), pcf (NxN bilinear comparisons), pcss (blocker search, then a "
+            "kernel widening with the receiver's distance from its blocker) or evsm (exponential variance maps: "
+            "bind shadow_moments)",
+            {"hard", "pcf", "pcss", "evsm"}),
       ranged("pcf_size", ParamType::integer, int64_t{3}, 1.0, 9.0, "pcf and pcss: taps per side of the kernel (odd: 1, 3, 5, 7, 9)"),
+      ranged("evsm_bleed", ParamType::number, 0.2, 0.0, 0.95,
+             "evsm: light-bleeding reduction, the visibility below this share cut to 0 and the rest rescaled "
+             "(0: none; higher trades light leaks for darker penumbrae)"),
   };
 }
 
@@ -113,34 +128,50 @@ std::vector<std::string> defines(const ParamSet& p) {
   const std::string filter = p.getString("shadow_filter");
   int size = static_cast<int>(p.getInt("pcf_size"));
   if (size % 2 == 0) ++size;  // an even size has no centre tap: the next odd one
+  char bleed[32];  // a GLSL float literal, to a thousandth
+  std::snprintf(bleed, sizeof bleed, "%.3f", p.getNumber("evsm_bleed"));
   return {"SHADOWS", "SHADOW_MAX_MAPS=" + std::to_string(kMaxMaps),
-          filter == "hard" ? "SHADOW_FILTER_HARD" : filter == "pcss" ? "SHADOW_FILTER_PCSS" : "SHADOW_FILTER_PCF",
-          "SHADOW_PCF_SIZE=" + std::to_string(size)};
+          filter == "hard"   ? "SHADOW_FILTER_HARD"
+          : filter == "pcss" ? "SHADOW_FILTER_PCSS"
+          : filter == "evsm" ? "SHADOW_FILTER_EVSM"
+                             : "SHADOW_FILTER_PCF",
+          "SHADOW_PCF_SIZE=" + std::to_string(size), std::string("SHADOW_EVSM_BLEED=") + bleed};
 }
 
 std::vector<SamplerSlot> samplers(const ParamSet& p) {
   if (!p.getBool("shadows")) return {};
   std::vector<SamplerSlot> s = {{"shadows", "u_shadowAtlas", kAtlasUnit}};
   if (p.getString("shadow_filter") == "pcss") s.push_back({"shadow_depths", "u_shadowDepths", kDepthsUnit});
+  if (p.getString("shadow_filter") == "evsm") s.push_back({"shadow_moments", "u_shadowMoments", kMomentsUnit});
   return s;
 }
 
 PassRule rule() {
   PassRule r;
-  r.text = "shadows: true needs inputs shadows and shadow_info (and shadow_depths with shadow_filter pcss); "
-           "binding them needs shadows: true";
+  r.text = "shadows: true needs inputs shadows and shadow_info (and shadow_depths with shadow_filter pcss, "
+           "shadow_moments with shadow_filter evsm); binding them needs shadows: true, and shadow_moments evsm";
   r.check = [](const PassCheckContext& ctx, PassChecks& checks) {
     const bool on = ctx.params().getBool("shadows");
-    const bool pcss = ctx.params().getString("shadow_filter") == "pcss";
-    for (const char* slot : {"shadows", "shadow_info", "shadow_depths"}) {
-      const bool needed = on && (std::string(slot) != "shadow_depths" || pcss);
+    const std::string filter = ctx.params().getString("shadow_filter");
+    // The filter a slot is read with alone ("": every filter).
+    auto onlyWith = [](const std::string& slot) {
+      return slot == "shadow_depths" ? std::string("pcss") : slot == "shadow_moments" ? std::string("evsm") : std::string();
+    };
+    for (const char* name : {"shadows", "shadow_info", "shadow_depths", "shadow_moments"}) {
+      const std::string slot = name;
+      const std::string only = onlyWith(slot);
+      const bool needed = on && (only.empty() || filter == only);
       if (needed && !ctx.bound(slot))
-        checks.slotError(slot, std::string("input '") + slot + "' is needed with \"shadows\": true" +
-                                   (std::string(slot) == "shadow_depths" ? " and shadow_filter pcss" : "") +
-                                   " but not bound");
+        checks.slotError(slot, "input '" + slot + "' is needed with \"shadows\": true" +
+                                   (only.empty() ? "" : " and shadow_filter " + only) + " but not bound");
       else if (!on && ctx.bound(slot))
-        checks.slotError(slot, std::string("input '") + slot +
+        checks.slotError(slot, "input '" + slot +
                                    "' is bound but \"shadows\" is false: set \"shadows\": true to read it, or unbind it");
+      // shadow_depths stays allowed with every filter (the shipped pipelines
+      // bind it for a switch to pcss); the moments are drawn for evsm alone.
+      else if (on && slot == "shadow_moments" && filter != "evsm" && ctx.bound(slot))
+        checks.slotError(slot, "input 'shadow_moments' is bound but shadow_filter is " + filter +
+                                   ": set \"shadow_filter\": \"evsm\" to read it, or unbind it");
     }
   };
   return r;
@@ -157,7 +188,7 @@ void adapt(const SceneFeatures& f, PassAdaptation& a) {
 void compileOut(PassAdaptation& a, const std::string& why) {
   if (!a.params.getBool("shadows")) return;
   a.params.set("shadows", false);
-  a.unbindSlots.insert(a.unbindSlots.end(), {"shadows", "shadow_info", "shadow_depths"});
+  a.unbindSlots.insert(a.unbindSlots.end(), {"shadows", "shadow_info", "shadow_depths", "shadow_moments"});
   a.notes.push_back(why + ": shadow code compiled out");
 }
 
@@ -187,6 +218,9 @@ void bindInfo(PassContext& ctx, uint32_t program) {
   if (!ctx.params().getBool("shadows") || !ctx.bound("shadow_info")) return;
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInfoBinding, ctx.buffer("shadow_info"));
   glProgramUniform1f(program, glGetUniformLocation(program, "u_shadowPositionError"), positionError(ctx));
+  if (ctx.bound("shadow_moments"))
+    glProgramUniform1f(program, glGetUniformLocation(program, "u_evsmMaxExponent"),
+                       evsmMaxExponent(ctx.format("shadow_moments")));
 }
 
 }  // namespace rgraph::shadows

@@ -132,6 +132,8 @@ class ShadowMapPass final : public PassInstance {
     shadows::InfoOptions o;
     o.normalOffset = static_cast<float>(ctx.params().getNumber("normal_offset"));
     o.pcssLightSize = static_cast<float>(ctx.params().getNumber("pcss_light_size"));
+    o.evsmPositive = static_cast<float>(ctx.params().getNumber("evsm_positive_exponent"));
+    o.evsmNegative = static_cast<float>(ctx.params().getNumber("evsm_negative_exponent"));
     const std::vector<uint8_t> bytes = shadows::packInfo(ctx.gpuScene()->scene(), lights_, viewsOf(ctx, lights_, size), o);
     glNamedBufferSubData(ctx.buffer("info"), 0, static_cast<GLsizeiptr>(bytes.size()), bytes.data());
   }
@@ -272,6 +274,10 @@ PassTypeDesc makeShadowMapPass() {
       ranged("normal_offset", ParamType::number, 1.0, 0.0, 16.0,
              "receivers looked up this many texels along their normal (normal-offset bias)"),
       ranged("pcss_light_size", ParamType::number, 4.0, 0.0, 64.0, "pcss: the light's size, in texels"),
+      ranged("evsm_positive_exponent", ParamType::number, 40.0, 0.0, 100.0,
+             "evsm: exponent of the positive warp exp(c x) (clamped to the moments' format: 42 rgba32f, 5.5 rgba16f)"),
+      ranged("evsm_negative_exponent", ParamType::number, 5.0, 0.0, 100.0,
+             "evsm: exponent of the negative warp -exp(-c x) (clamped likewise)"),
       ranged("size", ParamType::integer, int64_t{2048}, 16.0, 16384.0,
              "texels per side of each map (the expansion sizes the atlas's layers so)"),
       param("role", ParamType::enumeration, std::string("template"),

@@ -3,22 +3,48 @@
 // passes/common/include/rgraph/passes/shadow_sampling.h) and one sampling
 // function per filter. Include after frame.glsl and gbuffer_read.glsl (it
 // reads Surface). Defines (shadows::defines): SHADOWS, SHADOW_MAX_MAPS,
-// one of SHADOW_FILTER_HARD / _PCF / _PCSS, SHADOW_PCF_SIZE. Without SHADOWS
-// both visibility functions are the constant 1: no shadow code at all.
-#if defined(SHADOWS)
+// one of SHADOW_FILTER_HARD / _PCF / _PCSS / _EVSM, SHADOW_PCF_SIZE,
+// SHADOW_EVSM_BLEED. Without SHADOWS both visibility functions are the
+// constant 1: no shadow code at all. SHADOW_INFO_ONLY (with
+// SHADOW_MAX_MAPS): the ShadowInfo block and the EVSM warp alone, for the
+// shadow_moments pass (which has no Surface to shade).
+#if defined(SHADOWS) || defined(SHADOW_INFO_ONLY)
 struct ShadowMap {
   mat4 viewProj[6];  // per layer: cascade k, face k (+x -x +y -y +z -z), [0] for a spot light
   vec4 splits;       // directional: far view depth of cascades 0..3
   ivec4 layers;      // x: first atlas layer, y: layer count, z: kind (0 directional, 1 spot, 2 point)
-  vec4 texel;        // directional: world units per texel of cascades 0..3; spot, point: x at distance 1
+  vec4 texel;        // directional: world units per texel of cascades 0..3; spot, point: x at distance 1,
+                     // y: the near plane
   vec4 light;        // spot, point: xyz position, w: far plane
 };
 layout(std430, binding = 6) readonly buffer ShadowInfo {
   ivec4 u_shadowCounts;  // x: maps, y: the directional light's map (-1: none), z: lights
-  vec4 u_shadowParams;   // x: normal offset (texels), y: pcss light size (texels)
+  vec4 u_shadowParams;   // x: normal offset (texels), y: pcss light size (texels), zw: EVSM exponents
   ShadowMap shadowMaps[SHADOW_MAX_MAPS];
   int lightShadow[];     // per light of the lights buffer: its map, -1: none
 };
+
+// EVSM. Depth in 0..1, linear in distance (directional maps: their window
+// depth; spot and point maps: the distance along the axis between the near
+// and far planes), warped by exp(+c x) and -exp(-c x) with x = 2 depth - 1.
+// The exponents come from the info buffer, clamped to what the moments'
+// format holds (shadows::evsmMaxExponent, set by the pass).
+uniform float u_evsmMaxExponent;
+vec2 evsmExponents() { return min(u_shadowParams.zw, vec2(u_evsmMaxExponent)); }
+vec2 evsmWarp(float depth) {
+  vec2 c = evsmExponents();
+  float x = 2.0 * clamp(depth, 0.0, 1.0) - 1.0;
+  return vec2(exp(c.x * x), -exp(-c.y * x));
+}
+// A perspective map's window depth (0..1) as EVSM's linear depth.
+float evsmLinearDepth(float window, float near, float far) {
+  float ndc = 2.0 * window - 1.0;
+  float distance = 2.0 * near * far / (far + near - ndc * (far - near));
+  return (distance - near) / (far - near);
+}
+#endif
+
+#if defined(SHADOWS)
 layout(binding = 6) uniform sampler2DArrayShadow u_shadowAtlas;
 // The G-buffer position's relative error (2^-11 for half floats: 0.003 units
 // at 6 units from the origin, more than a texel of a sharp map), set by the
@@ -28,6 +54,31 @@ layout(binding = 6) uniform sampler2DArrayShadow u_shadowAtlas;
 uniform float u_shadowPositionError;
 #if defined(SHADOW_FILTER_PCSS)
 layout(binding = 7) uniform sampler2DArray u_shadowDepths;
+#endif
+#if defined(SHADOW_FILTER_EVSM)
+layout(binding = 8) uniform sampler2DArray u_shadowMoments;
+
+// Chebyshev's upper bound on the share of the filter region at least as far
+// as `t`, from the region's mean and mean square of the warped depth.
+float chebyshev(vec2 moments, float t, float minVariance) {
+  if (t <= moments.x) return 1.0;
+  float variance = max(moments.y - moments.x * moments.x, minVariance);
+  float d = t - moments.x;
+  return variance / (variance + d * d);
+}
+
+// Visibility from the moments around uv at mip `lod`: the tighter of the
+// positive and negative warps' bounds, then the light-bleeding reduction
+// (the bound below SHADOW_EVSM_BLEED is a leak: cut to 0, the rest rescaled).
+float evsmShadow(vec2 uv, float layer, float depth, float lod) {
+  vec4 m = textureLod(u_shadowMoments, vec3(uv, layer), lod);
+  vec2 w = evsmWarp(depth);
+  vec2 c = evsmExponents();
+  // The variance floor scales with the warp's slope at the receiver (1e-4 of a depth unit).
+  vec2 floorVariance = (1e-4 * c * abs(w)) * (1e-4 * c * abs(w));
+  float p = min(chebyshev(m.xy, w.x, floorVariance.x), chebyshev(m.zw, w.y, floorVariance.y));
+  return clamp((p - SHADOW_EVSM_BLEED) / (1.0 - SHADOW_EVSM_BLEED), 0.0, 1.0);
+}
 #endif
 
 // One comparison per texel of an NxN kernel `scale` texels apart; each tap
@@ -95,6 +146,16 @@ float shadowOfMap(int m, vec3 P, vec3 N, vec3 L) {
   if (clip.w <= 0.0) return 1.0;
   vec3 ndc = clip.xyz / clip.w;
   if (any(greaterThan(abs(ndc.xy), vec2(1.0))) || ndc.z > 1.0) return 1.0;
+#if defined(SHADOW_FILTER_EVSM)
+  // The mip level whose texels match the pixel's footprint on the surface:
+  // a moments texel spans (atlas / moments size) map texels.
+  float pixelWorld = 2.0 * -(u_view * vec4(P, 1.0)).z / (u_proj[1][1] * u_viewport.y);
+  float momentTexel = texel * float(textureSize(u_shadowAtlas, 0).x) / float(textureSize(u_shadowMoments, 0).x);
+  float lod = log2(max(pixelWorld / max(momentTexel, 1e-20), 1.0));
+  float receiverDepth = kind == 0 ? ndc.z * 0.5 + 0.5
+                           : (clip.w - shadowMaps[m].texel.y) / (shadowMaps[m].light.w - shadowMaps[m].texel.y);
+  return evsmShadow(ndc.xy * 0.5 + 0.5, float(shadowMaps[m].layers.x + k), receiverDepth, lod);
+#endif
   return filteredShadow(ndc.xy * 0.5 + 0.5, float(shadowMaps[m].layers.x + k), ndc.z * 0.5 + 0.5,
                         length(offsetP - shadowMaps[m].light.xyz));
 }
@@ -108,7 +169,7 @@ float lightVisibility(int i, Surface s) {
   int m = lightShadow[i];
   return m < 0 ? 1.0 : shadowOfMap(m, s.position, s.normal, normalize(shadowMaps[m].light.xyz - s.position));
 }
-#else
+#elif !defined(SHADOW_INFO_ONLY)
 float sunVisibility(Surface s) { return 1.0; }
 float lightVisibility(int i, Surface s) { return 1.0; }
 #endif

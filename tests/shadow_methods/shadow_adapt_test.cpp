@@ -39,7 +39,7 @@ SceneFeatures castingFeatures() {
 
 bool bindsShadows(const PassDecl& p) {
   return std::any_of(p.uses.begin(), p.uses.end(), [](const ResourceUse& u) {
-    return u.slot == "shadows" || u.slot == "shadow_info" || u.slot == "shadow_depths";
+    return u.slot == "shadows" || u.slot == "shadow_info" || u.slot == "shadow_depths" || u.slot == "shadow_moments";
   });
 }
 
@@ -130,6 +130,58 @@ TEST(ShadowAdapt, AForwardPassWithNothingBlendedDropsItsShadowInputs) {
     EXPECT_EQ(bindsShadows(cfg.graph.passes[i]), !forward);
   }
   const std::string note = "pass 'forward': no BLEND materials: shadow code compiled out";
+  EXPECT_NE(std::find(r.notes.begin(), r.notes.end(), note), r.notes.end()) << "no note '" << note << "'";
+}
+
+// EVSM (pipelines/deferred-pbr-shadows-evsm.json): the shadow_moments
+// template becomes one instance and sizes its moments and scratch for every
+// casting light in view (4 layers for the sun, 6 for a point light); with no
+// casting light it is removed, as the atlas's writers are, and the lighting
+// pass unbinds the moments.
+const ResourceDecl& resource(const PipelineConfig& cfg, const std::string& name) {
+  auto it = std::find_if(cfg.graph.resources.begin(), cfg.graph.resources.end(),
+                         [&](const ResourceDecl& r) { return r.name == name; });
+  EXPECT_NE(it, cfg.graph.resources.end()) << name;
+  return *it;
+}
+
+PipelineConfig loadEvsm() {
+  Diagnostics diags;
+  ConfigDocument doc =
+      ConfigDocument::parseFile(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/deferred-pbr-shadows-evsm.json", diags);
+  PipelineConfig cfg = doc.build(PassRegistry::builtins(), diags);
+  EXPECT_FALSE(hasErrors(diags)) << (diags.empty() ? "" : formatDiagnostic(diags.front()));
+  return cfg;
+}
+
+TEST(ShadowAdapt, EvsmMomentsAreSizedForEveryCastingLight) {
+  PipelineConfig cfg = loadEvsm();
+  adaptToScene(cfg, PassRegistry::builtins(), castingFeatures());
+  std::vector<std::string> moments;
+  for (const PassDecl& p : cfg.graph.passes)
+    if (p.type == "shadow_moments") moments.push_back(p.name);
+  EXPECT_EQ(moments, std::vector<std::string>{"moments.blur"});
+  for (const char* name : {"shadowMoments", "shadowScratch"}) {
+    SCOPED_TRACE(name);
+    const ResourceDecl& r = resource(cfg, name);
+    EXPECT_EQ(r.texture.layers, 10u);  // the sun's 4 cascades and a point light's 6 faces, as the atlas
+    EXPECT_EQ(r.texture.size.width, 512u);
+    EXPECT_EQ(r.texture.layers, resource(cfg, "shadowAtlas").texture.layers);
+  }
+  for (size_t i : lightingPasses(cfg))
+    if (cfg.params[i].getBool("shadows")) EXPECT_EQ(cfg.params[i].getString("shadow_filter"), "evsm");
+}
+
+TEST(ShadowAdapt, EvsmMomentsAreRemovedWithNoCastingLight) {
+  PipelineConfig cfg = loadEvsm();
+  SceneFeatures f = castingFeatures();
+  f.shadowLights.clear();
+  const AdaptReport r = adaptToScene(cfg, PassRegistry::builtins(), f);
+  for (const PassDecl& p : cfg.graph.passes) {
+    EXPECT_NE(p.type, "shadow_moments");
+    EXPECT_FALSE(bindsShadows(p)) << p.name;
+  }
+  const std::string note = "pass 'moments': removed (no casting light reaches the view: no shadow moments)";
   EXPECT_NE(std::find(r.notes.begin(), r.notes.end(), note), r.notes.end()) << "no note '" << note << "'";
 }
 

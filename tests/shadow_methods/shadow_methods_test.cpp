@@ -24,9 +24,14 @@
 #include <string>
 #include <vector>
 
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
 #include "rgraph/adapt.h"
 #include "rgraph/scene.h"
 #include "support/render_util.h"
+#include "support/test_support.h"
 
 namespace {
 using namespace rgraph;
@@ -95,7 +100,10 @@ class ShadowMethods : public RenderTest {
   }
 
   Frame renderFrame(const std::string& file, const char* hdr, const Scene& scene, bool expectShadows) {
-    PipelineConfig cfg = loadPipeline(pipelinePath(file));
+    return renderFrame(loadPipeline(pipelinePath(file)), file, hdr, scene, expectShadows);
+  }
+  Frame renderFrame(PipelineConfig cfg, const std::string& file, const char* hdr, const Scene& scene,
+                    bool expectShadows) {
     adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
     for (size_t i = 0; i < cfg.graph.passes.size(); ++i)
       if (cfg.graph.passes[i].type != "shadow_map" && cfg.params[i].has("shadows"))
@@ -174,6 +182,50 @@ TEST_F(ShadowMethods, ForwardLitAgreesWithDeferredLighting) {
 // clustered_deferred) per fragment; forward_lit's tolerance.
 TEST_F(ShadowMethods, ForwardPlusAgreesWithDeferredLighting) {
   expectAgrees({"forward_plus", "forward-plus.json", "hdr", 2, 0.0});
+}
+
+// `file` with EVSM shadows: the shadow_moments pass (128^2 moments of the
+// 512^2 maps, 5x5 blur) and both lighting passes with shadow_filter evsm.
+PipelineConfig evsmVariant(const std::string& file) {
+  std::ifstream in(pipelinePath(file));
+  std::stringstream text;
+  text << in.rdbuf();
+  nlohmann::json doc = nlohmann::json::parse(text.str());
+  doc["resources"]["shadowScratch"] = {{"format", "rgba32f"}, {"size", {16, 16}}, {"layers", 2}};
+  doc["resources"]["shadowMoments"] = {{"format", "rgba32f"}, {"size", {16, 16}}, {"layers", 2}, {"mips", "full"}};
+  nlohmann::json passes = nlohmann::json::array();
+  for (auto& pass : doc["passes"]) {
+    if (pass.contains("params") && pass["params"].contains("shadow_filter")) {
+      pass["params"]["shadow_filter"] = "evsm";
+      pass["inputs"]["shadow_moments"] = "shadowMoments";
+    }
+    passes.push_back(pass);
+    if (pass["type"] == "shadow_map")
+      passes.push_back({{"name", "moments"}, {"type", "shadow_moments"}, {"params", {{"size", 128}, {"blur", 2}}},
+                        {"inputs", {{"atlas", "shadowAtlas"}, {"info", "shadowInfo"}}},
+                        {"outputs", {{"scratch", "shadowScratch"}, {"moments", "shadowMoments"}}}});
+  }
+  doc["passes"] = passes;
+  return testsupport::buildPipelineOrThrow(doc.dump(), file + " (evsm)");
+}
+
+// EVSM in deferred_lighting shows its shadows (against the same pipeline with
+// nothing casting), and tiled_deferred (the compute path: its mip level from
+// the same footprint, no derivatives) agrees with it within tiled's tolerance.
+TEST_F(ShadowMethods, EvsmInDeferredLightingShowsAndTiledDeferredAgrees) {
+  const Frame ref = renderFrame(evsmVariant("fullscreen.json"), "fullscreen.json", "hdr_forward", scene_, true);
+  const Frame unshadowed =
+      renderFrame(evsmVariant("fullscreen.json"), "fullscreen.json", "hdr_forward", withoutCasters(scene_), false);
+  const double share = shadowedShare(ref.image, unshadowed.image);
+  const Frame tiled = renderFrame(evsmVariant("tiled.json"), "tiled.json", "hdr_forward", scene_, true);
+  const double rel = worstRelative(tiled.hdr, ref.hdr);
+  std::printf("[ measure  ] deferred_lighting evsm: shadows darken %.1f%% of pixels by %d/255; tiled_deferred evsm "
+              "vs deferred_lighting evsm: HDR worst relative %.3g\n",
+              share * 100.0, kMinLightGain, rel);
+  EXPECT_GE(share, kMinShadowedShare) << saveImage(ref.image, "shadow-methods-evsm") << ", "
+                                      << saveImage(unshadowed.image, "shadow-methods-evsm-unshadowed");
+  EXPECT_LE(rel, 1e-4) << saveImage(tiled.image, "shadow-methods-evsm-tiled") << ", "
+                       << saveImage(ref.image, "shadow-methods-evsm");
 }
 
 }  // namespace

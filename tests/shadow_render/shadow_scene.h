@@ -90,10 +90,12 @@ inline PointLight point() {
   return l;
 }
 
-// deferred-pbr-shadows.json, linear (tone map none, rgba8 output, no markers),
+// deferred-pbr-shadows.json (deferred-pbr-shadows-evsm.json for "evsm":
+// its moments pass), linear (tone map none, rgba8 output, no markers),
 // shadows with `filter` ("" for none), `edit` applied to the document last.
 inline nlohmann::json pipelineDoc(const std::string& filter) {
-  std::ifstream in(rtest::repoPath("pipelines/deferred-pbr-shadows.json"));
+  std::ifstream in(rtest::repoPath(filter == "evsm" ? "pipelines/deferred-pbr-shadows-evsm.json"
+                                                    : "pipelines/deferred-pbr-shadows.json"));
   std::stringstream text;
   text << in.rdbuf();
   nlohmann::json doc = nlohmann::json::parse(text.str());
@@ -107,6 +109,7 @@ inline nlohmann::json pipelineDoc(const std::string& filter) {
         pass["inputs"].erase("shadows");
         pass["inputs"].erase("shadow_info");
         pass["inputs"].erase("shadow_depths");
+        pass["inputs"].erase("shadow_moments");
       } else {
         pass["params"]["shadow_filter"] = filter;
       }
