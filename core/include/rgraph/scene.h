@@ -297,6 +297,11 @@ struct Scene {
   glm::vec3 ambient{0.1f};
   Camera camera;
   bool hasCamera = false;  // false: `camera` is the default, not from the source
+  // What the loaders warned about (also logged as spdlog warnings), in order:
+  // features of the source that are not drawn and what is drawn instead
+  // ("skins ignored: drawn in bind pose"), values replaced. `rgraph plan
+  // --scene` lists them.
+  std::vector<std::string> warnings;
 
   // Queries, so that a pipeline models no more than the scene needs. Material
   // queries look only at materials used by some primitive.

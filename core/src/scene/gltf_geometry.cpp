@@ -84,7 +84,46 @@ const char* componentTypeName(int t) {
   }
 }
 
+const char* modeName(int mode) {
+  switch (mode) {
+    case TINYGLTF_MODE_POINTS: return "POINTS";
+    case TINYGLTF_MODE_LINE: return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
+    case TINYGLTF_MODE_TRIANGLES: return "TRIANGLES";
+    case TINYGLTF_MODE_TRIANGLE_STRIP: return "TRIANGLE_STRIP";
+    case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN";
+    default: return "unknown mode";
+  }
+}
+
 }  // namespace
+
+// A strip's or fan's vertex sequence as a triangle list, with the winding the
+// glTF specification gives ("3.7.2.1 Topology Types"): strip triangle i is
+// (v[i], v[i+1], v[i+2]) for even i and (v[i], v[i+2], v[i+1]) for odd i, so
+// every triangle faces the way the first does; fan triangle i is
+// (v[i+1], v[i+2], v[0]), the same winding as (v[0], v[i+1], v[i+2]).
+// Triangles that repeat a vertex (zero area, as strips joined by repeated
+// indices have) are dropped: they draw nothing and have no normal.
+std::vector<uint32_t> trianglesFrom(int mode, const std::vector<uint32_t>& v) {
+  std::vector<uint32_t> out;
+  if (v.size() < 3) return out;
+  out.reserve((v.size() - 2) * 3);
+  for (size_t i = 0; i + 2 < v.size(); ++i) {
+    uint32_t a, b, c;
+    if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+      a = v[i + 1], b = v[i + 2], c = v[0];
+    } else if (i % 2 == 0) {
+      a = v[i], b = v[i + 1], c = v[i + 2];
+    } else {
+      a = v[i], b = v[i + 2], c = v[i + 1];
+    }
+    if (a == b || b == c || a == c) continue;
+    out.insert(out.end(), {a, b, c});
+  }
+  return out;
+}
 
 // Checks accessor `index` against its buffer view and buffer; `what` names it in errors.
 AccessorInfo GltfLoader::checkAccessor(int index, const std::string& what, std::initializer_list<int> types,
@@ -218,6 +257,41 @@ std::vector<uint32_t> GltfLoader::readIndices(int index, const std::string& what
   return out;
 }
 
+// The component types core glTF and KHR_mesh_quantization allow together
+// (the extension's table; it only adds to core): a combination outside it is
+// refused at the attribute's JSON pointer. The file need not list the
+// extension: what it asks for is read the same either way.
+void GltfLoader::checkAttributeTypes(const tinygltf::Primitive& prim, const std::string& pointer) {
+  constexpr int F = TINYGLTF_COMPONENT_TYPE_FLOAT, B = TINYGLTF_COMPONENT_TYPE_BYTE, UB = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                S = TINYGLTF_COMPONENT_TYPE_SHORT, US = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  struct Rule {
+    const char* attribute;
+    std::initializer_list<int> any;         // normalized or not
+    std::initializer_list<int> normalized;  // normalized only
+    const char* allowed;
+  };
+  static const Rule rules[] = {
+      {"POSITION", {F, B, UB, S, US}, {}, "FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT"},
+      {"NORMAL", {F}, {B, S}, "FLOAT, or normalized BYTE or SHORT"},
+      {"TANGENT", {F}, {B, S}, "FLOAT, or normalized BYTE or SHORT"},
+      {"TEXCOORD_0", {F, B, UB, S, US}, {}, "FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT"},
+      {"TEXCOORD_1", {F, B, UB, S, US}, {}, "FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT"},
+  };
+  for (const Rule& r : rules) {
+    auto it = prim.attributes.find(r.attribute);
+    if (it == prim.attributes.end() || it->second < 0 || size_t(it->second) >= model_.accessors.size()) continue;
+    const tinygltf::Accessor& acc = model_.accessors[size_t(it->second)];
+    const int t = acc.componentType;
+    const bool ok = std::find(r.any.begin(), r.any.end(), t) != r.any.end() ||
+                    (acc.normalized && std::find(r.normalized.begin(), r.normalized.end(), t) != r.normalized.end());
+    if (!ok)
+      failAt(pointer + "/attributes/" + r.attribute,
+             "accessor " + std::to_string(it->second) + " is " + (acc.normalized ? "normalized " : "") + componentTypeName(t) +
+                 (acc.normalized || t == F ? "" : " (not normalized)") + "; " + r.attribute + " may be " + r.allowed +
+                 " (glTF with KHR_mesh_quantization)");
+  }
+}
+
 // The scene mesh for glTF mesh `mi` primitive `pi`; -1 when skipped.
 int GltfLoader::sceneMesh(int mi, size_t pi) {
   const auto key = std::make_pair(mi, pi);
@@ -228,12 +302,13 @@ int GltfLoader::sceneMesh(int mi, size_t pi) {
   const std::string what = "mesh " + std::to_string(mi) + (gm.name.empty() ? "" : " ('" + gm.name + "')") + " primitive " +
                            std::to_string(pi);
   const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-  if (mode != TINYGLTF_MODE_TRIANGLES) {
-    warn(what + ": mode " + std::to_string(mode) + " is not TRIANGLES; skipped");
+  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    warn(what + ": mode " + std::to_string(mode) + " (" + modeName(mode) + ") is not drawn: only triangles are; skipped");
   } else if (prim.attributes.find("POSITION") == prim.attributes.end()) {
     warn(what + ": no POSITION attribute; skipped");
   } else {
-    MeshData mesh = buildMesh(prim, what);
+    const std::string pointer = "/meshes/" + std::to_string(mi) + "/primitives/" + std::to_string(pi);
+    MeshData mesh = buildMesh(prim, what, pointer);
     if (mesh.indices.empty()) {
       warn(what + ": no triangles; skipped");
     } else {
@@ -246,10 +321,11 @@ int GltfLoader::sceneMesh(int mi, size_t pi) {
   return id;
 }
 
-MeshData GltfLoader::buildMesh(const tinygltf::Primitive& prim, const std::string& what) {
+MeshData GltfLoader::buildMesh(const tinygltf::Primitive& prim, const std::string& what, const std::string& pointer) {
   const std::initializer_list<int> quantized = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
                                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
                                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
+  checkAttributeTypes(prim, pointer);
   MeshData mesh;
   mesh.name = what;
 
@@ -308,7 +384,9 @@ MeshData GltfLoader::buildMesh(const tinygltf::Primitive& prim, const std::strin
     mesh.indices.resize(n);
     for (size_t i = 0; i < n; ++i) mesh.indices[i] = uint32_t(i);
   }
-  if (mesh.indices.size() % 3 != 0) {
+  if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP || prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+    mesh.indices = trianglesFrom(prim.mode, mesh.indices);
+  } else if (mesh.indices.size() % 3 != 0) {
     warn(what + ": index count " + std::to_string(mesh.indices.size()) + " is not a multiple of 3; extra indices dropped");
     mesh.indices.resize(mesh.indices.size() - mesh.indices.size() % 3);
   }

@@ -14,6 +14,7 @@
 #include <initializer_list>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -38,6 +39,9 @@ bool decodeImage(tinygltf::Image* image, const unsigned char* bytes, size_t size
 // buffer views are decoded later, after their buffer view has been checked.
 bool imageCallback(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int, int,
                    const unsigned char* bytes, int size, void*);
+
+// A TRIANGLE_STRIP or TRIANGLE_FAN index sequence as a triangle list (gltf_geometry.cpp).
+std::vector<uint32_t> trianglesFrom(int mode, const std::vector<uint32_t>& sequence);
 
 struct AccessorInfo {
   const unsigned char* data = nullptr;  // first element; nullptr: zeros (no buffer view)
@@ -73,6 +77,14 @@ class GltfLoader {
   void visitNode(int nodeIndex, const glm::mat4& world);
   void addCamera(int index, const glm::mat4& world, const std::string& what);
 
+  // ------------------------------------------------ gltf_ignored.cpp
+  // "<feature> ignored: <instead>", once per feature per file.
+  void warnIgnored(const std::string& feature, const std::string& instead);
+  // Refuses Draco-compressed primitives by name (before tinygltf parses);
+  // warns when they have uncompressed accessors, which are drawn.
+  void checkDraco();
+  void warnIgnoredFeatures();
+
   // ------------------------------------------------ gltf_geometry.cpp
   AccessorInfo checkAccessor(int index, const std::string& what, std::initializer_list<int> types,
                              std::initializer_list<int> componentTypes) const;
@@ -83,7 +95,9 @@ class GltfLoader {
                    std::vector<float>& out) const;
   std::vector<uint32_t> readIndices(int index, const std::string& what, size_t vertexCount) const;
   int sceneMesh(int mi, size_t pi);
-  MeshData buildMesh(const tinygltf::Primitive& prim, const std::string& what);
+  void checkAttributeTypes(const tinygltf::Primitive& prim, const std::string& pointer);
+  // `pointer`: the primitive's JSON pointer, for located refusals.
+  MeshData buildMesh(const tinygltf::Primitive& prim, const std::string& what, const std::string& pointer);
 
   // ------------------------------------------------ gltf_materials.cpp
   const std::vector<uint8_t>& decodedPixels(int gltfImage, const std::string& what);
@@ -110,6 +124,8 @@ class GltfLoader {
   std::optional<config_detail::JsonLocator> locator_;  // positions in json_, on first use
   tinygltf::Model model_;
   std::string tinyWarn_;
+  mutable std::vector<std::string> warnings_;  // every warning given, for Scene::warnings
+  std::set<std::string> ignoredFeatures_;      // warned about by warnIgnored
   Scene scene_;
   std::map<std::pair<int, bool>, int> imageMap_;
   std::map<std::pair<int, bool>, int> textureMap_;

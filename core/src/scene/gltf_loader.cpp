@@ -85,11 +85,15 @@ Scene GltfLoader::load() {
   } catch (const std::exception& e) {
     fail(std::string("unexpected failure: ") + e.what());
   }
+  scene_.warnings = std::move(warnings_);
   return std::move(scene_);
 }
 
 void GltfLoader::fail(const std::string& msg) const { throw RuntimeError(name_ + ": " + msg); }
-void GltfLoader::warn(const std::string& msg) const { spdlog::warn("{}: {}", name_, msg); }
+void GltfLoader::warn(const std::string& msg) const {
+  warnings_.push_back(name_ + ": " + msg);
+  spdlog::warn("{}", warnings_.back());
+}
 
 std::string GltfLoader::where(const std::string& pointer) {
   std::string at = name_;
@@ -101,7 +105,10 @@ std::string GltfLoader::where(const std::string& pointer) {
 }
 
 void GltfLoader::failAt(const std::string& pointer, const std::string& msg) { throw RuntimeError(where(pointer) + ": " + msg); }
-void GltfLoader::warnAt(const std::string& pointer, const std::string& msg) { spdlog::warn("{}: {}", where(pointer), msg); }
+void GltfLoader::warnAt(const std::string& pointer, const std::string& msg) {
+  warnings_.push_back(where(pointer) + ": " + msg);
+  spdlog::warn("{}", warnings_.back());
+}
 
 // ------------------------------------------------------------ parsing
 
@@ -126,6 +133,8 @@ void GltfLoader::parse() {
     if (binary_) fail("JSON chunk, line " + pos + ": " + config_detail::nestingTooDeepMessage());
     throw RuntimeError(name_ + ":" + pos + ": " + config_detail::nestingTooDeepMessage());
   }
+
+  checkDraco();
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&imageCallback, nullptr);
@@ -180,7 +189,8 @@ void GltfLoader::checkAsset() {
   }
   for (size_t i = 0; i < model_.extensionsRequired.size(); ++i) {
     const std::string& ext = model_.extensionsRequired[i];
-    if (ext != "KHR_lights_punctual" && ext != "KHR_materials_emissive_strength" && ext != "KHR_materials_specular")
+    if (ext != "KHR_lights_punctual" && ext != "KHR_materials_emissive_strength" && ext != "KHR_materials_specular" &&
+        ext != "KHR_mesh_quantization")
       failAt("/extensionsRequired/" + std::to_string(i), "requires the unsupported extension " + ext);
   }
   if (model_.lights.size() > kMaxSceneLights)
@@ -334,6 +344,7 @@ void GltfLoader::addCamera(int index, const glm::mat4& world, const std::string&
 // ------------------------------------------------------------ conversion
 
 void GltfLoader::convert() {
+  warnIgnoredFeatures();
   for (size_t i = 0; i < model_.materials.size(); ++i) scene_.materials.push_back(convertMaterial(i));
 
   // Every node has at most one parent (glTF requires disjoint trees).

@@ -461,6 +461,7 @@ void appendScene(Scene& dst, Scene src, const glm::mat4& transform) {
     dst.textures.push_back(t);
   }
   for (ImageData& im : src.images) dst.images.push_back(std::move(im));
+  for (std::string& w : src.warnings) dst.warnings.push_back(std::move(w));
   for (Primitive& p : src.primitives) {
     p.mesh += meshBase;
     p.material += materialBase;

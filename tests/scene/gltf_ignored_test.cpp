@@ -1,0 +1,114 @@
+// What a glTF file asks for and is not drawn: one warning per feature per
+// file, naming the feature and what is drawn instead, logged and kept in
+// Scene::warnings; a file without the feature gets none of it.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "rgraph/error.h"
+#include "rgraph/scene.h"
+#include "scene_test_util.h"
+
+using namespace rgraph;
+using nlohmann::json;
+using scenetest::asset;
+using scenetest::TriangleGltf;
+
+namespace {
+
+size_t countOf(const std::string& text, const std::string& needle) {
+  size_t n = 0;
+  for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + needle.size())) ++n;
+  return n;
+}
+
+// Every warning this file's table knows, by the words that start it.
+const std::vector<std::string> kAll = {
+    "skins ignored: drawn in bind pose",
+    "animations ignored: drawn at rest",
+    "morph targets ignored: drawn undeformed (default weights not applied)",
+    "COLOR_0 ignored: base colour alone",
+    "EXT_mesh_gpu_instancing ignored: one instance drawn",
+    "KHR_texture_transform ignored: textures untransformed",
+    "TEXCOORD_1 ignored:",
+    "emissive ignored: not drawn",
+    "KHR_materials_clearcoat ignored:",
+    "KHR_materials_transmission ignored:",
+    "KHR_materials_sheen ignored:",
+    "KHR_materials_ior ignored:",
+    "KHR_materials_volume ignored:",
+    "KHR_materials_iridescence ignored:",
+    "KHR_draco_mesh_compression ignored:",
+};
+
+// Loads `file`, then checks each of `expected` is logged exactly once and
+// kept in Scene::warnings once, and no other warning of kAll appears.
+void expectIgnored(const std::string& file, const std::vector<std::string>& expected) {
+  SCOPED_TRACE(file);
+  scenetest::LogCapture log;
+  const Scene s = loadGltf(asset(file));
+  const std::string text = log.text();
+  std::string kept;
+  for (const std::string& w : s.warnings) kept += w + "\n";
+  for (const std::string& w : kAll) {
+    const bool want = std::find(expected.begin(), expected.end(), w) != expected.end();
+    EXPECT_EQ(countOf(text, w), want ? 1u : 0u) << w << "\n--- log:\n" << text;
+    EXPECT_EQ(countOf(kept, w), want ? 1u : 0u) << w << "\n--- Scene::warnings:\n" << kept;
+  }
+}
+
+}  // namespace
+
+TEST(GltfIgnored, SamplesWarnOncePerIgnoredFeature) {
+  expectIgnored("VertexColorTest/VertexColorTest.glb", {"COLOR_0 ignored: base colour alone"});
+  expectIgnored("TextureTransformTest/TextureTransformTest.gltf", {"KHR_texture_transform ignored: textures untransformed"});
+  expectIgnored("SimpleInstancing/SimpleInstancing.glb", {"EXT_mesh_gpu_instancing ignored: one instance drawn"});
+  expectIgnored("SimpleSkin/SimpleSkin.gltf", {"skins ignored: drawn in bind pose", "animations ignored: drawn at rest"});
+  expectIgnored("SimpleMorph/SimpleMorph.gltf",
+                {"animations ignored: drawn at rest", "morph targets ignored: drawn undeformed (default weights not applied)"});
+  expectIgnored("MorphPrimitivesTest/MorphPrimitivesTest.glb",
+                {"morph targets ignored: drawn undeformed (default weights not applied)"});
+  expectIgnored("AnimatedCube/AnimatedCube.gltf", {"animations ignored: drawn at rest"});
+  expectIgnored("EmissiveStrengthTest/EmissiveStrengthTest.glb", {"emissive ignored: not drawn"});
+  // Without any of them.
+  expectIgnored("TextureCoordinateTest/TextureCoordinateTest.glb", {});
+  expectIgnored("Box/Box.glb", {});
+  expectIgnored("MeshPrimitiveModes/MeshPrimitiveModes.gltf", {});
+}
+
+class GltfIgnoredFiles : public scenetest::TempDirTest {};
+
+TEST_F(GltfIgnoredFiles, MaterialExtensionsAndTexCoordOne) {
+  TriangleGltf t;
+  const std::vector<std::string> exts = {"KHR_materials_clearcoat", "KHR_materials_transmission", "KHR_materials_sheen",
+                                         "KHR_materials_ior",       "KHR_materials_volume",       "KHR_materials_iridescence"};
+  t.doc["extensionsUsed"] = exts;
+  t.doc["images"] = json::array({{{"uri", "data:image/png;base64," + scenetest::base64(scenetest::tinyPng())}}});
+  t.doc["textures"] = json::array({{{"source", 0}}});
+  // Two materials naming texCoord 1: still one warning.
+  t.doc["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"texCoord", 1}}}}}},
+                                    {{"occlusionTexture", {{"index", 0}, {"texCoord", 1}}}}});
+  t.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  t.doc["meshes"][0]["primitives"].push_back(t.doc["meshes"][0]["primitives"][0]);
+  t.doc["meshes"][0]["primitives"][1]["material"] = 1;
+  t.writeGltf(path("m.gltf"));
+  scenetest::LogCapture log;
+  const Scene s = loadGltf(path("m.gltf"));
+  const std::string text = log.text();
+  for (const std::string& e : exts) EXPECT_EQ(countOf(text, e + " ignored: "), 1u) << e << "\n" << text;
+  EXPECT_EQ(countOf(text, "TEXCOORD_1 ignored: textures that name texCoord 1 sample TEXCOORD_0"), 1u) << text;
+  EXPECT_EQ(s.warnings.size(), exts.size() + 1) << text;
+}
+
+TEST_F(GltfIgnoredFiles, LoadedThroughASceneFileTheWarningsAreKept) {
+  TriangleGltf t;
+  t.doc["extensionsUsed"] = {"KHR_materials_sheen"};
+  t.writeGltf(path("m.gltf"));
+  scenetest::writeText(path("s.json"), R"({"models": [{"file": "m.gltf"}, {"file": "m.gltf"}]})");
+  scenetest::LogCapture log;
+  const Scene s = loadSceneAny(path("s.json"));
+  // Per file: the same file twice is two files' worth.
+  ASSERT_EQ(s.warnings.size(), 2u) << log.text();
+  EXPECT_NE(s.warnings[0].find("KHR_materials_sheen ignored: drawn without sheen"), std::string::npos) << s.warnings[0];
+}
