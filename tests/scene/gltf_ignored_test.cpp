@@ -112,3 +112,22 @@ TEST_F(GltfIgnoredFiles, LoadedThroughASceneFileTheWarningsAreKept) {
   ASSERT_EQ(s.warnings.size(), 2u) << log.text();
   EXPECT_NE(s.warnings[0].find("KHR_materials_sheen ignored: drawn without sheen"), std::string::npos) << s.warnings[0];
 }
+
+TEST_F(GltfIgnoredFiles, AMissingTextureIsReportedOnce) {
+  TriangleGltf t;
+  t.doc["images"] = json::parse(R"([{"uri": "missing_texture.png"}])");
+  t.doc["textures"] = json::parse(R"([{"source": 0}])");
+  t.doc["materials"] = json::parse(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])");
+  t.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  t.writeGltf(path("m.gltf"));
+  scenetest::LogCapture log;
+  std::string error;
+  try {
+    loadGltf(path("m.gltf"));
+  } catch (const RuntimeError& e) {
+    error = e.what();
+  }
+  EXPECT_EQ(countOf(error, "missing_texture.png"), 2u) << error;  // "image 0 ('missing_texture.png') ... file .../missing_texture.png"
+  EXPECT_NE(error.find("missing or unreadable file " + path("missing_texture.png")), std::string::npos) << error;
+  EXPECT_EQ(countOf(log.text(), "missing_texture.png"), 0u) << log.text();
+}

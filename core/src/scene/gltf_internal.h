@@ -124,6 +124,7 @@ class GltfLoader {
   std::optional<config_detail::JsonLocator> locator_;  // positions in json_, on first use
   tinygltf::Model model_;
   std::string tinyWarn_;
+  std::string imageWarn_;  // tinygltf's warnings about images it could not read (not logged)
   mutable std::vector<std::string> warnings_;  // every warning given, for Scene::warnings
   std::set<std::string> ignoredFeatures_;      // warned about by warnIgnored
   Scene scene_;

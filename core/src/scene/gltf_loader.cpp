@@ -156,9 +156,17 @@ void GltfLoader::parse() {
     fail(msg);
   }
   if (!tinyWarn_.empty()) {
+    // An image tinygltf could not read is reported when a texture uses it
+    // (decodedPixels refuses the file, naming it): logging tinygltf's words
+    // too would say it twice.
     std::istringstream lines(tinyWarn_);
-    for (std::string line; std::getline(lines, line);)
-      if (!line.empty()) warn(line);
+    for (std::string line; std::getline(lines, line);) {
+      if (line.empty()) continue;
+      if (line.rfind("File read error", 0) == 0 || line.find("for image[") != std::string::npos)
+        imageWarn_ += (imageWarn_.empty() ? "" : "; ") + line;
+      else
+        warn(line);
+    }
   }
   checkAsset();
 }

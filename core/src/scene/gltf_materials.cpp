@@ -107,8 +107,9 @@ const std::vector<uint8_t>& GltfLoader::decodedPixels(int gltfImage, const std::
       if (!img.uri.empty() && img.uri.rfind("data:", 0) != 0) {
         const std::filesystem::path p = std::filesystem::path(baseDir_) / img.uri;
         msg += " (missing or unreadable file " + p.string() + ")";
+      } else if (!imageWarn_.empty()) {
+        msg += "; " + imageWarn_;  // tinygltf's words are the only reason given
       }
-      if (!tinyWarn_.empty()) msg += "; " + tinyWarn_;
       fail(msg);
     }
   }
