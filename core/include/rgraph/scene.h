@@ -381,10 +381,14 @@ void applySceneDefaults(Scene& scene);
 // Every loader throws rgraph::RuntimeError naming the file and the problem.
 
 // glTF 2.0 (.gltf with external or embedded buffers, .glb). Default scene (or
-// all root nodes), TRIANGLES primitives (others skipped with a warning),
+// all root nodes), triangle primitives (strips and fans turned into triangle
+// lists; points and lines skipped with a warning), KHR_mesh_quantization,
 // materials, textures, samplers, KHR_lights_punctual (point, spot and
 // directional lights), the first perspective camera, KHR_materials_specular (onto Material::specular),
 // KHR_materials_emissive_strength. No defaults added: see loadSceneAny.
+// Features not drawn get one warning each per file ("skins ignored: drawn in
+// bind pose"; the table is in scenes/README.md), kept in Scene::warnings;
+// Draco-compressed primitives without uncompressed accessors are refused.
 // Values outside the ranges of the glTF schema (metallic 9, a negative light
 // intensity, asset version 3.0; the table is in scenes/README.md) are refused
 // with file:line:column (.gltf) and the JSON path. JSON nested deeper than 256
