@@ -266,8 +266,8 @@ void GltfLoader::checkAttributeTypes(const tinygltf::Primitive& prim, const std:
                 S = TINYGLTF_COMPONENT_TYPE_SHORT, US = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
   struct Rule {
     const char* attribute;
-    std::initializer_list<int> any;         // normalized or not
-    std::initializer_list<int> normalized;  // normalized only
+    std::vector<int> any;         // normalized or not
+    std::vector<int> normalized;  // normalized only
     const char* allowed;
   };
   static const Rule rules[] = {
