@@ -209,6 +209,7 @@ int runPlan(const std::string& path, const SizeOptions& size, bool json, const s
     nlohmann::json out = planJson(plan);
     out["scene"] = {{"source", scene.source},
                     {"adaptations", report.notes},
+                    {"warnings", scene.warnings},
                     {"shadows", shadowsJson(features)},
                     {"reports", reportsJson(report)},
                     {"gbuffer_bytes_per_pixel", {{"before", before}, {"after", after}}},
@@ -218,6 +219,9 @@ int runPlan(const std::string& path, const SizeOptions& size, bool json, const s
     std::cout << "adapted to scene " << scene.source << ":\n";
     if (report.notes.empty()) std::cout << "  (nothing to drop)\n";
     for (const auto& n : report.notes) std::cout << "  " << n << "\n";
+    // The loaders' warnings (also on stderr as they happen): what is not drawn.
+    if (!scene.warnings.empty()) std::cout << "scene warnings:\n";
+    for (const auto& w : scene.warnings) std::cout << "  " << w << "\n";
     printShadows(features);
     for (const AdaptReport::Table& t : report.tables) {
       std::cout << "pass '" << t.pass << "' reports:\n";

@@ -1,9 +1,11 @@
 // The rgraph command line: validate, plan, dot, passes, render, bench. One
 // function per subcommand sets up its options; main() parses and dispatches.
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <memory>
 
 #include "cli_common.h"
 #include "commands.h"
@@ -232,8 +234,11 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << e.what() << " (rgraph --help, or rgraph COMMAND --help, lists the options)\n";
     return kExitFailure;
   }
+  // Log lines (the loaders' warnings among them) go to stderr: stdout carries
+  // what a command prints (a plan, JSON), which a script may read.
+  // (Unnamed, like spdlog's own default logger: the lines keep their form.)
+  spdlog::set_default_logger(std::make_shared<spdlog::logger>("", std::make_shared<spdlog::sinks::stderr_color_sink_mt>()));
   spdlog::set_level(spdlog::level::from_str(o.logLevel));
-  spdlog::set_default_logger(spdlog::default_logger());
 
   if (!checkFolders("--plugin-path", o.pluginPaths) || !checkFolders("--shader-path", o.shaderPaths))
     return kExitFailure;
