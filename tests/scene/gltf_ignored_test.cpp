@@ -40,6 +40,7 @@ const std::vector<std::string> kAll = {
     "KHR_materials_volume ignored:",
     "KHR_materials_iridescence ignored:",
     "KHR_draco_mesh_compression ignored:",
+    "KHR_materials_specular textures ignored: the specular strength comes from the factors only",
 };
 
 // Loads `file`, then checks each of `expected` is logged exactly once and
@@ -71,6 +72,8 @@ TEST(GltfIgnored, SamplesWarnOncePerIgnoredFeature) {
                 {"morph targets ignored: drawn undeformed (default weights not applied)"});
   expectIgnored("AnimatedCube/AnimatedCube.gltf", {"animations ignored: drawn at rest"});
   expectIgnored("EmissiveStrengthTest/EmissiveStrengthTest.glb", {"emissive ignored: not drawn"});
+  expectIgnored("SpecularTest/SpecularTest.glb",
+                {"KHR_materials_specular textures ignored: the specular strength comes from the factors only"});
   // Without any of them.
   expectIgnored("TextureCoordinateTest/TextureCoordinateTest.glb", {});
   expectIgnored("Box/Box.glb", {});

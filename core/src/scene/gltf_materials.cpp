@@ -231,7 +231,7 @@ float GltfLoader::specularFromExtension(const tinygltf::Value& ext, const std::s
     }
   }
   for (const char* texture : {"specularTexture", "specularColorTexture"})
-    if (ext.Has(texture)) warnAt(pointer + "/" + texture, "not read: the specular strength comes from the factors only");
+    if (ext.Has(texture)) warnIgnored("KHR_materials_specular textures", "the specular strength comes from the factors only");
   return std::clamp(0.5f * factor * color, 0.0f, 1.0f);
 }
 
