@@ -3,6 +3,7 @@
 // Scene::warnings; a file without the feature gets none of it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 

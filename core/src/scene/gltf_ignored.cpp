@@ -4,6 +4,8 @@
 // before tinygltf parses the file: tinygltf fails on a compressed primitive's
 // accessors (they have no buffer view) without naming the extension.
 #include <algorithm>
+#include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
