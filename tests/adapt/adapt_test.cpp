@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "rgraph/adapt.h"
 #include "rgraph/config.h"
@@ -121,6 +122,42 @@ TEST(AdaptToScene, BlendMaterialsKeepTheForwardBlendPass) {
   ASSERT_EQ(a.after.graph.passes[forward].name, "forward");
   EXPECT_TRUE(a.after.params[forward].getBool("blend", false));
   EXPECT_FALSE(a.after.params[forward].getBool("markers", true));  // still no point lights
+}
+
+size_t passIndex(const PipelineConfig& c, const std::string& name) {
+  for (size_t i = 0; i < c.graph.passes.size(); ++i)
+    if (c.graph.passes[i].name == name) return i;
+  ADD_FAILURE() << "no pass " << name;
+  return 0;
+}
+
+// Light markers: a scene-file light gets one, at most 1/40 of the scene's
+// bounding radius in half extent; a glTF file's own lamps get none.
+TEST(AdaptToScene, LightMarkersAreSizedFromTheSceneAndLeftToGltfLamps) {
+  Scene big = cubeScene();
+  big.primitives[0].bounds.expand(glm::vec3(20.0f));  // radius ~35: the pipeline's 0.125 stays
+  big.pointLights.push_back(PointLight{});
+  Adapted a = adapt("deferred-pbr.json", big);
+  const size_t forward = passIndex(a.after, "forward");
+  EXPECT_TRUE(a.after.params[forward].getBool("markers", false));
+  EXPECT_DOUBLE_EQ(a.after.params[forward].getNumber("marker_size", -1), 0.125);
+
+  Scene small = cubeScene();  // a unit cube: radius sqrt(3)/2
+  small.pointLights.push_back(PointLight{});
+  a = adapt("deferred-pbr.json", small);
+  EXPECT_TRUE(a.after.params[forward].getBool("markers", false));
+  EXPECT_NEAR(a.after.params[forward].getNumber("marker_size", -1), std::sqrt(3.0) / 2.0 / 40.0, 1e-6);
+
+  // LightsPunctualLamp: its spot light sits inside a lamp shade 0.1 across.
+  Scene lamp = loadGltf(std::string(RGRAPH_ASSETS_DIR) + "/gltf/LightsPunctualLamp/LightsPunctualLamp.gltf");
+  ASSERT_TRUE(lamp.hasPointLights());
+  for (const auto& l : lamp.pointLights) EXPECT_FALSE(l.marker);
+  a = adapt("deferred-pbr.json", lamp);
+  EXPECT_FALSE(a.after.params[forward].getBool("markers", true));
+  // One scene-file light among them brings the markers back.
+  lamp.pointLights.push_back(PointLight{});
+  a = adapt("deferred-pbr.json", lamp);
+  EXPECT_TRUE(a.after.params[forward].getBool("markers", false));
 }
 
 TEST(AdaptToScene, OneMetallicRoughnessDropsTheMaterialTarget) {

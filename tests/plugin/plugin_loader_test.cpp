@@ -164,10 +164,10 @@ TEST_F(PluginLoaderTest, MissingPathIsRelativeToTheBaseFolder) {
 
 TEST_F(PluginLoaderTest, WrongAbiIsRefusedBeforeRegistering) {
   // The fixtures' register functions abort: reaching one fails this test.
-  // wrong_abi: a version from the future; abi_previous: built against ABI 6,
-  // before SceneFeatures's shadow facts and PassAdaptation::expand (7).
-  static_assert(RGRAPH_PLUGIN_ABI_VERSION == 7u, "abi_previous stands for the version before this one");
-  const std::pair<const char*, const char*> cases[] = {{"wrong_abi", "999"}, {"abi_previous", "6"}};
+  // wrong_abi: a version from the future; abi_previous: built against ABI 7,
+  // before SceneFeatures's light-marker facts (8).
+  static_assert(RGRAPH_PLUGIN_ABI_VERSION == 8u, "abi_previous stands for the version before this one");
+  const std::pair<const char*, const char*> cases[] = {{"wrong_abi", "999"}, {"abi_previous", "7"}};
   for (const auto& [name, found] : cases) {
     SCOPED_TRACE(name);
     PassRegistry registry;

@@ -294,3 +294,51 @@ TEST(Camera, FrameBoundsSeesEverything) {
     EXPECT_LE(std::abs(p.z), 1.0f);
   }
 }
+
+// The default camera frames the bounding sphere of the drawn vertices, not
+// the box's: a sphere's box diagonal is sqrt(3) times its radius, and a
+// model framed by it fills about half the frame's height.
+TEST(CameraHelpers, BoundingSphereReachesTheFarthestVertexOnly) {
+  Scene s;
+  s.meshes.push_back(makeUvSphere(2.0f));
+  Primitive p;
+  p.mesh = 0;
+  p.material = 0;
+  p.transform = glm::mat4(1.0f);
+  p.transform[3] = glm::vec4(5.0f, 0.0f, 0.0f, 1.0f);
+  p.bounds = s.meshes[0].bounds.transformed(p.transform);
+  s.primitives.push_back(p);
+  const Scene::Sphere sphere = s.boundingSphere();
+  EXPECT_NEAR(sphere.center.x, 5.0f, 1e-4f);
+  EXPECT_NEAR(sphere.radius, 2.0f, 1e-3f);            // the box's radius is 2 sqrt(3)
+  EXPECT_GT(s.bounds().radius(), 1.7f * sphere.radius);
+  EXPECT_EQ(Scene{}.boundingSphere().radius, 0.0f);
+}
+
+// What rgraph render shows for a model without a camera: every vertex in
+// view, and the model's larger extent across 95% of the frame's short side
+// (the sphere framing alone: Suzanne 0.65 of the height, Box 0.66).
+TEST(CameraHelpers, DefaultCameraFillsTheShortSide) {
+  for (const char* model : {"Suzanne/Suzanne.gltf", "DamagedHelmet/DamagedHelmet.glb", "Box/Box.glb",
+                            "LightsPunctualLamp/LightsPunctualLamp.gltf"}) {
+    Scene s = loadGltf(std::string(RGRAPH_ASSETS_DIR) + "/gltf/" + model);
+    s.hasCamera = false;
+    applySceneDefaults(s);
+    const glm::mat4 vp = s.camera.viewProjection(1.0f);  // a square: the short side both ways
+    float extentX = 0.0f, extentY = 0.0f;
+    for (const Primitive& p : s.primitives)
+      for (const glm::vec3& v : s.meshes[p.mesh].positions) {
+        glm::vec4 c = vp * p.transform * glm::vec4(v, 1.0f);
+        ASSERT_GT(c.w, 0.0f) << model;
+        c /= c.w;
+        EXPECT_LE(std::abs(c.x), 0.951f) << model;
+        EXPECT_LE(std::abs(c.y), 0.951f) << model;
+        EXPECT_LE(std::abs(c.z), 1.0f) << model << ": outside the near or far plane";
+        extentX = std::max(extentX, std::abs(c.x));
+        extentY = std::max(extentY, std::abs(c.y));
+      }
+    EXPECT_NEAR(std::max(extentX, extentY), 0.95f, 1e-3f) << model;
+    std::printf("%s reaches %.3f of the half width, %.3f of the half height\n", model, double(extentX),
+                double(extentY));
+  }
+}

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <initializer_list>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -84,6 +85,12 @@ struct SceneFeatures {
   // texture), so no G-buffer target needs to carry them.
   bool metallicRoughnessVariation = true;
   float metallic = 1.0f, roughness = 1.0f;  // the shared values when there is no variation
+  // Light markers (the forward pass): whether some point light asks for one
+  // (PointLight::marker), and the largest half extent that keeps them small
+  // beside the scene: kMarkerScale of its bounding radius.
+  bool lightMarkers = true;
+  float markerSizeLimit = std::numeric_limits<float>::infinity();
+  static constexpr float kMarkerScale = 1.0f / 40.0f;
 
   // Shadows (passes/shadow_map): which lights a shadow pipeline should give
   // maps, from the scene's lights, its casters and the camera it is seen from.

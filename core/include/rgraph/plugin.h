@@ -65,7 +65,9 @@
 // rules), rgraph/format_sets.h.
 // 7: SceneFeatures's shadow facts (shadowCasters, shadowLights,
 // unshadowedLights), PassAdaptation::expand and ::reshape (ExpandedPass).
-#define RGRAPH_PLUGIN_ABI_VERSION 7u
+// 8: SceneFeatures's light-marker facts (lightMarkers, markerSizeLimit),
+// PointLight::marker.
+#define RGRAPH_PLUGIN_ABI_VERSION 8u
 
 #define RGRAPH_PLUGIN_ABI_SYMBOL "rgraph_plugin_abi_version"
 #define RGRAPH_PLUGIN_REGISTER_SYMBOL "rgraph_plugin_register"

@@ -247,6 +247,11 @@ struct PointLight {
   // is six maps: asked for, not assumed), glTF's lights likewise.
   std::optional<bool> castShadows;
   bool castsShadows() const { return castShadows.value_or(spot); }
+
+  // Whether the forward pass may draw a marker at it (a small cube in its
+  // colour, LearnOpenGL's light boxes): scene files' lights, yes; a glTF
+  // file's own lights, no (the model draws its lamps; a cube would hide them).
+  bool marker = true;
 };
 
 // Distance at which the light falls to `threshold`: solves
@@ -277,6 +282,15 @@ struct Camera {
 // A camera with the given vertical fov that sees all of `bounds`, looking at
 // its centre from the +Z side and slightly above.
 Camera frameBounds(const Bounds& bounds, float fovY = 45.0f);
+// The same for a sphere: it fills the vertical field of view (the short side
+// of a landscape frame) with a 5% margin.
+Camera frameSphere(const glm::vec3& center, float radius, float fovY = 45.0f);
+struct Scene;
+// The default camera of a scene without one: looking at the centre of its
+// bounds from the same direction as frameBounds, as close as keeps every
+// vertex within 95% of the vertical field of view and of a square's width:
+// the model's larger extent fills the short side of any landscape frame.
+Camera frameScene(const Scene& scene, float fovY = 45.0f);
 // The camera turned `degrees` about the axis through its target along its
 // up vector (validUp()): position moves, target and up stay. `rgraph render
 // --orbit D` shows frame i with orbitCamera(camera, D * i).
@@ -322,6 +336,15 @@ struct Scene {
   size_t triangleCount() const;  // over primitives (a shared mesh counts per draw)
   size_t vertexCount() const;    // over primitives
   Bounds bounds() const;         // world space, over primitives
+  // The sphere the default camera frames: centred on bounds()'s centre,
+  // reaching the farthest vertex a primitive draws (world space). Tighter than
+  // bounds().radius() (half the box's diagonal) for all but box-shaped
+  // scenes: a round model's box diagonal is sqrt(3) times its radius.
+  struct Sphere {
+    glm::vec3 center{0.0f};
+    float radius = 0.0f;
+  };
+  Sphere boundingSphere() const;
   // Throws RuntimeError when an index is out of range, a mesh breaks its
   // invariants, or a number the renderer reads is unusable: world-space
   // geometry or a point light beyond kMaxWorldCoordinate, a non-finite light
@@ -373,7 +396,7 @@ SceneFeatures sceneFeatures(const Scene& scene, const Camera& camera, float aspe
 // lights; src's camera is taken only when dst has none). Indices are rebased.
 void appendScene(Scene& dst, Scene src, const glm::mat4& transform = glm::mat4(1.0f));
 
-// When the scene has no camera: frameBounds(bounds()). When it has no lights at
+// When the scene has no camera: frameScene(scene). When it has no lights at
 // all: one directional light from above-front-right (ambient is kept).
 void applySceneDefaults(Scene& scene);
 

@@ -350,6 +350,7 @@ void GltfLoader::addLight(int index, const glm::mat4& world, const std::string& 
   p.quadratic = 1.0f;
   p.radius = l.range > 0.0 ? float(l.range) : lightRadius(p);
   if (l.type == "spot") spotCone(l, ptr, world, p);
+  p.marker = false;  // the file's own lamp: its model draws it
   scene_.pointLights.push_back(p);
 }
 

@@ -137,11 +137,18 @@ glm::mat4 Camera::projection(float aspect) const {
 }
 
 Camera frameBounds(const Bounds& bounds, float fovY) {
+  if (bounds.empty()) {
+    Camera cam;
+    cam.fovY = fovY;
+    return cam;
+  }
+  return frameSphere(bounds.center(), bounds.radius(), fovY);
+}
+
+Camera frameSphere(const glm::vec3& c, float radius, float fovY) {
   Camera cam;
   cam.fovY = fovY;
-  if (bounds.empty()) return cam;
-  const glm::vec3 c = bounds.center();
-  const float r = std::max(bounds.radius(), 1e-3f);
+  const float r = std::max(radius, 1e-3f);
   const float halfFov = glm::radians(fovY) * 0.5f;
   const float dist = r / std::sin(halfFov) * 1.05f;
   const glm::vec3 dir = glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f));  // +Z side, slightly above
@@ -150,6 +157,40 @@ Camera frameBounds(const Bounds& bounds, float fovY) {
   cam.up = glm::vec3(0.0f, 1.0f, 0.0f);
   cam.near = std::max(dist - r * 1.5f, dist * 0.01f);
   cam.near = std::max(cam.near, 1e-3f);
+  cam.far = dist + r * 2.0f;
+  return cam;
+}
+
+Camera frameScene(const Scene& scene, float fovY) {
+  const Scene::Sphere sphere = scene.boundingSphere();
+  Camera cam = frameSphere(sphere.center, sphere.radius, fovY);
+  if (scene.bounds().empty()) return cam;
+  // In the camera's basis a vertex p has x = (p-c).right, y = (p-c).up and
+  // a = (p-c).dir (dir: from the centre c towards the camera), none of which
+  // depends on the distance d; its depth is d - a. It lies within the margin
+  // m of the field of view when max(|x|, |y|) <= m tan(fov/2) (d - a): the
+  // closest d that keeps every vertex in is the largest a + max(|x|,|y|) / (m tan).
+  const glm::vec3 dir = glm::normalize(cam.position - sphere.center);
+  const glm::vec3 right = glm::normalize(glm::cross(cam.up, dir));
+  const glm::vec3 up = glm::cross(dir, right);
+  const float reach = 0.95f * std::tan(glm::radians(fovY) * 0.5f);
+  const float r = std::max(sphere.radius, 1e-3f);
+  float dist = 0.0f, nearest = 0.0f;  // nearest: the largest a (the vertex closest to the camera)
+  bool any = false;
+  for (const Primitive& p : scene.primitives) {
+    if (p.mesh < 0 || static_cast<size_t>(p.mesh) >= scene.meshes.size()) continue;
+    for (const glm::vec3& v : scene.meshes[static_cast<size_t>(p.mesh)].positions) {
+      const glm::vec3 d = glm::vec3(p.transform * glm::vec4(v, 1.0f)) - sphere.center;
+      const float a = glm::dot(d, dir);
+      dist = std::max(dist, a + std::max(std::abs(glm::dot(d, right)), std::abs(glm::dot(d, up))) / reach);
+      nearest = any ? std::max(nearest, a) : a;
+      any = true;
+    }
+  }
+  if (!any) return cam;
+  dist = std::max(dist, nearest + 0.05f * r);  // never at or past a vertex
+  cam.position = sphere.center + dir * dist;
+  cam.near = std::max((dist - nearest) * 0.5f, 1e-3f);
   cam.far = dist + r * 2.0f;
   return cam;
 }
@@ -244,6 +285,25 @@ Bounds Scene::bounds() const {
   Bounds b;
   for (const Primitive& p : primitives) b.expand(p.bounds);
   return b;
+}
+
+Scene::Sphere Scene::boundingSphere() const {
+  Sphere s;
+  const Bounds b = bounds();
+  if (b.empty()) return s;
+  s.center = b.center();
+  // Squared distances, one square root at the end; the box's radius caps it
+  // (a primitive's vertices lie inside its bounds).
+  float r2 = 0.0f;
+  for (const Primitive& p : primitives) {
+    if (p.mesh < 0 || static_cast<size_t>(p.mesh) >= meshes.size()) continue;
+    for (const glm::vec3& v : meshes[static_cast<size_t>(p.mesh)].positions) {
+      const glm::vec3 d = glm::vec3(p.transform * glm::vec4(v, 1.0f)) - s.center;
+      r2 = std::max(r2, glm::dot(d, d));
+    }
+  }
+  s.radius = std::min(std::sqrt(r2), b.radius());
+  return s;
 }
 
 namespace {
@@ -494,7 +554,7 @@ void appendScene(Scene& dst, Scene src, const glm::mat4& transform) {
 
 void applySceneDefaults(Scene& scene) {
   if (!scene.hasCamera) {
-    scene.camera = frameBounds(scene.bounds());
+    scene.camera = frameScene(scene);
     scene.hasCamera = true;
   }
   if (scene.pointLights.empty() && scene.directionalLights.empty()) {

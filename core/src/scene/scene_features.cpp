@@ -115,6 +115,9 @@ SceneFeatures sceneFeatures(const Scene& scene, const Camera& camera, float aspe
       break;
     }
   }
+  f.lightMarkers = std::any_of(scene.pointLights.begin(), scene.pointLights.end(),
+                               [](const PointLight& l) { return l.marker; });
+  if (const Bounds b = scene.bounds(); !b.empty()) f.markerSizeLimit = b.radius() * SceneFeatures::kMarkerScale;
   f.shadowCasters = scene.hasShadowCasters();
   addLightFacts(scene, camera, aspect, f);
   return f;
