@@ -84,6 +84,12 @@ struct SceneFeatures {
   // texture), so no G-buffer target needs to carry them.
   bool metallicRoughnessVariation = true;
   float metallic = 1.0f, roughness = 1.0f;  // the shared values when there is no variation
+  // Some drawn material emits light (Material::emits): the G-buffer carries
+  // an emissive target.
+  bool emissive = true;
+  // Some drawn material has non-default reflectance (Material::nonDefaultReflectance):
+  // the G-buffer carries a reflectance target.
+  bool reflectance = true;
 
   // Shadows (passes/shadow_map): which lights a shadow pipeline should give
   // maps, from the scene's lights, its casters and the camera it is seen from.

@@ -48,7 +48,8 @@ std::vector<std::pair<int, uint32_t>> shadowSet(const SceneFeatures& f) {
 bool sameFeatures(const SceneFeatures& a, const SceneFeatures& b) {
   return a.pointLights == b.pointLights && a.blendMaterials == b.blendMaterials && a.normalMaps == b.normalMaps &&
          a.metallicRoughnessVariation == b.metallicRoughnessVariation && a.metallic == b.metallic &&
-         a.roughness == b.roughness && a.shadowCasters == b.shadowCasters && shadowSet(a) == shadowSet(b);
+         a.roughness == b.roughness && a.emissive == b.emissive && a.reflectance == b.reflectance &&
+         a.shadowCasters == b.shadowCasters && shadowSet(a) == shadowSet(b);
 }
 
 }  // namespace
