@@ -26,19 +26,26 @@ PipelineConfig adapted(const std::string& file, const Scene& scene) {
   return cfg;
 }
 
+// The same with bloom adding nothing (its composite adds into the HDR target
+// in place, so the image before bloom cannot be read after the frame).
+PipelineConfig withoutBloom(PipelineConfig cfg) {
+  for (const auto& p : cfg.graph.passes)
+    if (p.type == "bloom_composite") setParam(cfg, p.name, "intensity", 0.0);
+  return cfg;
+}
+
 std::string inputOf(const PassDecl& pass, const std::string& slot) {
   for (const auto& use : pass.uses)
     if (use.slot == slot) return use.input;
   return {};
 }
 
-// The HDR image after lighting and forward drawing: what bloom or TAA reads
-// when the pipeline has them (their outputs mix neighbours or frames), else
-// what the tone mapper reads.
+// The HDR image after lighting and forward drawing: what TAA reads when the
+// pipeline has it (its output mixes frames), else what the tone mapper reads.
 std::string litHdrName(const PipelineConfig& cfg) {
   std::string tonemap;
   for (const auto& p : cfg.graph.passes) {
-    if (p.type == "bloom_bright" || p.type == "taa") return inputOf(p, p.type == "taa" ? "color" : "hdr");
+    if (p.type == "taa") return inputOf(p, "color");
     if (p.type == "tonemap") tonemap = inputOf(p, "hdr");
   }
   return tonemap;
@@ -83,6 +90,14 @@ Rect screenRect(const Camera& cam, Extent size, const Bounds& b, double inset) {
   auto clampX = [&](double v) { return std::clamp(static_cast<int>(v), 0, static_cast<int>(size.width)); };
   auto clampY = [&](double v) { return std::clamp(static_cast<int>(v), 0, static_cast<int>(size.height)); };
   return {clampX(x0 + dx), clampY(y0 + dy), clampX(x1 - dx), clampY(y1 - dy)};
+}
+
+float meanLuminance(const Frame& f, const Rect& r) {
+  double sum = 0.0;
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x) sum += luminance(f.at(x, y));
+  const int n = (r.x1 - r.x0) * (r.y1 - r.y0);
+  return n > 0 ? static_cast<float>(sum / n) : 0.0f;
 }
 
 float maxLuminance(const Frame& f, const Rect& r) {
@@ -150,8 +165,8 @@ TEST_F(GltfMaterials, EmissiveIsAddedOnceInEveryLightingMethod) {
   const Rect block = centreBlock();
   for (const std::string& file : lightingPipelines()) {
     SCOPED_TRACE(file);
-    const Frame lit = renderFrame(adapted(file, scene), scene, kSize, *shaders);
-    const Frame off = renderFrame(adapted(file, dark), dark, kSize, *shaders);
+    const Frame lit = renderFrame(withoutBloom(adapted(file, scene)), scene, kSize, *shaders);
+    const Frame off = renderFrame(withoutBloom(adapted(file, dark)), dark, kSize, *shaders);
     float worst = 0.0f, offMax = 0.0f;
     for (int y = block.y0; y < block.y1; ++y)
       for (int x = block.x0; x < block.x1; ++x) {
@@ -179,9 +194,10 @@ TEST_F(GltfMaterials, BloomPicksUpEmissive) {
   const std::string file = "deferred-ssao-bloom.json";
   const Frame lit = renderFrame(adapted(file, scene), scene, kSize, *shaders, "hdr_bloom");
   const Frame off = renderFrame(adapted(file, dark), dark, kSize, *shaders, "hdr_bloom");
-  const Frame noBloom = renderFrame(adapted(file, scene), scene, kSize, *shaders, "hdr_forward");
-  // Pixels outside the cube (same before bloom with and without emissive:
-  // the cube lights nothing) that bloom brightened.
+  const Frame noBloom = renderFrame(withoutBloom(adapted(file, scene)), scene, kSize, *shaders, "hdr_bloom");
+  const Frame offNoBloom = renderFrame(withoutBloom(adapted(file, dark)), dark, kSize, *shaders, "hdr_bloom");
+  // Pixels outside the cube (the same with and without emissive when bloom
+  // adds nothing: the cube lights nothing) that bloom brightened.
   const Rect cube = screenRect(scene.camera, kSize, primitiveNamed(scene, "cube").bounds, -0.1);
   float glow = 0.0f;
   size_t glowing = 0, outside = 0;
@@ -190,7 +206,7 @@ TEST_F(GltfMaterials, BloomPicksUpEmissive) {
       if (x >= cube.x0 && x < cube.x1 && y >= cube.y0 && y < cube.y1) continue;
       ++outside;
       const float gain = luminance(lit.at(x, y)) - luminance(off.at(x, y));
-      EXPECT_LE(std::abs(luminance(noBloom.at(x, y)) - luminance(off.at(x, y))), 1e-3f) << x << "," << y;
+      ASSERT_LE(std::abs(luminance(noBloom.at(x, y)) - luminance(offNoBloom.at(x, y))), 1e-3f) << x << "," << y;
       glow = std::max(glow, gain);
       glowing += gain > 0.05f;
     }
@@ -233,12 +249,13 @@ TEST_F(GltfMaterials, EmissiveStrengthTestOrdersItsCubes) {
   }
 }
 
-// SpecularTest (KHR_materials_specular): black dielectric tiles whose
+// SpecularTest (KHR_materials_specular): black dielectric spheres whose
 // reflection is scaled by specularFactor (row 1) and specularColorFactor
 // (row 3, white; row 7, above 1, clamped at F0 = 1). In deferred-pbr each
-// row's brightest highlight rises with the factor; with the extension's values
-// reset to the defaults the row is flat. (The tiles are made rough, 0.35, for
-// the test: at the file's roughness 0 the sun's highlight is a sub-pixel spot.)
+// sphere's mean HDR luminance rises with the factor; with the extension's
+// values reset to the defaults the row is flat within 15%. (The spheres are
+// made rough, 0.35, for the test: at the file's roughness 0 the sun's
+// highlight is a sub-pixel spot.)
 TEST_F(GltfMaterials, SpecularTestGradesItsRows) {
   const std::string path = assetPath("gltf/SpecularTest/SpecularTest.glb");
   ASSERT_TRUE(std::filesystem::exists(path)) << path;
@@ -255,19 +272,25 @@ TEST_F(GltfMaterials, SpecularTestGradesItsRows) {
   const Frame flat = renderFrame(adapted("deferred-pbr.json", ignored), ignored, size, *shaders);
   for (const char* row : {"1.%d_specularFactor", "3.%d_whiteColorFactor", "7.%d_HDR_colorFactor"}) {
     std::string line;
-    float last = -1.0f, lo = 1e9f, hi = 0.0f;
+    float last = -1.0f, first = 0.0f, lo = 1e9f, hi = 0.0f;
     for (int i = 1; i <= 5; ++i) {
       char name[64];
       std::snprintf(name, sizeof name, row, i);
-      const Rect r = screenRect(scene.camera, size, primitiveNamed(scene, name).bounds, 0.05);
-      const float v = maxLuminance(lit, r), f = maxLuminance(flat, r);
+      // The square inside the sphere's outline (15% in from its bounds on each side).
+      const Rect r = screenRect(scene.camera, size, primitiveNamed(scene, name).bounds, 0.15);
+      const float v = meanLuminance(lit, r), f = meanLuminance(flat, r);
       line += std::string(" ") + name + " " + std::to_string(v) + " (ignored " + std::to_string(f) + ")";
-      EXPECT_GT(v, last + 1e-3f) << name;
+      EXPECT_GT(v, last + 1e-5f) << name;
+      if (i == 1) first = v;
       last = v;
       lo = std::min(lo, f), hi = std::max(hi, f);
     }
-    std::printf("[ measure  ] SpecularTest max HDR luminance:%s\n", line.c_str());
-    EXPECT_LT(hi - lo, 0.05f * hi + 1e-3f) << "the row is not flat without the extension";
+    std::printf("[ measure  ] SpecularTest mean HDR luminance:%s; ignored: spread %.1f%%\n", line.c_str(),
+                100.0 * (hi - lo) / hi);
+    // Measured: the rows rise 13x, 7x and 48x with the extension; without it
+    // they vary by 8-11% (the sun's highlight moves across the spheres).
+    EXPECT_GT(last, 4.0f * first) << "the row hardly grades";
+    EXPECT_LT(hi - lo, 0.15f * hi) << "the row is not flat without the extension";
   }
 }
 
