@@ -53,5 +53,6 @@ void main() {
   if (u_pointLightCount > 0 && clusterListsFit(uint(data.length())))
     color += shadeClusterFarField(clusterAt(px, viewDepth), s, V);
 #endif
+  if (u_ambientAndSun != 0) color += emissiveTerm(s);  // once per pixel: with the ambient
   imageStore(u_target, px, vec4(color, 1.0));
 }

@@ -27,5 +27,6 @@ void main() {
     color += ambientTerm(s) * occlusion + shadeDirectionalLight(s, V) * sunVisibility(s);
   }
   for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(lights[i], s, V) * lightVisibility(i, s);
+  if (u_ambientAndSun != 0) color += emissiveTerm(s);  // once per pixel: with the ambient
   outColor = vec4(color, 1.0);
 }

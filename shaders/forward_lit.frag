@@ -41,5 +41,6 @@ void main() {
   } else {
     for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(lights[i], s, V) * lightVisibility(i, s);
   }
+  color += emissiveTerm(s);
   outColor = vec4(color, u_blendPass != 0 ? alpha : 1.0);
 }

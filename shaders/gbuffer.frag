@@ -25,17 +25,43 @@ layout(location = 3) out vec4 outMaterial;  // metallic, roughness, ao
 #endif
 #endif
 
-#if defined(HAS_VELOCITY)
-// The velocity target comes after the layout's colour targets (the geometry
-// pass declares its slot last): uv_now - uv_prev, unjittered.
-#if defined(GBUFFER_LEARNOPENGL) || (defined(GBUFFER_COMPACT) && !defined(CONSTANT_MATERIAL)) || \
-    (!defined(GBUFFER_COMPACT) && defined(CONSTANT_MATERIAL))
-#define VELOCITY_LOCATION 3
-#elif defined(GBUFFER_COMPACT)
-#define VELOCITY_LOCATION 2
+// The optional targets follow the layout's own, in the table's slot order,
+// then the velocity target (the geometry pass declares its slot last):
+// locations count the targets bound before them.
+#if defined(GBUFFER_COMPACT)
+#define BASE_TARGETS 2
 #else
-#define VELOCITY_LOCATION 4
+#define BASE_TARGETS 3
 #endif
+#if defined(GBUFFER_LEARNOPENGL) || defined(CONSTANT_MATERIAL)
+#define MATERIAL_TARGETS 0
+#else
+#define MATERIAL_TARGETS 1
+#endif
+#define EMISSIVE_LOCATION (BASE_TARGETS + MATERIAL_TARGETS)
+#if defined(HAS_EMISSIVE_TARGET)
+// r11g11b10f in learnopengl and compact (three components), rgba16f / rgba32f
+// in pbr and fp32 (alpha unused, written 1).
+#if defined(GBUFFER_COMPACT) || defined(GBUFFER_LEARNOPENGL)
+layout(location = EMISSIVE_LOCATION) out vec3 outEmissive;
+#define EMISSIVE_OUT(e) (e)
+#else
+layout(location = EMISSIVE_LOCATION) out vec4 outEmissive;
+#define EMISSIVE_OUT(e) vec4(e, 1.0)
+#endif
+#define REFLECTANCE_LOCATION (EMISSIVE_LOCATION + 1)
+#else
+#define REFLECTANCE_LOCATION EMISSIVE_LOCATION
+#endif
+#if defined(HAS_REFLECTANCE_TARGET)
+layout(location = REFLECTANCE_LOCATION) out vec4 outReflectance;  // rgb dielectric F0, a F90
+#define VELOCITY_LOCATION (REFLECTANCE_LOCATION + 1)
+#else
+#define VELOCITY_LOCATION REFLECTANCE_LOCATION
+#endif
+
+#if defined(HAS_VELOCITY)
+// uv_now - uv_prev, unjittered.
 layout(location = VELOCITY_LOCATION) out vec2 outVelocity;
 in vec4 vs_clipNow;
 in vec4 vs_clipPrev;
@@ -46,6 +72,12 @@ void main() {
   bool discarded;
   Surface s = materialSurface(normalize(u_cameraPos.xyz - fs.worldPos), alpha, discarded);
   if (discarded) discard;
+#if defined(HAS_EMISSIVE_TARGET)
+  outEmissive = EMISSIVE_OUT(s.emissive);
+#endif
+#if defined(HAS_REFLECTANCE_TARGET)
+  outReflectance = vec4(s.f0, s.f90);
+#endif
 #if defined(HAS_VELOCITY)
   outVelocity = screenVelocity(vs_clipNow, vs_clipPrev);
 #endif

@@ -574,5 +574,6 @@ void main() {
     for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(lights[i], s, V) * lightVisibility(i, s);
 #endif
   }
+  if (u_ambientAndSun != 0) color += emissiveTerm(s);  // once per pixel: with the ambient
   imageStore(u_target, px, vec4(color, 1.0));
 }

@@ -1,6 +1,7 @@
 #include "rgraph/passes/gbuffer_layout.h"
 
 #include <algorithm>
+#include <cstddef>
 
 namespace rgraph::gbuffer {
 
@@ -12,6 +13,12 @@ constexpr const char* kAlbedo = "albedo rgb, specular intensity a";
 constexpr const char* kMaterial = "metallic r, roughness g, ambient occlusion b";
 constexpr const char* kOctahedral =
     "world normal, octahedral rg (encodeOctahedral / decodeOctahedral in include/gbuffer.glsl); no coverage flag";
+constexpr const char* kEmissive =
+    "emitted radiance rgb (emissiveFactor x strength x sRGB emissiveTexture; unlit: the base colour), added once "
+    "after lighting; optional: only for scenes with an emitting material";
+constexpr const char* kReflectance =
+    "dielectric F0 rgb (KHR_materials_specular: min(0.04 x specular colour, 1) x specular weight), specular weight a "
+    "(the dielectric F90); optional: only for scenes with non-default reflectance";
 constexpr const char* kDepth = "window-space depth, non-linear (0 near .. 1 far), 1 where nothing was drawn";
 constexpr const char* kDepthOnly =
     "window-space depth, non-linear (0 near .. 1 far): covered where < 1; readers rebuild the world position from it "
@@ -25,16 +32,23 @@ const std::vector<Layout>& layouts() {
   static const std::vector<Layout> table = {
       {"learnopengl", "GBUFFER_LEARNOPENGL", "",
        {{"position", Format::rgba16f, kPosition}, {"normal", Format::rgba16f, kNormal},
-        {"albedo", Format::rgba8, kAlbedo}}, Format::depth24_stencil8, 3, false, kDepth},
-      {"pbr", "GBUFFER_PBR", "4x rgba16f",
+        {"albedo", Format::rgba8, kAlbedo}, {"emissive", Format::r11g11b10f, kEmissive, true}},
+       Format::depth24_stencil8, 3, false, kDepth},
+      {"pbr", "GBUFFER_PBR", "4x rgba16f, + rgba16f emissive, + rgba16f reflectance",
        {{"position", Format::rgba16f, kPosition}, {"normal", Format::rgba16f, kNormal},
-        {"albedo", Format::rgba16f, kAlbedo}, {"material", Format::rgba16f, kMaterial}}, Format::depth24_stencil8, 3, false, kDepth},
-      {"compact", "GBUFFER_COMPACT", "no position, octahedral normal",
+        {"albedo", Format::rgba16f, kAlbedo}, {"material", Format::rgba16f, kMaterial},
+        {"emissive", Format::rgba16f, kEmissive, true}, {"reflectance", Format::rgba16f, kReflectance, true}},
+       Format::depth24_stencil8, 3, false, kDepth},
+      {"compact", "GBUFFER_COMPACT", "no position, octahedral normal, + r11g11b10f emissive, + rgba8 reflectance",
        {{"normal", Format::rg16f, kOctahedral}, {"albedo", Format::rgba8, kAlbedo},
-        {"material", Format::rg8, "metallic r, roughness g"}}, Format::depth32f, 2, true, kDepthOnly},
+        {"material", Format::rg8, "metallic r, roughness g"}, {"emissive", Format::r11g11b10f, kEmissive, true},
+        {"reflectance", Format::rgba8, kReflectance, true}},
+       Format::depth32f, 2, true, kDepthOnly},
       {"fp32", "GBUFFER_FP32", "",
        {{"position", Format::rgba32f, kPosition}, {"normal", Format::rgba32f, kNormal},
-        {"albedo", Format::rgba32f, kAlbedo}, {"material", Format::rgba32f, kMaterial}}, Format::depth32f, 3, false, kDepth},
+        {"albedo", Format::rgba32f, kAlbedo}, {"material", Format::rgba32f, kMaterial},
+        {"emissive", Format::rgba32f, kEmissive, true}, {"reflectance", Format::rgba32f, kReflectance, true}},
+       Format::depth32f, 3, false, kDepth},
   };
   return table;
 }
@@ -48,8 +62,32 @@ const Target* Layout::target(std::string_view slot) const {
 
 uint32_t Layout::bytesPerPixel() const {
   uint32_t bytes = formatInfo(depth).bytesPerPixel;
-  for (const auto& t : targets) bytes += formatInfo(t.format).bytesPerPixel;
+  for (const auto& t : targets)
+    if (!t.optional) bytes += formatInfo(t.format).bytesPerPixel;
   return bytes;
+}
+
+uint32_t Layout::optionalBytesPerPixel(std::string_view slot) const {
+  const Target* t = target(slot);
+  return t && t->optional ? formatInfo(t->format).bytesPerPixel : 0;
+}
+
+bool Layout::uses(std::string_view slot, const ParamSet& params) const {
+  const Target* t = target(slot);
+  if (!t) return false;
+  if (slot == "material") return !params.getBool("constant_material");
+  return !t->optional || params.getBool(std::string(slot));
+}
+
+std::vector<std::string> optionalSlots() {
+  std::vector<std::string> out;
+  for (const auto& slot : colorSlots())
+    for (const auto& l : layouts())
+      if (const Target* t = l.target(slot); t && t->optional) {
+        out.push_back(slot);
+        break;
+      }
+  return out;
 }
 
 std::vector<std::string> Layout::readerSlots(bool constantMaterial) const {
@@ -83,11 +121,18 @@ std::string nameList(bool withSummaries) {
   return out;
 }
 
+// Merged so that every layout's targets keep their order (learnopengl's
+// emissive after albedo, pbr's after material: material comes first).
 std::vector<std::string> colorSlots() {
   std::vector<std::string> out;
-  for (const auto& l : layouts())
-    for (const auto& t : l.targets)
-      if (std::find(out.begin(), out.end(), t.slot) == out.end()) out.push_back(t.slot);
+  for (const auto& l : layouts()) {
+    size_t next = 0;  // where this layout's next unseen target goes
+    for (const auto& t : l.targets) {
+      auto it = std::find(out.begin(), out.end(), t.slot);
+      if (it == out.end()) it = out.insert(out.begin() + static_cast<std::ptrdiff_t>(next), t.slot);
+      next = static_cast<size_t>(it - out.begin()) + 1;
+    }
+  }
   return out;
 }
 

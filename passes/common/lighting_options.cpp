@@ -2,6 +2,9 @@
 
 #include <GL/glcorearb.h>
 
+#include <cctype>
+#include <utility>
+
 #include "rgraph/error.h"
 #include "rgraph/format_sets.h"
 #include "rgraph/pass_decl.h"
@@ -69,6 +72,14 @@ std::vector<std::string> gbufferDefines(const ParamSet& p) {
     d.push_back("CONSTANT_METALLIC=" + std::to_string(p.getNumber("metallic")));
     d.push_back("CONSTANT_ROUGHNESS=" + std::to_string(p.getNumber("roughness")));
   }
+  // HAS_EMISSIVE_TARGET, HAS_REFLECTANCE_TARGET: the optional targets on.
+  const gbuffer::Layout& layout = gbuffer::of(p);
+  for (const auto& slot : gbuffer::optionalSlots())
+    if (layout.writes(slot) && p.getBool(slot)) {
+      std::string define = "HAS_" + slot + "_TARGET";
+      for (char& c : define) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+      d.push_back(std::move(define));
+    }
   return d;
 }
 
@@ -91,10 +102,32 @@ std::vector<ParamDecl> constantMaterialParams() {
   return {param("constant_material", ParamType::boolean, false,
                 "the scene has one metallic/roughness: no material target, values below (set by scene adaptation)"),
           ranged("metallic", ParamType::number, 0.0, 0.0, 1.0, "metallic when constant_material"),
-          ranged("roughness", ParamType::number, 1.0, 0.0, 1.0, "roughness when constant_material")};
+          ranged("roughness", ParamType::number, 1.0, 0.0, 1.0, "roughness when constant_material"),
+          param("emissive", ParamType::boolean, false,
+                "the G-buffer has an emissive target (bind 'emissive'); scene adaptation turns it off, unbinding "
+                "the slot, when no material emits"),
+          param("reflectance", ParamType::boolean, false,
+                "the G-buffer has a reflectance target (KHR_materials_specular F0 and F90; bind 'reflectance'); "
+                "scene adaptation turns it off, unbinding the slot, when every material has the default")};
 }
 
+namespace {
+// Optional targets (gbuffer::Target::optional) the scene does not need: off and unbound.
+void adaptOptionalTargets(const SceneFeatures& f, PassAdaptation& a) {
+  const std::pair<const char*, bool> needed[] = {{"emissive", f.emissive}, {"reflectance", f.reflectance}};
+  for (const auto& [slot, need] : needed) {
+    if (need || !a.params.getBool(slot)) continue;
+    a.params.set(slot, false);
+    a.unbindSlots.push_back(slot);
+    a.notes.push_back(std::string(slot == std::string("emissive") ? "no emitting material"
+                                                                  : "every material has the default reflectance") +
+                      ": no " + slot + " target");
+  }
+}
+}  // namespace
+
 void adaptGBuffer(const SceneFeatures& f, PassAdaptation& a) {
+  adaptOptionalTargets(f, a);
   if (f.metallicRoughnessVariation || !gbuffer::of(a.params).writes("material") ||
       a.params.getBool("constant_material"))
     return;
@@ -125,23 +158,34 @@ PassRule gbufferReaderRule() {
     for (size_t i = 0; i < slots.size(); ++i) rule.text += (i ? ", " : "") + slots[i];
     rule.text += ")";
   }
-  rule.text += "; no material with constant_material";
+  rule.text += "; no material with constant_material; emissive and reflectance exactly when their parameter is on";
   rule.check = [](const PassCheckContext& ctx, PassChecks& checks) {
     const gbuffer::Layout& layout = gbuffer::of(ctx.params());
     for (const auto& slot : layout.readerSlots(ctx.params().getBool("constant_material")))
       if (!ctx.bound(slot))
         checks.slotError(slot, "input '" + slot + "' is required by layout '" + layout.name + "' but not bound");
+    for (const auto& slot : gbuffer::optionalSlots()) {
+      const bool wanted = layout.uses(slot, ctx.params());
+      if (ctx.bound(slot) == wanted) continue;
+      if (wanted)
+        checks.slotError(slot, "\"" + slot + "\": true reads a '" + slot + "' target: bind it in inputs");
+      else
+        checks.slotError(slot, "input '" + slot + "' needs the pass parameter \"" + slot + "\": true" +
+                                   (layout.writes(slot) ? "" : " and a layout with that target (not '" + layout.name + "')"));
+    }
   };
   return rule;
 }
 
 std::vector<std::string> materialSamplers() {
-  return {"u_baseColorTex", "u_metallicRoughnessTex", "u_normalTex", "u_occlusionTex"};
+  return {"u_baseColorTex", "u_metallicRoughnessTex", "u_normalTex",          "u_occlusionTex",
+          "u_emissiveTex",  "u_specularTex",          "u_specularColorTex"};
 }
 
 std::vector<SamplerSlot> gbufferSamplers() {
   return {{"position", "g_position", 0}, {"normal", "g_normal", 1}, {"albedo", "g_albedo", 2},
-          {"material", "g_material", 3}, {"depth", "g_depth", 4}};
+          {"material", "g_material", 3}, {"depth", "g_depth", 4},   {"emissive", "g_emissive", 9},
+          {"reflectance", "g_reflectance", 10}};
 }
 
 PassTypeDesc gbufferReader(std::string name, std::string description) {
@@ -178,6 +222,10 @@ std::vector<SlotDecl> gbufferSlots() {
       slot("material", Access::sampled, false, SlotDecl::Load::never, "G-buffer metallic/roughness (pbr, compact, fp32)"),
       slot("depth", Access::sampled, false, SlotDecl::Load::never, "G-buffer depth (compact: rebuilds position)",
            depthFormats()),
+      slot("emissive", Access::sampled, false, SlotDecl::Load::never,
+           "G-buffer emitted radiance (with the \"emissive\" parameter)"),
+      slot("reflectance", Access::sampled, false, SlotDecl::Load::never,
+           "G-buffer dielectric F0 + specular weight (with the \"reflectance\" parameter)"),
   };
 }
 

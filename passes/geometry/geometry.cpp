@@ -63,7 +63,7 @@ PassRule targetsRule() {
     for (size_t i = 0; i < layout.targets.size(); ++i) rule.text += (i ? ", " : "") + layout.targets[i].slot;
     rule.text += ")";
   }
-  rule.text += "; no material with constant_material";
+  rule.text += "; no material with constant_material; emissive and reflectance exactly when their parameter is on";
   rule.check = [](const PassCheckContext& ctx, PassChecks& checks) {
     const gbuffer::Layout& layout = gbuffer::of(ctx.params());
     auto require = [&](const std::string& slot, bool wanted) {
@@ -72,7 +72,16 @@ PassRule targetsRule() {
                                    slot + "' target; " + (wanted ? "bind it in outputs" : "remove it from outputs"));
     };
     require("position", layout.writes("position"));
-    require("material", layout.writes("material") && !ctx.params().getBool("constant_material"));
+    require("material", layout.uses("material", ctx.params()));
+    for (const auto& slot : gbuffer::optionalSlots()) {
+      const bool wanted = layout.uses(slot, ctx.params());
+      if (ctx.bound(slot) == wanted) continue;
+      if (wanted)
+        checks.slotError(slot, "\"" + slot + "\": true writes a '" + slot + "' target: bind it in outputs");
+      else
+        checks.slotError(slot, "a '" + slot + "' output needs the pass parameter \"" + slot + "\": true" +
+                                   (layout.writes(slot) ? "" : " and a layout with that target (not '" + layout.name + "')"));
+    }
   };
   return rule;
 }
@@ -106,6 +115,11 @@ PassTypeDesc makeGeometryPass() {
       slot("albedo", Access::color_attachment, true, SlotDecl::Load::never, "albedo rgb + specular intensity", color),
       slot("material", Access::color_attachment, false, SlotDecl::Load::never,
            "metallic, roughness (, ao) (pbr, compact, fp32 layouts)", color),
+      slot("emissive", Access::color_attachment, false, SlotDecl::Load::never,
+           "emitted radiance (with the \"emissive\" parameter)", color),
+      slot("reflectance", Access::color_attachment, false, SlotDecl::Load::never,
+           "KHR_materials_specular dielectric F0 + F90 (with the \"reflectance\" parameter; pbr, compact, fp32)",
+           color),
       slot("depth", Access::depth_attachment, true, SlotDecl::Load::never, "scene depth",
            depthFormats()),
       velocity::slot(),  // last, so the layouts' colour targets keep their attachment indices

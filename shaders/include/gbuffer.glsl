@@ -3,7 +3,8 @@
 // What each stores, in which formats, is the layout table in
 // passes/common/include/rgraph/passes/gbuffer_layout.h (compact: no position,
 // rebuilt from depth; octahedral normal rg; fp32: the pbr layout in rgba32f,
-// the reference). gbuffer.frag writes the targets in the table's slot order.
+// the reference; optional emissive and reflectance targets, HAS_EMISSIVE_TARGET
+// and HAS_REFLECTANCE_TARGET). gbuffer.frag writes the targets in the table's slot order.
 // include/gbuffer_read.glsl reads them back.
 
 struct Surface {
@@ -14,6 +15,9 @@ struct Surface {
   float metallic;
   float roughness;
   float ao;
+  vec3 emissive;   // emitted radiance, added once after lighting (emissiveTerm)
+  vec3 f0;         // dielectric reflectance at normal incidence (KHR_materials_specular; 0.04 by default)
+  float f90;       // dielectric reflectance at grazing angles, the specular weight (1 by default)
   bool covered;    // false where no geometry was drawn
 };
 

@@ -1,11 +1,14 @@
 // Reading a G-buffer back into a Surface, for every pass that lights from it.
 // Needs frame.glsl and gbuffer.glsl first, and one GBUFFER_* define.
-// Texture units: 0 position, 1 normal, 2 albedo, 3 material, 4 depth.
+// Texture units: 0 position, 1 normal, 2 albedo, 3 material, 4 depth,
+// 9 emissive, 10 reflectance (5..8: the lighting passes' own).
 layout(binding = 0) uniform sampler2D g_position;
 layout(binding = 1) uniform sampler2D g_normal;
 layout(binding = 2) uniform sampler2D g_albedo;
 layout(binding = 3) uniform sampler2D g_material;
 layout(binding = 4) uniform sampler2D g_depth;
+layout(binding = 9) uniform sampler2D g_emissive;
+layout(binding = 10) uniform sampler2D g_reflectance;
 
 // Exact texel reads (texelFetch: no filtering, the G-buffer is per pixel).
 Surface readSurface(ivec2 px) {
@@ -14,6 +17,20 @@ Surface readSurface(ivec2 px) {
   s.albedo = albedo.rgb;
   s.specular = albedo.a;
   s.ao = 1.0;
+  // The optional targets; without them, what no material of the scene changes.
+#if defined(HAS_EMISSIVE_TARGET)
+  s.emissive = texelFetch(g_emissive, px, 0).rgb;
+#else
+  s.emissive = vec3(0.0);
+#endif
+#if defined(HAS_REFLECTANCE_TARGET)
+  vec4 reflectance = texelFetch(g_reflectance, px, 0);
+  s.f0 = reflectance.rgb;
+  s.f90 = reflectance.a;
+#else
+  s.f0 = vec3(0.04);
+  s.f90 = 1.0;
+#endif
 #if defined(GBUFFER_COMPACT)
   float depth = texelFetch(g_depth, px, 0).r;
   s.covered = depth < 1.0;

@@ -60,20 +60,28 @@ float geometrySchlickGGX(float NdotX, float roughness) {
   return NdotX / (NdotX * (1.0 - k) + k);
 }
 
-vec3 fresnelSchlick(float cosTheta, vec3 F0) {
-  return F0 + (1.0 - F0) * pow(clamp(1.0 - cosTheta, 0.0, 1.0), 5.0);
+vec3 fresnelSchlick(float cosTheta, vec3 F0, float F90) {
+  return F0 + (F90 - F0) * pow(clamp(1.0 - cosTheta, 0.0, 1.0), 5.0);
 }
 
-// Cook-Torrance: GGX distribution, Smith geometry, Schlick Fresnel;
-// F0 = mix(0.04, albedo, metallic), kD = (1 - F)(1 - metallic).
-vec3 cookTorrance(vec3 N, vec3 V, vec3 L, vec3 radiance, vec3 albedo, float metallic, float roughness) {
+// The surface's reflectance at normal incidence (F0) and at grazing angles
+// (F90), as KHR_materials_specular defines them: the dielectric values s.f0
+// and s.f90 (0.04 and 1 without the extension) for dielectrics, the albedo
+// and 1 for metals. F90 is written f90 + (1 - f90) metallic so that the
+// default (f90 = 1) is exactly 1.
+vec3 surfaceF0(Surface s) { return mix(s.f0, s.albedo, s.metallic); }
+float surfaceF90(Surface s) { return s.f90 + (1.0 - s.f90) * s.metallic; }
+
+// Cook-Torrance: GGX distribution, Smith geometry, Schlick Fresnel from F0
+// to F90 (surfaceF0, surfaceF90), kD = (1 - F)(1 - metallic).
+vec3 cookTorrance(vec3 N, vec3 V, vec3 L, vec3 radiance, vec3 albedo, float metallic, float roughness, vec3 F0,
+                  float F90) {
   vec3 H = halfVector(L, V, N);
   float NdotL = max(dot(N, L), 0.0);
   float NdotV = max(dot(N, V), 0.0);
-  vec3 F0 = mix(vec3(0.04), albedo, metallic);
   float D = distributionGGX(max(dot(N, H), 0.0), roughness);
   float G = geometrySchlickGGX(NdotV, roughness) * geometrySchlickGGX(NdotL, roughness);
-  vec3 F = fresnelSchlick(max(dot(H, V), 0.0), F0);
+  vec3 F = fresnelSchlick(max(dot(H, V), 0.0), F0, F90);
   vec3 specular = D * G * F / max(4.0 * NdotV * NdotL, 0.001);
   vec3 kD = (vec3(1.0) - F) * (1.0 - metallic);
   return (kD * albedo / PI + specular) * radiance * NdotL;
@@ -81,7 +89,7 @@ vec3 cookTorrance(vec3 N, vec3 V, vec3 L, vec3 radiance, vec3 albedo, float meta
 
 vec3 shade(vec3 N, vec3 V, vec3 L, vec3 radiance, Surface s) {
 #if defined(LIGHTING_COOK_TORRANCE)
-  return cookTorrance(N, V, L, radiance, s.albedo, s.metallic, s.roughness);
+  return cookTorrance(N, V, L, radiance, s.albedo, s.metallic, s.roughness, surfaceF0(s), surfaceF90(s));
 #else
   return blinnPhong(N, V, L, radiance, s.albedo, s.specular);
 #endif
@@ -107,3 +115,8 @@ vec3 shadeDirectionalLight(Surface s, vec3 V) {
 }
 
 vec3 ambientTerm(Surface s) { return u_ambient.rgb * s.albedo * s.ao; }
+
+// Light the surface emits (glTF emissive; unlit materials' base colour):
+// added once per pixel, after the lights, before tone mapping, by whichever
+// pass adds ambientTerm.
+vec3 emissiveTerm(Surface s) { return s.emissive; }

@@ -6,6 +6,10 @@ layout(binding = 0) uniform sampler2D u_baseColorTex;
 layout(binding = 1) uniform sampler2D u_metallicRoughnessTex;
 layout(binding = 2) uniform sampler2D u_normalTex;
 layout(binding = 3) uniform sampler2D u_occlusionTex;
+// White when the material has none (GpuScene binds a 1x1 white texture).
+layout(binding = 4) uniform sampler2D u_emissiveTex;       // sRGB
+layout(binding = 11) uniform sampler2D u_specularTex;      // linear, A
+layout(binding = 12) uniform sampler2D u_specularColorTex;  // sRGB, RGB
 
 uniform vec4 u_baseColorFactor;
 uniform float u_metallicFactor;
@@ -15,6 +19,10 @@ uniform float u_normalScale;
 uniform float u_occlusionStrength;
 uniform float u_alphaCutoff;
 uniform int u_alphaMode;  // 0 opaque, 1 mask, 2 blend
+uniform vec3 u_emissive;  // emissiveFactor x KHR_materials_emissive_strength
+uniform vec3 u_specularColorFactor;  // KHR_materials_specular
+uniform float u_specularFactor;
+uniform int u_unlit;  // KHR_materials_unlit
 uniform int u_hasBaseColorTex;
 uniform int u_hasMetallicRoughnessTex;
 uniform int u_hasNormalTex;
@@ -64,6 +72,22 @@ Surface materialSurface(vec3 viewDir, out float alpha, out bool discarded) {
   }
 #endif
   s.normal = N;
+  s.emissive = u_emissive * texture(u_emissiveTex, fs.uv).rgb;
+  // KHR_materials_specular's dielectric F0 and F90 (lighting.glsl's surfaceF0
+  // and surfaceF90 mix in the metals).
+  s.f90 = u_specularFactor * texture(u_specularTex, fs.uv).a;
+  s.f0 = min(vec3(0.04) * u_specularColorFactor * texture(u_specularColorTex, fs.uv).rgb, vec3(1.0)) * s.f90;
+  if (u_unlit != 0) {
+    // Unlit: the base colour (with whatever materialBaseColor multiplies in,
+    // vertex colours included) is all the pixel shows. It goes out as light
+    // of its own; nothing reflects, so every lighting method adds exactly it.
+    s.emissive = base.rgb;
+    s.albedo = vec3(0.0);
+    s.specular = 0.0;
+    s.metallic = 0.0;
+    s.f0 = vec3(0.0);
+    s.f90 = 0.0;
+  }
   s.covered = true;
   return s;
 }

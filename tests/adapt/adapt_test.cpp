@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "rgraph/adapt.h"
 #include "rgraph/config.h"
@@ -167,8 +168,10 @@ TEST(AdaptToScene, OneMetallicRoughnessDropsTheMaterialTarget) {
   EXPECT_TRUE(resourceNamed(a.planBefore, "gMetalRough").physical.valid());
   EXPECT_FALSE(resourceNamed(a.planAfter, "gMetalRough").physical.valid());
   EXPECT_FALSE(resourceNamed(a.planAfter, "gMetalRough").firstPass.valid());
-  // PBR layout: 4 x rgba16f + depth32f = 36 bytes; without the material target 28.
-  EXPECT_EQ(gbufferBytesPerPixel(a.before, a.planBefore, PassRegistry::builtins()), 36u);
+  // PBR layout: 4 x rgba16f + depth32f = 36 bytes, + the optional emissive and
+  // reflectance targets (rgba16f each) as shipped = 52; this scene needs
+  // neither, nor the material target: 28.
+  EXPECT_EQ(gbufferBytesPerPixel(a.before, a.planBefore, PassRegistry::builtins()), 52u);
   EXPECT_EQ(gbufferBytesPerPixel(a.after, a.planAfter, PassRegistry::builtins()), 28u);
   // The lighting pass gets the scene's values instead.
   const size_t lighting = 1;
@@ -204,9 +207,60 @@ TEST(AdaptToScene, NormalMapsAreAFeatureOfTheScene) {
 TEST(AdaptToScene, TheLearnOpenGLSceneNeedsEverythingItsPipelineHas) {
   Adapted a = adapt("deferred-light-volumes.json", makeLearnOpenGLScene());
   for (const auto& p : a.planAfter.passes) EXPECT_FALSE(p.culled) << p.name;
-  // learnopengl layout has no material target to drop.
+  // learnopengl layout has no material target to drop; the scene emits no
+  // light: only the emissive target (r11g11b10f, 4 bytes) goes.
   EXPECT_EQ(gbufferBytesPerPixel(a.before, a.planBefore, PassRegistry::builtins()),
-            gbufferBytesPerPixel(a.after, a.planAfter, PassRegistry::builtins()));
+            gbufferBytesPerPixel(a.after, a.planAfter, PassRegistry::builtins()) + 4u);
+}
+
+// The optional G-buffer targets (gbuffer_layout.cpp): a scene with no
+// emitting material gets no emissive target, one with an emitting material
+// keeps it; likewise reflectance for KHR_materials_specular.
+TEST(AdaptToScene, EmissiveAndReflectanceTargetsFollowTheScene) {
+  Scene plain = cubeScene();
+  ASSERT_FALSE(sceneFeatures(plain).emissive);
+  ASSERT_FALSE(sceneFeatures(plain).reflectance);
+  Adapted a = adapt("deferred-pbr.json", plain);
+  EXPECT_TRUE(resourceNamed(a.planBefore, "gEmissive").physical.valid());
+  EXPECT_FALSE(resourceNamed(a.planAfter, "gEmissive").physical.valid());
+  EXPECT_FALSE(resourceNamed(a.planAfter, "gReflectance").physical.valid());
+  for (size_t i : {size_t(0), size_t(1)}) {  // geometry and lighting: off, slot unbound
+    EXPECT_FALSE(a.after.params[i].getBool("emissive", true)) << a.after.graph.passes[i].name;
+    for (const auto& use : a.after.graph.passes[i].uses) EXPECT_NE(use.slot, "emissive");
+  }
+
+  Scene glowing = cubeScene();
+  glowing.materials[0].emissiveFactor = {2.0f, 1.0f, 0.5f};
+  ASSERT_TRUE(sceneFeatures(glowing).emissive);
+  Adapted e = adapt("deferred-pbr.json", glowing);
+  EXPECT_TRUE(resourceNamed(e.planAfter, "gEmissive").physical.valid());
+  EXPECT_FALSE(resourceNamed(e.planAfter, "gReflectance").physical.valid());
+  // 28 (one metallic/roughness: no material target) + 8 (rgba16f emissive).
+  const uint32_t withEmissive = gbufferBytesPerPixel(e.after, e.planAfter, PassRegistry::builtins());
+  EXPECT_EQ(withEmissive, 36u);
+
+  Scene specular = cubeScene();
+  specular.materials[0].specularFactor = 0.5f;
+  ASSERT_TRUE(sceneFeatures(specular).reflectance);
+  Adapted r = adapt("deferred-pbr.json", specular);
+  EXPECT_FALSE(resourceNamed(r.planAfter, "gEmissive").physical.valid());
+  EXPECT_TRUE(resourceNamed(r.planAfter, "gReflectance").physical.valid());
+
+  // Unlit materials emit their base colour and reflect nothing: both targets.
+  Scene unlit = cubeScene();
+  unlit.materials[0].unlit = true;
+  EXPECT_TRUE(sceneFeatures(unlit).emissive);
+  EXPECT_TRUE(sceneFeatures(unlit).reflectance);
+
+  // compact: r11g11b10f emissive (4 bytes), rgba8 reflectance (4 bytes).
+  Adapted c = adapt("deferred-compact.json", glowing);
+  Adapted cp = adapt("deferred-compact.json", plain);
+  const uint32_t compactWith = gbufferBytesPerPixel(c.after, c.planAfter, PassRegistry::builtins());
+  const uint32_t compactWithout = gbufferBytesPerPixel(cp.after, cp.planAfter, PassRegistry::builtins());
+  std::printf("[ measure  ] G-buffer bytes per pixel: pbr %u without emissive, %u with; compact %u, %u\n",
+              gbufferBytesPerPixel(a.after, a.planAfter, PassRegistry::builtins()), withEmissive, compactWithout,
+              compactWith);
+  EXPECT_EQ(compactWith, compactWithout + 4u);
 }
 
 }  // namespace

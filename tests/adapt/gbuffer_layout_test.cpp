@@ -26,6 +26,7 @@ using nlohmann::json;
 std::string pipelineFor(const gbuffer::Layout& layout) {
   json res = json::object(), gOut = json::object(), gIn = json::object();
   for (const auto& t : layout.targets) {
+    if (t.optional) continue;
     res["g_" + t.slot] = {{"format", formatName(t.format)}, {"size", "output"}};
     gOut[t.slot] = gIn[t.slot] = "g_" + t.slot;
   }
@@ -97,7 +98,9 @@ TEST(GBufferLayoutTable, TheGeometryPassDeclaresWhatTheTableWrites) {
     for (const auto& slot : gbuffer::colorSlots()) {
       const SlotDecl* decl = geometry->findSlot(slot);
       const bool everyLayout = std::all_of(gbuffer::layouts().begin(), gbuffer::layouts().end(),
-                                           [&](const gbuffer::Layout& l) { return l.writes(slot); });
+                                           [&](const gbuffer::Layout& l) {
+                                             return l.writes(slot) && !l.target(slot)->optional;
+                                           });
       EXPECT_EQ(decl->required, everyLayout) << slot;
       if (const gbuffer::Target* t = layout.target(slot)) {
         EXPECT_TRUE(decl->formats.empty() || std::count(decl->formats.begin(), decl->formats.end(), t->format))

@@ -42,11 +42,15 @@ std::string code(std::string_view s) { return "`" + std::string(s) + "`"; }
 std::string gbufferLayouts() {
   std::string out;
   for (const auto& l : rgraph::gbuffer::layouts()) {
+    std::string optional;
+    for (const auto& t : l.targets)
+      if (t.optional) optional += " + " + std::to_string(l.optionalBytesPerPixel(t.slot)) + " " + t.slot;
     out += "\n`" + l.name + "` (define `" + l.define + "`, " + std::to_string(l.bytesPerPixel()) +
-           " bytes per pixel" + (l.positionFromDepth ? ", no position target" : "") + "):\n\n";
+           " bytes per pixel" + optional + (l.positionFromDepth ? ", no position target" : "") + "):\n\n";
     out += "| slot | format | holds |\n|---|---|---|\n";
     for (const auto& t : l.targets)
-      out += "| " + code(t.slot) + " | " + code(rgraph::formatName(t.format)) + " | " + t.stores + " |\n";
+      out += "| " + code(t.slot) + (t.optional ? " (optional)" : "") + " | " + code(rgraph::formatName(t.format)) +
+             " | " + t.stores + " |\n";
     out += "| " + code("depth") + " | " + code(rgraph::formatName(l.depth)) + " | " + l.depthStores + " |\n";
   }
   return out + "\n";

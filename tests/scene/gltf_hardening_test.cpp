@@ -265,6 +265,45 @@ TEST_F(GltfHardening, MaterialsSpecularMapsOntoTheBlinnPhongSpecular) {
   EXPECT_FLOAT_EQ(s.materials[4].specular, 0.15f);  // 0.5 * 0.5 * 0.6
   EXPECT_EQ(s.materials[5].specular, 0.0f);
   EXPECT_EQ(s.materials[6].specular, 1.0f);  // capped
+  // Cook-Torrance's inputs (Material, include/lighting.glsl's surfaceF0/F90): the factors as given.
+  EXPECT_EQ(s.materials[0].specularFactor, 1.0f);
+  EXPECT_EQ(s.materials[0].specularColorFactor, glm::vec3(1.0f));
+  EXPECT_FALSE(s.materials[1].nonDefaultReflectance());
+  EXPECT_FLOAT_EQ(s.materials[2].specularFactor, 0.4f);
+  EXPECT_EQ(s.materials[4].specularColorFactor, glm::vec3(0.2f, 0.6f, 0.4f));
+  EXPECT_EQ(s.materials[6].specularColorFactor, glm::vec3(4.0f));
+  EXPECT_TRUE(s.materials[6].nonDefaultReflectance());
+}
+
+// SpecularTest's texture rows: specularTexture (linear, A) and
+// specularColorTexture (sRGB) are read, not ignored.
+TEST_F(GltfHardening, MaterialsSpecularTexturesAreRead) {
+  const Scene s = loadGltf(scenetest::asset("SpecularTest/SpecularTest.glb"));
+  auto named = [&](const std::string& n) -> const Material& {
+    for (const Material& m : s.materials)
+      if (m.name == n) return m;
+    throw std::runtime_error("no material " + n);
+  };
+  const Material& tex = named("M2_SpecTex");
+  ASSERT_TRUE(tex.specularTexture.valid());
+  EXPECT_FALSE(s.images[static_cast<size_t>(s.textures[static_cast<size_t>(tex.specularTexture.texture)].image)].srgb);
+  const Material& color = named("M4_whiteTex");
+  ASSERT_TRUE(color.specularColorTexture.valid());
+  EXPECT_TRUE(
+      s.images[static_cast<size_t>(s.textures[static_cast<size_t>(color.specularColorTexture.texture)].image)].srgb);
+}
+
+// KHR_materials_unlit, even when required (UnlitTest): accepted, the
+// materials marked unlit with nothing left to shade them.
+TEST_F(GltfHardening, MaterialsUnlitIsAccepted) {
+  const Scene s = loadGltf(scenetest::asset("UnlitTest/UnlitTest.glb"));
+  ASSERT_EQ(s.materials.size(), 2u);
+  for (const Material& m : s.materials) {
+    EXPECT_TRUE(m.unlit) << m.name;
+    EXPECT_EQ(m.metallicFactor, 0.0f);
+    EXPECT_TRUE(m.emits());
+    EXPECT_TRUE(m.nonDefaultReflectance());
+  }
 }
 
 // ------------------------------------------------------------ from memory

@@ -33,7 +33,7 @@ const std::vector<std::string> kAll = {
     "EXT_mesh_gpu_instancing ignored: one instance drawn",
     "KHR_texture_transform ignored: textures untransformed",
     "TEXCOORD_1 ignored:",
-    "emissive ignored: not drawn",
+    "emissive ignored",  // drawn since issue 29: never warned
     "KHR_materials_clearcoat ignored:",
     "KHR_materials_transmission ignored:",
     "KHR_materials_sheen ignored:",
@@ -41,7 +41,8 @@ const std::vector<std::string> kAll = {
     "KHR_materials_volume ignored:",
     "KHR_materials_iridescence ignored:",
     "KHR_draco_mesh_compression ignored:",
-    "KHR_materials_specular textures ignored: the specular strength comes from the factors only",
+    "KHR_materials_specular textures ignored",  // read since issue 29
+    "KHR_materials_unlit ignored",              // drawn since issue 29
 };
 
 // Loads `file`, then checks each of `expected` is logged exactly once and
@@ -72,10 +73,11 @@ TEST(GltfIgnored, SamplesWarnOncePerIgnoredFeature) {
   expectIgnored("MorphPrimitivesTest/MorphPrimitivesTest.glb",
                 {"morph targets ignored: drawn undeformed (default weights not applied)"});
   expectIgnored("AnimatedCube/AnimatedCube.gltf", {"animations ignored: drawn at rest"});
-  expectIgnored("EmissiveStrengthTest/EmissiveStrengthTest.glb", {"emissive ignored: not drawn"});
-  expectIgnored("SpecularTest/SpecularTest.glb",
-                {"KHR_materials_specular textures ignored: the specular strength comes from the factors only"});
-  // Without any of them.
+  // Without any of them (emissive, KHR_materials_specular and its textures,
+  // KHR_materials_unlit are drawn).
+  expectIgnored("EmissiveStrengthTest/EmissiveStrengthTest.glb", {});
+  expectIgnored("SpecularTest/SpecularTest.glb", {});
+  expectIgnored("UnlitTest/UnlitTest.glb", {});
   expectIgnored("TextureCoordinateTest/TextureCoordinateTest.glb", {});
   expectIgnored("Box/Box.glb", {});
   expectIgnored("MeshPrimitiveModes/MeshPrimitiveModes.gltf", {});

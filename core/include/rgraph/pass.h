@@ -91,6 +91,12 @@ struct SceneFeatures {
   bool lightMarkers = true;
   float markerSizeLimit = std::numeric_limits<float>::infinity();
   static constexpr float kMarkerScale = 1.0f / 40.0f;
+  // Some drawn material emits light (Material::emits): the G-buffer carries
+  // an emissive target.
+  bool emissive = true;
+  // Some drawn material has non-default reflectance (Material::nonDefaultReflectance):
+  // the G-buffer carries a reflectance target.
+  bool reflectance = true;
 
   // Shadows (passes/shadow_map): which lights a shadow pipeline should give
   // maps, from the scene's lights, its casters and the camera it is seen from.

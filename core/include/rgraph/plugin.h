@@ -65,7 +65,8 @@
 // rules), rgraph/format_sets.h.
 // 7: SceneFeatures's shadow facts (shadowCasters, shadowLights,
 // unshadowedLights), PassAdaptation::expand and ::reshape (ExpandedPass).
-// 8: SceneFeatures's light-marker facts (lightMarkers, markerSizeLimit),
+// 8: SceneFeatures's light-marker facts (lightMarkers, markerSizeLimit), emissive and
+// reflectance (optional G-buffer targets),
 // PointLight::marker.
 #define RGRAPH_PLUGIN_ABI_VERSION 8u
 

@@ -160,6 +160,16 @@ struct Material {
   TextureRef normalTexture;             // linear, tangent space
   TextureRef occlusionTexture;          // linear, R
   TextureRef emissiveTexture;           // sRGB
+  // KHR_materials_specular, as the extension defines it for the PBR model:
+  // dielectric F0 = min(0.04 * specularColorFactor * specularColorTexture.rgb, 1)
+  //                 * specularFactor * specularTexture.a, F90 = specularFactor * specularTexture.a.
+  glm::vec3 specularColorFactor{1.0f};
+  float specularFactor = 1.0f;
+  TextureRef specularTexture;       // linear, A
+  TextureRef specularColorTexture;  // sRGB, RGB
+  // KHR_materials_unlit: drawn as its base colour, no light (the lighting
+  // passes see emissive = base colour, albedo 0, no specular).
+  bool unlit = false;
   float normalScale = 1.0f;
   float occlusionStrength = 1.0f;
   AlphaMode alphaMode = AlphaMode::opaque;
@@ -170,6 +180,14 @@ struct Material {
   float specular = 0.5f;
 
   bool hasNormalMap() const { return normalTexture.valid(); }
+  // Light of its own: an emissive factor above zero, or unlit.
+  bool emits() const { return unlit || emissiveFactor != glm::vec3(0.0f); }
+  // Reflectance other than the PBR default (F0 0.04, F90 1): KHR_materials_specular
+  // factors or textures, or unlit (no reflection at all).
+  bool nonDefaultReflectance() const {
+    return unlit || specularFactor != 1.0f || specularColorFactor != glm::vec3(1.0f) || specularTexture.valid() ||
+           specularColorTexture.valid();
+  }
 };
 
 // ---------------------------------------------------------------- draws

@@ -75,7 +75,7 @@ void detail::fillSceneMembers(FrameBlock& f, const Scene& scene) {
 struct GpuScene::Locations {
   int model, prevModel, normalMatrix, baseColorFactor, metallicFactor, roughnessFactor, specular, normalScale,
       occlusionStrength, alphaCutoff, alphaMode, emissive, hasBaseColorTex, hasMetallicRoughnessTex, hasNormalTex,
-      hasOcclusionTex;
+      hasOcclusionTex, specularColorFactor, specularFactor, unlit;
 };
 
 GpuScene::GpuScene(const Scene& scene) : scene_(scene), uploadedIn_(gl::currentContext()) {
@@ -335,7 +335,8 @@ const GpuScene::Locations& GpuScene::locations(uint32_t program) const {
                    get("u_baseColorFactor"), get("u_metallicFactor"),   get("u_roughnessFactor"), get("u_specular"),
                    get("u_normalScale"),     get("u_occlusionStrength"), get("u_alphaCutoff"),
                    get("u_alphaMode"),       get("u_emissive"),         get("u_hasBaseColorTex"),
-                   get("u_hasMetallicRoughnessTex"), get("u_hasNormalTex"), get("u_hasOcclusionTex")};
+                   get("u_hasMetallicRoughnessTex"), get("u_hasNormalTex"), get("u_hasOcclusionTex"),
+                   get("u_specularColorFactor"), get("u_specularFactor"), get("u_unlit")};
   // clang-format on
   return *locations_.emplace(program, std::move(loc)).first->second;
 }
@@ -352,6 +353,9 @@ void GpuScene::bindMaterial(uint32_t program, int materialIndex) const {
   glProgramUniform1f(program, loc.alphaCutoff, m.alphaCutoff);
   glProgramUniform1i(program, loc.alphaMode, static_cast<int>(m.alphaMode));
   glProgramUniform3fv(program, loc.emissive, 1, glm::value_ptr(m.emissiveFactor));
+  glProgramUniform3fv(program, loc.specularColorFactor, 1, glm::value_ptr(m.specularColorFactor));
+  glProgramUniform1f(program, loc.specularFactor, m.specularFactor);
+  glProgramUniform1i(program, loc.unlit, m.unlit ? 1 : 0);
 
   auto bind = [&](GLuint unit, const TextureRef& ref, int hasLocation, const gl::Texture& fallback) {
     const bool has = ref.valid() && static_cast<size_t>(ref.texture) < scene_.textures.size() &&
@@ -371,6 +375,9 @@ void GpuScene::bindMaterial(uint32_t program, int materialIndex) const {
   bind(2, m.normalTexture, loc.hasNormalTex, flatNormal_);
   bind(3, m.occlusionTexture, loc.hasOcclusionTex, white_);
   bind(4, m.emissiveTexture, -1, white_);
+  // Units 5..10 are the lighting passes' (include/gbuffer_read.glsl, shadows.glsl).
+  bind(11, m.specularTexture, -1, white_);
+  bind(12, m.specularColorTexture, -1, white_);
 }
 
 size_t GpuScene::primitiveCount(Filter filter) const {

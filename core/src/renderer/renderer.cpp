@@ -48,8 +48,9 @@ std::vector<std::pair<int, uint32_t>> shadowSet(const SceneFeatures& f) {
 bool sameFeatures(const SceneFeatures& a, const SceneFeatures& b) {
   return a.pointLights == b.pointLights && a.blendMaterials == b.blendMaterials && a.normalMaps == b.normalMaps &&
          a.metallicRoughnessVariation == b.metallicRoughnessVariation && a.metallic == b.metallic &&
-         a.roughness == b.roughness && a.lightMarkers == b.lightMarkers &&
-         a.markerSizeLimit == b.markerSizeLimit && a.shadowCasters == b.shadowCasters && shadowSet(a) == shadowSet(b);
+         a.roughness == b.roughness && a.lightMarkers == b.lightMarkers && a.markerSizeLimit == b.markerSizeLimit &&
+         a.emissive == b.emissive && a.reflectance == b.reflectance && a.shadowCasters == b.shadowCasters &&
+         shadowSet(a) == shadowSet(b);
 }
 
 }  // namespace

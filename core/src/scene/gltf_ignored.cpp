@@ -3,7 +3,6 @@
 // in scenes/README.md lists every feature). Draco compression is looked for
 // before tinygltf parses the file: tinygltf fails on a compressed primitive's
 // accessors (they have no buffer view) without naming the extension.
-#include <algorithm>
 #include <string>
 #include <utility>
 
@@ -34,7 +33,6 @@ constexpr IgnoredExtension kIgnoredExtensions[] = {
     {"KHR_materials_iridescence", "drawn without iridescence"},
     {"KHR_materials_anisotropy", "drawn isotropic"},
     {"KHR_materials_dispersion", "drawn without dispersion"},
-    {"KHR_materials_unlit", "lit like any metallic-roughness material"},
     {"KHR_materials_pbrSpecularGlossiness", "the metallic-roughness values (defaults where absent)"},
     {"KHR_materials_variants", "the default materials"},
 };
@@ -99,9 +97,6 @@ void GltfLoader::warnIgnoredFeatures() {
   for (const tinygltf::Node& n : model_.nodes)
     if (n.extensions.count("EXT_mesh_gpu_instancing")) warnIgnored("EXT_mesh_gpu_instancing", "one instance drawn");
   for (const tinygltf::Material& m : model_.materials) {
-    const bool emissive = m.emissiveTexture.index >= 0 ||
-                          std::any_of(m.emissiveFactor.begin(), m.emissiveFactor.end(), [](double v) { return v != 0.0; });
-    if (emissive) warnIgnored("emissive", "not drawn");
     const tinygltf::TextureInfo& base = m.pbrMetallicRoughness.baseColorTexture;
     const tinygltf::TextureInfo& mr = m.pbrMetallicRoughness.metallicRoughnessTexture;
     const std::pair<int, int> refs[] = {{base.index, base.texCoord},

@@ -112,7 +112,9 @@ class GltfLoader {
   float checkedNumber(double v, float lo, float hi, const std::string& pointer);
   template <size_t N>
   glm::vec<N, float> checkedFactor(const std::vector<double>& v, float lo, float hi, const std::string& pointer);
-  float specularFromExtension(const tinygltf::Value& ext, const std::string& pointer);
+  // Fills out's KHR_materials_specular fields and its Blinn-Phong specular.
+  void specularFromExtension(const tinygltf::Value& ext, const std::string& pointer, const std::string& what,
+                             Material& out);
 
   // ------------------------------------------------ state
   const unsigned char* data_;

@@ -198,7 +198,7 @@ void GltfLoader::checkAsset() {
   for (size_t i = 0; i < model_.extensionsRequired.size(); ++i) {
     const std::string& ext = model_.extensionsRequired[i];
     if (ext != "KHR_lights_punctual" && ext != "KHR_materials_emissive_strength" && ext != "KHR_materials_specular" &&
-        ext != "KHR_mesh_quantization")
+        ext != "KHR_materials_unlit" && ext != "KHR_mesh_quantization")
       failAt("/extensionsRequired/" + std::to_string(i), "requires the unsupported extension " + ext);
   }
   if (model_.lights.size() > kMaxSceneLights)

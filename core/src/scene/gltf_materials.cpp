@@ -201,38 +201,50 @@ glm::vec<N, float> GltfLoader::checkedFactor(const std::vector<double>& v, float
   return out;
 }
 
-// KHR_materials_specular scales the dielectric reflectance of the PBR model
-// (F0 = 0.04 * specularColorFactor * specularFactor). The Blinn-Phong path has
-// one number instead, Material::specular: the strength of the highlight, 0.5
-// when a source says nothing. The mapping keeps that anchor:
+// KHR_materials_specular, as the extension defines it for the PBR model
+// (Material: dielectric F0 = min(0.04 * colour factor * colour texture, 1) *
+// factor * texture.a, F90 = factor * texture.a; include/lighting.glsl's
+// surfaceF0/surfaceF90). The Blinn-Phong path has one number instead,
+// Material::specular: the strength of the highlight, 0.5 when a source says
+// nothing. The mapping keeps that anchor:
 //   specular = 0.5 * specularFactor * max(specularColorFactor), clamped to [0, 1]
 // so the extension's defaults (1, [1, 1, 1]) look like a file without it,
 // specularFactor 0 (no specular reflection) gives no highlight, and the
-// brightest channel of a tinted specular colour sets the strength. The
-// extension's textures are not read (a warning says so).
-float GltfLoader::specularFromExtension(const tinygltf::Value& ext, const std::string& pointer) {
+// brightest channel of a tinted specular colour sets the strength (Blinn-Phong
+// reads no texture: the factors set it).
+void GltfLoader::specularFromExtension(const tinygltf::Value& ext, const std::string& pointer, const std::string& what,
+                                       Material& out) {
   if (!ext.IsObject()) failAt(pointer, "expected an object");
-  float factor = 1.0f;
   const tinygltf::Value& f = ext.Get("specularFactor");
   if (f.Type() != tinygltf::NULL_TYPE) {
     if (!f.IsNumber()) failAt(pointer + "/specularFactor", "expected a number");
-    factor = checkedNumber(f.GetNumberAsDouble(), 0.0f, 1.0f, pointer + "/specularFactor");
+    out.specularFactor = checkedNumber(f.GetNumberAsDouble(), 0.0f, 1.0f, pointer + "/specularFactor");
   }
-  float color = 1.0f;
   const tinygltf::Value& c = ext.Get("specularColorFactor");
   if (c.Type() != tinygltf::NULL_TYPE) {
     const std::string cp = pointer + "/specularColorFactor";
     if (!c.IsArray() || c.ArrayLen() != 3) failAt(cp, "expected an array of 3 numbers");
-    color = 0.0f;
     for (int i = 0; i < 3; ++i) {
       const tinygltf::Value& e = c.Get(i);
       if (!e.IsNumber()) failAt(cp + "/" + std::to_string(i), "expected a number");
-      color = std::max(color, checkedNumber(e.GetNumberAsDouble(), 0.0f, kInf, cp + "/" + std::to_string(i)));
+      out.specularColorFactor[i] = checkedNumber(e.GetNumberAsDouble(), 0.0f, kInf, cp + "/" + std::to_string(i));
     }
   }
-  for (const char* texture : {"specularTexture", "specularColorTexture"})
-    if (ext.Has(texture)) warnIgnored("KHR_materials_specular textures", "the specular strength comes from the factors only");
-  return std::clamp(0.5f * factor * color, 0.0f, 1.0f);
+  auto texture = [&](const char* name, bool srgb) {
+    const tinygltf::Value& t = ext.Get(name);
+    if (t.Type() == tinygltf::NULL_TYPE) return TextureRef{};
+    const std::string tp = pointer + "/" + name;
+    if (!t.IsObject()) failAt(tp, "expected an object");
+    const tinygltf::Value& index = t.Get("index");
+    if (!index.IsInt()) failAt(tp + "/index", "expected an integer");
+    const tinygltf::Value& texCoord = t.Get("texCoord");
+    if (texCoord.Type() != tinygltf::NULL_TYPE && !texCoord.IsInt()) failAt(tp + "/texCoord", "expected an integer");
+    return textureRef(index.GetNumberAsInt(), texCoord.IsInt() ? texCoord.GetNumberAsInt() : 0, srgb, what + " " + name);
+  };
+  out.specularTexture = texture("specularTexture", false);
+  out.specularColorTexture = texture("specularColorTexture", true);
+  const float color = std::max({out.specularColorFactor.r, out.specularColorFactor.g, out.specularColorFactor.b});
+  out.specular = std::clamp(0.5f * out.specularFactor * color, 0.0f, 1.0f);
 }
 
 // ------------------------------------------------------------ materials
@@ -259,7 +271,7 @@ Material GltfLoader::convertMaterial(size_t index) {
     }
   }
   if (auto it = m.extensions.find("KHR_materials_specular"); it != m.extensions.end())
-    out.specular = specularFromExtension(it->second, ptr + "/extensions/KHR_materials_specular");
+    specularFromExtension(it->second, ptr + "/extensions/KHR_materials_specular", what, out);
   out.baseColorTexture = textureRef(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, true, what + " baseColorTexture");
   out.metallicRoughnessTexture = textureRef(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, false,
                                             what + " metallicRoughnessTexture");
@@ -279,6 +291,15 @@ Material GltfLoader::convertMaterial(size_t index) {
   }
   out.alphaCutoff = checkedNumber(m.alphaCutoff, 0.0f, 1.0f, ptr + "/alphaCutoff");
   out.doubleSided = m.doubleSided;
+  if (m.extensions.count("KHR_materials_unlit")) {
+    // Unlit: the base colour is all that is drawn (include/material.glsl).
+    // What would shade it goes: a constant metallic 0 / roughness 1 keeps the
+    // G-buffer's material target out of scenes that need it for nothing else.
+    out.unlit = true;
+    out.metallicFactor = 0.0f;
+    out.roughnessFactor = 1.0f;
+    out.metallicRoughnessTexture = out.normalTexture = out.occlusionTexture = TextureRef{};
+  }
   return out;
 }
 

@@ -236,7 +236,8 @@ bool Scene::hasNormalMaps() const {
 bool Scene::hasTextures() const {
   for (const Material* m : usedMaterials(*this))
     if (m->baseColorTexture.valid() || m->metallicRoughnessTexture.valid() || m->normalTexture.valid() ||
-        m->occlusionTexture.valid() || m->emissiveTexture.valid())
+        m->occlusionTexture.valid() || m->emissiveTexture.valid() || m->specularTexture.valid() ||
+        m->specularColorTexture.valid())
       return true;
   return false;
 }
@@ -484,6 +485,8 @@ void Scene::validate() const {
     checkRef(m.normalTexture, i, "normal");
     checkRef(m.occlusionTexture, i, "occlusion");
     checkRef(m.emissiveTexture, i, "emissive");
+    checkRef(m.specularTexture, i, "specular");
+    checkRef(m.specularColorTexture, i, "specular colour");
   }
   for (size_t i = 0; i < textures.size(); ++i)
     if (textures[i].image < 0 || size_t(textures[i].image) >= images.size())
@@ -514,6 +517,8 @@ void appendScene(Scene& dst, Scene src, const glm::mat4& transform) {
     rebase(m.normalTexture);
     rebase(m.occlusionTexture);
     rebase(m.emissiveTexture);
+    rebase(m.specularTexture);
+    rebase(m.specularColorTexture);
     dst.materials.push_back(std::move(m));
   }
   for (SceneTexture& t : src.textures) {

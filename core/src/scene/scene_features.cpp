@@ -118,6 +118,12 @@ SceneFeatures sceneFeatures(const Scene& scene, const Camera& camera, float aspe
   f.lightMarkers = std::any_of(scene.pointLights.begin(), scene.pointLights.end(),
                                [](const PointLight& l) { return l.marker; });
   if (const Bounds b = scene.bounds(); !b.empty()) f.markerSizeLimit = b.radius() * SceneFeatures::kMarkerScale;
+  f.emissive = f.reflectance = false;
+  for (const auto& p : scene.primitives) {
+    if (p.material < 0 || static_cast<size_t>(p.material) >= scene.materials.size()) continue;
+    f.emissive = f.emissive || scene.materials[p.material].emits();
+    f.reflectance = f.reflectance || scene.materials[p.material].nonDefaultReflectance();
+  }
   f.shadowCasters = scene.hasShadowCasters();
   addLightFacts(scene, camera, aspect, f);
   return f;

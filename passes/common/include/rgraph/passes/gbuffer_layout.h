@@ -24,6 +24,11 @@ struct Target {
   std::string slot;    // the geometry pass's output slot, the readers' input slot
   Format format;       // the format rgraph bench declares (geometry accepts others)
   std::string stores;  // what gbuffer.frag writes there
+  // Written only for scenes that need it: the geometry pass and its readers
+  // have a boolean parameter named as the slot (emissive, reflectance), on in
+  // the shipped pipelines and turned off with the slot unbound by scene
+  // adaptation when no drawn material needs it (lighting::adaptGBuffer).
+  bool optional = false;
 };
 
 struct Layout {
@@ -38,15 +43,26 @@ struct Layout {
 
   const Target* target(std::string_view slot) const;
   bool writes(std::string_view slot) const { return target(slot) != nullptr; }
-  // The targets' and the depth's bytes per pixel, one sample each.
+  // The targets' and the depth's bytes per pixel, one sample each, without
+  // the optional targets (what a scene with none of their features gets).
   uint32_t bytesPerPixel() const;
+  // What the optional target of `slot` adds per pixel (0: the layout has none).
+  uint32_t optionalBytesPerPixel(std::string_view slot) const;
   // Where a reader gets the position: "position", or "depth" to rebuild it.
   std::string positionSlot() const { return positionFromDepth ? "depth" : "position"; }
   // The slots a reader of this layout needs bound, in the order their errors
   // are reported: normal, albedo, positionSlot(), and material when the layout
   // writes one and the material is not constant.
   std::vector<std::string> readerSlots(bool constantMaterial) const;
+  // Whether a pass with these params writes (geometry) or reads (lighting)
+  // `slot`: the layout has it, material unless constant_material, an optional
+  // target when its parameter is on.
+  bool uses(std::string_view slot, const ParamSet& params) const;
 };
+
+// The optional targets' slots, in slot order (emissive, reflectance): each is
+// also a boolean parameter of the geometry pass and its readers.
+std::vector<std::string> optionalSlots();
 
 inline constexpr std::string_view kDefaultLayout = "pbr";
 
