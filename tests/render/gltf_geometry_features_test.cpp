@@ -121,8 +121,9 @@ bool uniformAround(const Scene& scene, const Hit& h, const TextureRef& ref, glm:
 
 // ---------------------------------------------------------------- COLOR_0
 
-// VertexColorTest: each pixel of its coloured mesh (away from texel edges and
-// from triangles whose corners differ in colour) has the class of texel times
+// VertexColorTest: each pixel of its coloured mesh where the vertex colour is
+// not white (away from texel edges and from triangles whose corners differ
+// in colour) has the class of texel times
 // vertex colour: the checks red, green and blue, their "fail" marks (where
 // the vertex colour is black) dark. Without vertex colours the texture alone
 // shows (white checks, visible marks).
@@ -141,6 +142,7 @@ TEST_P(GltfGeometryFeatures, VertexColorTestMultipliesTheBaseColourByTheVertexCo
       if (!mesh.hasColors() || !mat.baseColorTexture.valid()) continue;
       const glm::vec4 c = mesh.colors[h->v[0]];
       if (mesh.colors[h->v[1]] != c || mesh.colors[h->v[2]] != c) continue;
+      if (c == glm::vec4(1.0f)) continue;  // white: the texture alone either way
       const glm::ivec3 texel = texelAt(scene, *h, mat.baseColorTexture);
       if (!uniformAround(scene, *h, mat.baseColorTexture, texel)) continue;
       const glm::ivec3 want(glm::vec3(texel) * glm::vec3(c));
@@ -151,11 +153,11 @@ TEST_P(GltfGeometryFeatures, VertexColorTestMultipliesTheBaseColourByTheVertexCo
     }
   }
   const double share = checked ? double(agree) / double(checked) : 0.0;
-  std::printf("[ measure  ] %s: VertexColorTest: %zu of %zu coloured-mesh pixels (%.1f%%) match texture x vertex colour; "
+  std::printf("[ measure  ] %s: VertexColorTest: %zu of %zu pixels of non-white vertex colour (%.1f%%) match texture x vertex colour; "
               "%zu white where a colour belongs\n",
               GetParam(), agree, checked, share * 100.0, white);
-  EXPECT_GT(checked, size_t(kSize.width) * kSize.height / 50) << saveImage(img, "vertex-color");
-  EXPECT_GE(share, 0.97) << saveImage(img, "vertex-color");
+  EXPECT_GT(checked, size_t(kSize.width) * kSize.height / 100) << saveImage(img, "vertex-color");
+  EXPECT_GE(share, 0.99) << saveImage(img, "vertex-color");
   EXPECT_LT(white, checked / 100) << saveImage(img, "vertex-color");
 }
 
@@ -190,14 +192,17 @@ TEST_P(GltfGeometryFeatures, TextureTransformTestMatchesTheTransformedTextures) 
               "%zu yellow\n",
               GetParam(), agree, checked, share * 100.0, yellow);
   EXPECT_GT(checked, size_t(kSize.width) * kSize.height / 10) << "the panels cover too little: " << saveImage(img, "tt");
-  EXPECT_GE(share, 0.97) << saveImage(img, "texture-transform");
+  // Measured 100%; the rotation turned the other way gives 97.1%, no transform 46%.
+  EXPECT_GE(share, 0.995) << saveImage(img, "texture-transform");
   EXPECT_LT(yellow, checked / 100) << saveImage(img, "texture-transform");
 }
 
-// The direction of rotation and scale, against the model's own markers (not
-// the loader's matrix): the arrow drawn on the Rotation and Scale panels ends
-// nearest their "Correct" marker, not at "Not Supported" (untransformed) or
-// "Error" (rotated the other way).
+// The direction of rotation, against the model's own markers (not the
+// loader's matrix, which the test above shares): the arrow drawn on the
+// Rotation panel ends nearest its "Correct" marker, not at "Not Supported"
+// (untransformed) or "Error" (rotated the other way). (The Scale panel's
+// markers do not tell: its untransformed arrow passes its "Correct" marker
+// too; the test above holds the scale.)
 TEST_P(GltfGeometryFeatures, TextureTransformTestArrowsPointAtTheCorrectMarkers) {
   const Scene scene = loadSceneAny(assetPath("gltf/TextureTransformTest/TextureTransformTest.gltf"));
   const Image img = render(pipelineFor(GetParam(), scene), scene, kSize, *shaders);
@@ -206,7 +211,7 @@ TEST_P(GltfGeometryFeatures, TextureTransformTestArrowsPointAtTheCorrectMarkers)
       if (p.name == name) return &p;
     return nullptr;
   };
-  for (const std::string panel : {"Rotation", "Scale"}) {
+  for (const std::string panel : {"Rotation"}) {
     SCOPED_TRACE(panel);
     const Primitive* quad = find(panel);
     ASSERT_NE(quad, nullptr);
