@@ -15,6 +15,8 @@
 #include <filesystem>
 #include <map>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "support/render_util.h"
 #include "rgraph/adapt.h"
 #include "rgraph/scene.h"
@@ -103,6 +105,7 @@ char hue(glm::ivec3 c) {
 }
 
 class GltfGeometryFeatures : public RenderTest, public ::testing::WithParamInterface<const char*> {};
+class GltfInstancedShadows : public RenderTest {};
 
 }  // namespace
 
@@ -334,6 +337,49 @@ TEST_P(GltfGeometryFeatures, SimpleInstancingDrawsEveryInstance) {
   EXPECT_GT(all, 20.0 * cube) << saveImage(img, "instancing");
   EXPECT_GE(inFrame, 100u);
   EXPECT_EQ(onCovered, inFrame) << saveImage(img, "instancing");
+}
+
+// Shadow maps of instanced meshes: SimpleInstancing over a floor, under the
+// default sun, through the shadow pipeline, looks as the same cubes placed
+// one primitive each (world positions differ in the last bits: node * instance
+// is multiplied on the CPU there, in the shader here).
+TEST_F(GltfInstancedShadows, MatchOnePrimitivePerInstance) {
+  Scene scene = loadSceneAny(assetPath("gltf/SimpleInstancing/SimpleInstancing.glb"));
+  const Bounds b = scene.bounds();
+  Scene floor;
+  floor.meshes.push_back(makePlane(b.size().x, b.size().z));
+  floor.materials.push_back(Material{});
+  Primitive fp;
+  fp.mesh = 0;
+  fp.material = 0;
+  fp.transform = glm::translate(glm::mat4(1.0f), glm::vec3(b.center().x, b.min.y - 0.1f * b.size().y, b.center().z));
+  fp.bounds = fp.worldBounds(floor.meshes[0].bounds);
+  floor.primitives.push_back(fp);
+  appendScene(scene, floor);
+  Scene expanded = scene;
+  expanded.primitives.clear();
+  for (const Primitive& p : scene.primitives) {
+    if (p.instances.empty()) expanded.primitives.push_back(p);
+    for (const glm::mat4& m : p.instances) {
+      Primitive q = p;
+      q.instances.clear();
+      q.transform = p.transform * m;
+      q.bounds = q.worldBounds(scene.meshes[size_t(p.mesh)].bounds);
+      expanded.primitives.push_back(q);
+    }
+  }
+  const PipelineConfig cfg = pipelineFor("pipelines/deferred-pbr-shadows.json", scene);
+  const Image a = render(cfg, scene, kSize, *shaders), e = render(cfg, expanded, kSize, *shaders);
+  const ImageDiff d = compareImages(a, e, 8);
+  Scene unshadowed = scene;
+  for (Primitive& p : unshadowed.primitives) p.castShadows = false;
+  const ImageDiff shadows = compareImages(a, render(cfg, unshadowed, kSize, *shaders), 8);
+  std::printf("[ measure  ] SimpleInstancing over a floor with shadows: instanced vs one primitive each: %s; "
+              "against no casters: %zu pixels differ\n",
+              d.describe().c_str(), shadows.over);
+  EXPECT_GT(shadows.over, size_t(kSize.width) * kSize.height / 50) << "no shadows to compare: " << saveImage(a, "inst-shadows");
+  EXPECT_LE(d.over, size_t(kSize.width) * kSize.height / 1000) << saveImage(a, "inst-shadows") << " "
+                                                               << saveImage(e, "inst-shadows-expanded");
 }
 
 INSTANTIATE_TEST_SUITE_P(Pipelines, GltfGeometryFeatures, ::testing::ValuesIn(kPipelines),

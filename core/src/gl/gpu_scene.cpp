@@ -506,7 +506,8 @@ void GpuScene::drawList(uint32_t program, const std::vector<size_t>& order, Cull
     if (hasVertexColors_ && loc.hasVertexColors >= 0) glProgramUniform1i(program, loc.hasVertexColors, mesh.colors ? 1 : 0);
     // Instanced primitives: instance j of view v is GL instance j * views + v
     // (scene.vert), one draw for all of them.
-    const InstanceRange range = instances_ ? instanceRanges_[i] : InstanceRange{};
+    // (Instances are uploaded with the scene: primitives added since draw one instance.)
+    const InstanceRange range = instances_ && i < instanceRanges_.size() ? instanceRanges_[i] : InstanceRange{};
     if (instances_ && loc.instanceRange >= 0)
       glProgramUniform2i(program, loc.instanceRange, static_cast<GLint>(range.count), static_cast<GLint>(range.first));
     const uint32_t instances = views * std::max<uint32_t>(range.count, 1);

@@ -21,7 +21,10 @@
 //                      u_instanceRange (instance count, 0: not instanced; first
 //                      entry of the Instances buffer)
 //   storage buffer 7   Instances: per instance of EXT_mesh_gpu_instancing
-//                      primitives its local matrix and normal matrix (scene.vert)
+//                      primitives its local matrix and normal matrix (scene.vert;
+//                      written at upload: Primitive::instances edited later are not
+//                      seen, a primitive's transform is), bound for scene draws only
+//                      in scenes with instances
 //   texture units      0 base colour, 1 metallic-roughness, 2 normal, 3 occlusion, 4 emissive
 #pragma once
 
