@@ -5,6 +5,10 @@
 // instance * views + view), where every layer shows every instance.
 #include <GL/glcorearb.h>
 
+#include <cstdio>
+#include <memory>
+#include <vector>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gl_test_util.h"
