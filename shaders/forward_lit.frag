@@ -8,6 +8,7 @@
 // shadow defines (include/shadows.glsl: each light times its visibility).
 #include "include/frame.glsl"
 #include "include/gbuffer.glsl"
+#include "include/material_uv.glsl"
 #include "include/material.glsl"
 #include "include/lighting.glsl"
 #include "include/shadows.glsl"

@@ -4,6 +4,7 @@
 // geometry pass declares its slots, counting only the slots a layout binds.
 #include "include/frame.glsl"
 #include "include/gbuffer.glsl"
+#include "include/material_uv.glsl"
 #include "include/material.glsl"
 
 #if defined(GBUFFER_COMPACT)

@@ -1,6 +1,8 @@
 #version 450 core
 // Shadow maps (shadow_map): depth only, no colour output. Alpha-masked
-// materials cut their holes here too, so a masked fence casts a fence.
+// materials cut their holes here too, so a masked fence casts a fence
+// (vertex colours' alpha and the texture's UV transform included).
+#include "include/material_uv.glsl"
 layout(binding = 0) uniform sampler2D u_baseColorTex;
 uniform vec4 u_baseColorFactor;
 uniform float u_alphaCutoff;
@@ -13,10 +15,11 @@ in VS_OUT {
   vec2 uv;
   vec4 tangent;
 } fs;
+in vec4 vs_color;
 
 void main() {
   if (u_alphaMode != 1) return;
-  float alpha = u_baseColorFactor.a;
-  if (u_hasBaseColorTex != 0) alpha *= texture(u_baseColorTex, fs.uv).a;
+  float alpha = u_baseColorFactor.a * vs_color.a;
+  if (u_hasBaseColorTex != 0) alpha *= texture(u_baseColorTex, textureUv(0, fs.uv)).a;
   if (alpha < u_alphaCutoff) discard;
 }

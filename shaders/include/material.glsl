@@ -1,7 +1,8 @@
 // Material inputs of a scene draw (set per draw by GpuScene::drawPrimitives)
 // and the surface they describe at one fragment. Defines: HAS_NORMAL_MAPS
 // (only when the scene has normal maps: otherwise no tangent is read and no
-// normal map sampled).
+// normal map sampled). Textures are sampled at materialUv(unit): their own UV
+// set and KHR_texture_transform (include/material_uv.glsl, included before this file).
 layout(binding = 0) uniform sampler2D u_baseColorTex;
 layout(binding = 1) uniform sampler2D u_metallicRoughnessTex;
 layout(binding = 2) uniform sampler2D u_normalTex;
@@ -34,10 +35,13 @@ in VS_OUT {
   vec2 uv;
   vec4 tangent;
 } fs;
+in vec4 vs_color;  // COLOR_0 (white where the mesh has none): scales base colour and alpha
+
+vec2 materialUv(int unit) { return textureUv(unit, fs.uv); }
 
 vec4 materialBaseColor() {
-  vec4 c = u_baseColorFactor;
-  if (u_hasBaseColorTex != 0) c *= texture(u_baseColorTex, fs.uv);
+  vec4 c = u_baseColorFactor * vs_color;
+  if (u_hasBaseColorTex != 0) c *= texture(u_baseColorTex, materialUv(0));
   return c;
 }
 
@@ -52,13 +56,13 @@ Surface materialSurface(vec3 viewDir, out float alpha, out bool discarded) {
   s.specular = u_specular;
   vec2 mr = vec2(u_metallicFactor, u_roughnessFactor);
   if (u_hasMetallicRoughnessTex != 0) {
-    vec4 t = texture(u_metallicRoughnessTex, fs.uv);
+    vec4 t = texture(u_metallicRoughnessTex, materialUv(1));
     mr *= vec2(t.b, t.g);
   }
   s.metallic = clamp(mr.x, 0.0, 1.0);
   s.roughness = clamp(mr.y, 0.04, 1.0);
   s.ao = 1.0;
-  if (u_hasOcclusionTex != 0) s.ao = 1.0 + u_occlusionStrength * (texture(u_occlusionTex, fs.uv).r - 1.0);
+  if (u_hasOcclusionTex != 0) s.ao = 1.0 + u_occlusionStrength * (texture(u_occlusionTex, materialUv(3)).r - 1.0);
 
   vec3 N = safeNormal(fs.normal, viewDir);
   if (!gl_FrontFacing) N = -N;  // double-sided materials seen from behind
@@ -66,17 +70,17 @@ Surface materialSurface(vec3 viewDir, out float alpha, out bool discarded) {
   if (u_hasNormalTex != 0 && dot(fs.tangent.xyz, fs.tangent.xyz) > 1e-12) {
     vec3 T = normalize(fs.tangent.xyz - N * dot(N, fs.tangent.xyz));
     vec3 B = (gl_FrontFacing ? 1.0 : -1.0) * fs.tangent.w * cross(N, T);
-    vec3 tn = texture(u_normalTex, fs.uv).xyz * 2.0 - 1.0;
+    vec3 tn = texture(u_normalTex, materialUv(2)).xyz * 2.0 - 1.0;
     tn.xy *= u_normalScale;
     N = safeNormal(mat3(T, B, N) * tn, N);
   }
 #endif
   s.normal = N;
-  s.emissive = u_emissive * texture(u_emissiveTex, fs.uv).rgb;
+  s.emissive = u_emissive * texture(u_emissiveTex, materialUv(4)).rgb;
   // KHR_materials_specular's dielectric F0 and F90 (lighting.glsl's surfaceF0
   // and surfaceF90 mix in the metals).
-  s.f90 = u_specularFactor * texture(u_specularTex, fs.uv).a;
-  s.f0 = min(vec3(0.04) * u_specularColorFactor * texture(u_specularColorTex, fs.uv).rgb, vec3(1.0)) * s.f90;
+  s.f90 = u_specularFactor * texture(u_specularTex, materialUv(11)).a;
+  s.f0 = min(vec3(0.04) * u_specularColorFactor * texture(u_specularColorTex, materialUv(12)).rgb, vec3(1.0)) * s.f90;
   if (u_unlit != 0) {
     // Unlit: the base colour (with whatever materialBaseColor multiplies in,
     // vertex colours included) is all the pixel shows. It goes out as light

@@ -16,6 +16,7 @@
 // Units: lengths in scene units, angles in degrees unless named otherwise.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -61,8 +62,8 @@ struct MeshVertex {
 static_assert(sizeof(MeshVertex) == 48, "MeshVertex must stay tightly packed");
 
 // Triangle-list geometry in local space. Invariants (checked by valid()):
-// positions, normals and uv0 have the same size; tangents and uv1 are empty or
-// that size too; indices.size() % 3 == 0 and every index < vertexCount().
+// positions, normals and uv0 have the same size; tangents, uv1 and colors are
+// empty or that size too; indices.size() % 3 == 0 and every index < vertexCount().
 // Triangles are counter-clockwise seen from their front side.
 struct MeshData {
   std::string name;
@@ -70,6 +71,8 @@ struct MeshData {
   std::vector<glm::vec3> normals;   // unit length
   std::vector<glm::vec2> uv0;       // zeros when the source had none (hasUv0 false)
   std::vector<glm::vec2> uv1;       // empty unless the source had TEXCOORD_1
+  std::vector<glm::vec4> colors;    // empty unless the source had COLOR_0: linear RGBA multiplying the
+                                    // base colour (RGB sources get alpha 1)
   std::vector<glm::vec4> tangents;  // empty unless a material using the mesh has a normal map;
                                     // xyz unit, orthogonal to the normal; w = +-1 handedness
                                     // (bitangent = w * cross(normal, tangent.xyz))
@@ -80,6 +83,8 @@ struct MeshData {
   size_t vertexCount() const { return positions.size(); }
   size_t triangleCount() const { return indices.size() / 3; }
   bool hasTangents() const { return !tangents.empty(); }
+  bool hasColors() const { return !colors.empty(); }
+  bool hasUv1() const { return !uv1.empty(); }
   void updateBounds();
   // Checks the invariants above; on failure writes the reason to *why.
   bool valid(std::string* why = nullptr) const;
@@ -145,8 +150,17 @@ struct SceneTexture {
 
 struct TextureRef {
   int texture = -1;  // index into Scene::textures; -1: none
-  int texCoord = 0;  // 0: uv0, 1: uv1
+  int texCoord = 0;  // 0: uv0, 1: uv1 (a mesh without uv1 samples uv0)
+  // KHR_texture_transform, applied to the UV set's coordinates: scaled, then
+  // rotated by `rotation` radians (counter-clockwise in UV space, as the
+  // extension defines it), then offset.
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;
+  glm::vec2 scale{1.0f};
   bool valid() const { return texture >= 0; }
+  // uv' = uvTransform() * (uv, 1): the extension's translation * rotation * scale
+  // (column-major, 3 columns of 2 rows: x axis, y axis, offset).
+  glm::mat3x2 uvTransform() const;
 };
 
 struct Material {
@@ -180,6 +194,11 @@ struct Material {
   float specular = 0.5f;
 
   bool hasNormalMap() const { return normalTexture.valid(); }
+  // Every texture it may sample (valid or not), for whatever treats them alike.
+  std::array<const TextureRef*, 7> textures() const {
+    return {&baseColorTexture, &metallicRoughnessTexture, &normalTexture, &occlusionTexture,
+            &emissiveTexture,  &specularTexture,          &specularColorTexture};
+  }
   // Light of its own: an emissive factor above zero, or unlit.
   bool emits() const { return unlit || emissiveFactor != glm::vec3(0.0f); }
   // Reflectance other than the PBR default (F0 0.04, F90 1): KHR_materials_specular
@@ -188,6 +207,8 @@ struct Material {
     return unlit || specularFactor != 1.0f || specularColorFactor != glm::vec3(1.0f) || specularTexture.valid() ||
            specularColorTexture.valid();
   }
+  // Whether some texture samples the second UV set (texCoord 1).
+  bool usesUv1() const;
 };
 
 // ---------------------------------------------------------------- draws
@@ -198,6 +219,10 @@ struct Primitive {
   glm::mat4 transform{1.0f};  // local -> world
   Bounds bounds;              // world space
   std::string name;           // node name, for diagnostics
+  // EXT_mesh_gpu_instancing: the mesh is drawn once per entry, with world
+  // transform `transform * instances[i]` (one instanced draw; `bounds` cover
+  // them all). Empty: one instance, `transform` alone.
+  std::vector<glm::mat4> instances;
   // Whether shadow-map views draw it (GpuScene::Filter::shadowCasters):
   // scene files' "cast_shadows". Unset: Scene::castsShadows's default (every
   // primitive but those of a blend material: a glass pane lets light through).
@@ -211,6 +236,10 @@ struct Primitive {
     glm::vec3 axis{0.0f, 1.0f, 0.0f};
     float degreesPerSecond = 0.0f;
   } spin;
+
+  // World bounds of a mesh with local bounds `local` drawn by this primitive:
+  // `local` under `transform`, over every instance.
+  Bounds worldBounds(const Bounds& local) const;
 
   glm::mat3 normalMatrix() const { return glm::transpose(glm::inverse(glm::mat3(transform))); }
   // A negative determinant flips the winding: draw with the front face reversed.
@@ -343,6 +372,10 @@ struct Scene {
   bool hasMaskMaterials() const;
   bool hasNormalMaps() const;
   bool hasTextures() const;
+  // Some drawn mesh has COLOR_0 vertex colours.
+  bool hasVertexColors() const;
+  // Some primitive is drawn as several instances (EXT_mesh_gpu_instancing).
+  bool hasInstancing() const;
   // Any used material with a metallic-roughness texture, or metallic/roughness
   // factors that differ between used materials.
   bool hasMetallicRoughnessVariation() const;
@@ -351,8 +384,8 @@ struct Scene {
   bool castsShadows(const Primitive& p) const;
   bool hasShadowCasters() const;         // some primitive casts
   bool hasShadowCastingLights() const;   // some light casts (castsShadows / castShadows)
-  size_t triangleCount() const;  // over primitives (a shared mesh counts per draw)
-  size_t vertexCount() const;    // over primitives
+  size_t triangleCount() const;  // over primitives (a shared mesh counts per draw, and per instance)
+  size_t vertexCount() const;    // over primitives (likewise)
   Bounds bounds() const;         // world space, over primitives
   // The sphere the default camera frames: centred on bounds()'s centre,
   // reaching the farthest vertex a primitive draws (world space). Tighter than

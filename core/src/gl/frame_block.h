@@ -86,7 +86,7 @@ void fillSceneMembers(FrameBlock& f, const Scene& scene);
 // drawLayered draws more in chunks of this many.
 inline constexpr int kLayerViewsPerBlock = 32;
 struct LayerViewsBlock {
-  glm::ivec4 base;  // x: the layer instance 0 writes
+  glm::ivec4 base;  // x: the layer view 0 writes; y: the views in this block
   glm::mat4 viewProj[kLayerViewsPerBlock];
 };
 static_assert(sizeof(LayerViewsBlock) == 16 + kLayerViewsPerBlock * 64, "LayerViewsBlock must match std140");

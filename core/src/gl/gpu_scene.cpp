@@ -5,7 +5,12 @@
 #include <GL/glcorearb.h>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cmath>
+#include <cstring>
+#include <mutex>
+#include <unordered_map>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -75,14 +80,28 @@ void detail::fillSceneMembers(FrameBlock& f, const Scene& scene) {
 struct GpuScene::Locations {
   int model, prevModel, normalMatrix, baseColorFactor, metallicFactor, roughnessFactor, specular, normalScale,
       occlusionStrength, alphaCutoff, alphaMode, emissive, hasBaseColorTex, hasMetallicRoughnessTex, hasNormalTex,
-      hasOcclusionTex, specularColorFactor, specularFactor, unlit;
+      hasOcclusionTex, specularColorFactor, specularFactor, unlit, hasVertexColors, uvTransform, uvSet, instanceRange;
 };
 
 GpuScene::GpuScene(const Scene& scene) : scene_(scene), uploadedIn_(gl::currentContext()) {
+  static std::atomic<uint64_t> scenes{0};
+  serial_ = ++scenes;
   scene_.validate();
   meshes_.reserve(scene.meshes.size());
   hasTangents_ = scene.hasNormalMaps();
-  for (const auto& m : scene.meshes) meshes_.push_back(upload(m, hasTangents_ && m.hasTangents()));
+  // The second UV set only where a material drawing the mesh samples it.
+  std::vector<bool> uv1(scene.meshes.size(), false);
+  for (const Primitive& p : scene.primitives)
+    if (p.mesh >= 0 && static_cast<size_t>(p.mesh) < uv1.size() && scene.materials[p.material].usesUv1())
+      uv1[p.mesh] = true;
+  for (size_t i = 0; i < scene.meshes.size(); ++i)
+    meshes_.push_back(upload(scene.meshes[i], hasTangents_ && scene.meshes[i].hasTangents(), uv1[i]));
+  uploadInstances();
+  hasVertexColors_ = scene.hasVertexColors();
+  // Per-draw texture coordinates only where some texture is transformed or samples a second UV set.
+  for (const Material& m : scene.materials)
+    for (const TextureRef* t : m.textures())
+      if (t->valid() && (t->texCoord != 0 || t->uvTransform() != glm::mat3x2(1.0f))) texCoordsPerDraw_ = true;
 
   images_.reserve(scene.images.size());
   for (const auto& img : scene.images) {
@@ -130,7 +149,7 @@ void GpuScene::requireUploadContext(const std::string& who) const {
                      "arrays). Make that context current, or make a RenderScene for this context");
 }
 
-GpuScene::GpuMesh GpuScene::upload(const MeshData& mesh, bool tangents) const {
+GpuScene::GpuMesh GpuScene::upload(const MeshData& mesh, bool tangents, bool uv1) const {
   GpuMesh g;
   // Model no more than the scene needs: without normal maps no tangent is
   // uploaded (32 bytes per vertex instead of 48) and attribute 3 stays off,
@@ -181,7 +200,48 @@ GpuScene::GpuMesh GpuScene::upload(const MeshData& mesh, bool tangents) const {
     attrib(1, 3, offsetof(VertexNoTangent, normal));
     attrib(2, 2, offsetof(VertexNoTangent, uv));
   }
+  // COLOR_0 (attribute 4) and TEXCOORD_1 (attribute 5) in a buffer of their
+  // own, only for meshes that have them (and uv1 only where it is sampled):
+  // the main vertex layout stays what it is without them.
+  g.colors = mesh.hasColors();
+  g.uv1 = uv1 && mesh.hasUv1();
+  if (g.colors || g.uv1) {
+    const size_t colorBytes = g.colors ? mesh.colors.size() * sizeof(glm::vec4) : 0;
+    const size_t uvBytes = g.uv1 ? mesh.uv1.size() * sizeof(glm::vec2) : 0;
+    std::vector<uint8_t> extra(colorBytes + uvBytes);
+    if (colorBytes) std::memcpy(extra.data(), mesh.colors.data(), colorBytes);
+    if (uvBytes) std::memcpy(extra.data() + colorBytes, mesh.uv1.data(), uvBytes);
+    g.extra = gl::createBuffer();
+    glNamedBufferStorage(g.extra.id(), static_cast<GLsizeiptr>(std::max<size_t>(extra.size(), 1)), extra.data(), 0);
+    auto stream = [&](GLuint loc, GLint size, size_t offset, size_t stride) {
+      glVertexArrayVertexBuffer(vao, loc - 3, g.extra.id(), static_cast<GLintptr>(offset), static_cast<GLsizei>(stride));
+      glEnableVertexArrayAttrib(vao, loc);
+      glVertexArrayAttribFormat(vao, loc, size, GL_FLOAT, GL_FALSE, 0);
+      glVertexArrayAttribBinding(vao, loc, loc - 3);
+    };
+    if (g.colors) stream(4, 4, 0, sizeof(glm::vec4));
+    if (g.uv1) stream(5, 2, colorBytes, sizeof(glm::vec2));
+  }
   return g;
+}
+
+void GpuScene::uploadInstances() {
+  // Per instance: its local matrix and that matrix's normal matrix (a mat3 in
+  // a mat4's columns, std430), scene.vert's Instances block.
+  std::vector<glm::mat4> data;
+  instanceRanges_.assign(scene_.primitives.size(), InstanceRange{});
+  for (size_t i = 0; i < scene_.primitives.size(); ++i) {
+    const Primitive& p = scene_.primitives[i];
+    if (p.instances.empty()) continue;
+    instanceRanges_[i] = {static_cast<uint32_t>(data.size() / 2), static_cast<uint32_t>(p.instances.size())};
+    for (const glm::mat4& m : p.instances) {
+      data.push_back(m);
+      data.push_back(glm::mat4(glm::transpose(glm::inverse(glm::mat3(m)))));
+    }
+  }
+  if (data.empty()) return;
+  instances_ = gl::createBuffer();
+  glNamedBufferStorage(instances_.id(), static_cast<GLsizeiptr>(data.size() * sizeof(glm::mat4)), data.data(), 0);
 }
 
 void GpuScene::updateFrame(Extent viewport) { updateFrame(viewport, scene_.camera); }
@@ -336,12 +396,37 @@ const GpuScene::Locations& GpuScene::locations(uint32_t program) const {
                    get("u_normalScale"),     get("u_occlusionStrength"), get("u_alphaCutoff"),
                    get("u_alphaMode"),       get("u_emissive"),         get("u_hasBaseColorTex"),
                    get("u_hasMetallicRoughnessTex"), get("u_hasNormalTex"), get("u_hasOcclusionTex"),
-                   get("u_specularColorFactor"), get("u_specularFactor"), get("u_unlit")};
+                   get("u_specularColorFactor"), get("u_specularFactor"), get("u_unlit"),
+                   get("u_hasVertexColors"), get("u_uvTransform"), get("u_uvSet"), get("u_instanceRange")};
   // clang-format on
   return *locations_.emplace(program, std::move(loc)).first->second;
 }
 
-void GpuScene::bindMaterial(uint32_t program, int materialIndex) const {
+void GpuScene::claimGeometryUniforms(uint32_t program, const Locations& loc) const {
+  // Which GpuScene (by serial) last set a program's geometry uniforms: a
+  // scene without vertex colours, texture transforms or instances sets them
+  // per draw only when another scene has drawn with the program since (a
+  // frame of such a scene sets none), so that what the other scene left
+  // never shows here.
+  static std::mutex mutex;
+  static std::unordered_map<uint32_t, uint64_t> writers;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    uint64_t& writer = writers[program];
+    if (writer == serial_) return;
+    writer = serial_;
+  }
+  std::array<glm::mat3x2, kMaterialTextureUnits> identity;
+  identity.fill(glm::mat3x2(1.0f));
+  const std::array<int, kMaterialTextureUnits> uv0{};
+  if (loc.uvTransform >= 0)
+    glProgramUniformMatrix3x2fv(program, loc.uvTransform, kMaterialTextureUnits, GL_FALSE, glm::value_ptr(identity[0]));
+  if (loc.uvSet >= 0) glProgramUniform1iv(program, loc.uvSet, kMaterialTextureUnits, uv0.data());
+  if (loc.hasVertexColors >= 0) glProgramUniform1i(program, loc.hasVertexColors, 0);
+  if (loc.instanceRange >= 0) glProgramUniform2i(program, loc.instanceRange, 0, 0);
+}
+
+void GpuScene::bindMaterial(uint32_t program, int materialIndex, bool meshHasUv1) const {
   const Locations& loc = locations(program);
   const Material& m = scene_.materials.at(static_cast<size_t>(materialIndex));
   glProgramUniform4fv(program, loc.baseColorFactor, 1, glm::value_ptr(m.baseColorFactor));
@@ -357,7 +442,16 @@ void GpuScene::bindMaterial(uint32_t program, int materialIndex) const {
   glProgramUniform1f(program, loc.specularFactor, m.specularFactor);
   glProgramUniform1i(program, loc.unlit, m.unlit ? 1 : 0);
 
+  // Per texture unit: its KHR_texture_transform matrix and UV set
+  // (material_uv.glsl); units without a texture keep identity and set 0.
+  std::array<glm::mat3x2, kMaterialTextureUnits> uvTransforms;
+  std::array<int, kMaterialTextureUnits> uvSets{};
+  uvTransforms.fill(glm::mat3x2(1.0f));
   auto bind = [&](GLuint unit, const TextureRef& ref, int hasLocation, const gl::Texture& fallback) {
+    if (ref.valid()) {
+      uvTransforms[unit] = ref.uvTransform();
+      uvSets[unit] = ref.texCoord == 1 && meshHasUv1 ? 1 : 0;  // a mesh without TEXCOORD_1 samples uv0
+    }
     const bool has = ref.valid() && static_cast<size_t>(ref.texture) < scene_.textures.size() &&
                      scene_.textures[ref.texture].image >= 0 &&
                      static_cast<size_t>(scene_.textures[ref.texture].image) < images_.size();
@@ -378,6 +472,10 @@ void GpuScene::bindMaterial(uint32_t program, int materialIndex) const {
   // Units 5..10 are the lighting passes' (include/gbuffer_read.glsl, shadows.glsl).
   bind(11, m.specularTexture, -1, white_);
   bind(12, m.specularColorTexture, -1, white_);
+  if (!texCoordsPerDraw_) return;  // identity and uv0 everywhere, as claimGeometryUniforms left them
+  if (loc.uvTransform >= 0)
+    glProgramUniformMatrix3x2fv(program, loc.uvTransform, kMaterialTextureUnits, GL_FALSE, glm::value_ptr(uvTransforms[0]));
+  if (loc.uvSet >= 0) glProgramUniform1iv(program, loc.uvSet, kMaterialTextureUnits, uvSets.data());
 }
 
 size_t GpuScene::primitiveCount(Filter filter) const {
@@ -391,9 +489,11 @@ void GpuScene::drawPrimitives(uint32_t program, const DrawOptions& options) cons
            1);
 }
 
-void GpuScene::drawList(uint32_t program, const std::vector<size_t>& order, Cull cull, uint32_t instances) const {
+void GpuScene::drawList(uint32_t program, const std::vector<size_t>& order, Cull cull, uint32_t views) const {
   const Locations& loc = locations(program);
   bindProgram(program);
+  claimGeometryUniforms(program, loc);
+  if (instances_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBinding, instances_.id());
   for (size_t i : order) {
     const Primitive& p = scene_.primitives[i];
     const Material& m = scene_.materials[p.material];
@@ -407,7 +507,16 @@ void GpuScene::drawList(uint32_t program, const std::vector<size_t>& order, Cull
       glProgramUniformMatrix4fv(program, loc.prevModel, 1, GL_FALSE, glm::value_ptr(moving ? prevModels_[i] : model));
     const glm::mat3 nm = moving ? glm::transpose(glm::inverse(glm::mat3(model))) : p.normalMatrix();
     glProgramUniformMatrix3fv(program, loc.normalMatrix, 1, GL_FALSE, glm::value_ptr(nm));
-    bindMaterial(program, p.material);
+    bindMaterial(program, p.material, mesh.uv1);
+    // (Both 0 until set: scenes without vertex colours or instances set nothing per draw.)
+    if (hasVertexColors_ && loc.hasVertexColors >= 0) glProgramUniform1i(program, loc.hasVertexColors, mesh.colors ? 1 : 0);
+    // Instanced primitives: instance j of view v is GL instance j * views + v
+    // (scene.vert), one draw for all of them.
+    // (Instances are uploaded with the scene: primitives added since draw one instance.)
+    const InstanceRange range = instances_ && i < instanceRanges_.size() ? instanceRanges_[i] : InstanceRange{};
+    if (instances_ && loc.instanceRange >= 0)
+      glProgramUniform2i(program, loc.instanceRange, static_cast<GLint>(range.count), static_cast<GLint>(range.first));
+    const uint32_t instances = views * std::max<uint32_t>(range.count, 1);
     if (cull != Cull::none && !m.doubleSided) {
       glEnable(GL_CULL_FACE);
       glCullFace(cull == Cull::front ? GL_FRONT : GL_BACK);
@@ -425,6 +534,7 @@ void GpuScene::drawList(uint32_t program, const std::vector<size_t>& order, Cull
   glFrontFace(GL_CCW);
   glDisable(GL_CULL_FACE);
   for (GLuint unit = 0; unit < 5; ++unit) glBindSampler(unit, 0);
+  if (instances_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBinding, 0);  // left as found
   bindVertexArray(0);
 }
 

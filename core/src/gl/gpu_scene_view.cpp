@@ -157,7 +157,7 @@ void GpuScene::drawLayered(uint32_t program, const std::vector<View>& views, uin
   for (size_t start = 0; start < views.size(); start += kLayerViewsPerBlock) {
     const size_t n = std::min<size_t>(kLayerViewsPerBlock, views.size() - start);
     LayerViewsBlock block{};
-    block.base = glm::ivec4(static_cast<int>(firstLayer + start), 0, 0, 0);
+    block.base = glm::ivec4(static_cast<int>(firstLayer + start), static_cast<int>(n), 0, 0);
     for (size_t i = 0; i < n; ++i) block.viewProj[i] = views[start + i].proj * views[start + i].view;
     const uint32_t offset = layerStride_ * (nextLayerSlot_++ % kLayerSlots);
     const GLsizeiptr bytes = static_cast<GLsizeiptr>(16 + n * sizeof(glm::mat4));

@@ -6,6 +6,9 @@
 #include <cmath>
 #include <cstring>
 
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
 #include "gltf_internal.h"
 #include "rgraph/error.h"
 
@@ -276,6 +279,7 @@ void GltfLoader::checkAttributeTypes(const tinygltf::Primitive& prim, const std:
       {"TANGENT", {F}, {B, S}, "FLOAT, or normalized BYTE or SHORT"},
       {"TEXCOORD_0", {F, B, UB, S, US}, {}, "FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT"},
       {"TEXCOORD_1", {F, B, UB, S, US}, {}, "FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT"},
+      {"COLOR_0", {F}, {UB, US}, "FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT"},
   };
   for (const Rule& r : rules) {
     auto it = prim.attributes.find(r.attribute);
@@ -369,6 +373,22 @@ MeshData GltfLoader::buildMesh(const tinygltf::Primitive& prim, const std::strin
   std::vector<float> tan = readSized("TANGENT", TINYGLTF_TYPE_VEC4, 4,
                                      {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT});
 
+  if (const int a = attr("COLOR_0"); a >= 0) {
+    // vec3 or vec4 (readFloats checked the accessor, so its type is one of the two).
+    std::vector<float> c = readFloats(a, what + " COLOR_0", {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4},
+                                      {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+    const size_t comps = model_.accessors[size_t(a)].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+    if (c.size() / comps != n)
+      fail(what + " COLOR_0 (accessor " + std::to_string(a) + "): count " + std::to_string(c.size() / comps) +
+           " differs from the POSITION count " + std::to_string(n));
+    mesh.colors.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      const float* v = &c[comps * i];
+      mesh.colors[i] = glm::clamp(glm::vec4(v[0], v[1], v[2], comps == 4 ? v[3] : 1.0f), 0.0f, 1.0f);
+    }
+  }
+
   mesh.hasUv0 = !uv0.empty();
   mesh.uv0.assign(n, glm::vec2(0.0f));
   if (!uv0.empty())
@@ -427,6 +447,52 @@ MeshData GltfLoader::buildMesh(const tinygltf::Primitive& prim, const std::strin
   }
   mesh.updateBounds();
   return mesh;
+}
+
+// EXT_mesh_gpu_instancing: one local matrix per instance, translation *
+// rotation * scale from the extension's per-instance accessors (each one
+// optional, all of one count). nullopt: the node has no such extension.
+std::optional<std::vector<glm::mat4>> GltfLoader::nodeInstances(int nodeIndex, const tinygltf::Node& node) {
+  const auto it = node.extensions.find("EXT_mesh_gpu_instancing");
+  if (it == node.extensions.end()) return std::nullopt;
+  const std::string ptr = "/nodes/" + std::to_string(nodeIndex) + "/extensions/EXT_mesh_gpu_instancing";
+  if (!it->second.IsObject() || !it->second.Get("attributes").IsObject())
+    failAt(ptr, "expected {\"attributes\": {\"TRANSLATION\" | \"ROTATION\" | \"SCALE\": accessor}}");
+  const tinygltf::Value& attributes = it->second.Get("attributes");
+  constexpr int F = TINYGLTF_COMPONENT_TYPE_FLOAT, B = TINYGLTF_COMPONENT_TYPE_BYTE, UB = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                S = TINYGLTF_COMPONENT_TYPE_SHORT, US = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  std::optional<size_t> count;
+  auto read = [&](const char* name, int type, size_t comps, std::initializer_list<int> cts) -> std::vector<float> {
+    const tinygltf::Value& v = attributes.Get(name);
+    if (v.Type() == tinygltf::NULL_TYPE) return {};
+    const std::string ap = ptr + "/attributes/" + name;
+    if (!v.IsNumber() || v.GetNumberAsDouble() < 0.0 || v.GetNumberAsDouble() >= double(INT_MAX))
+      failAt(ap, "expected an accessor index");
+    std::vector<float> out = readFloats(int(v.GetNumberAsDouble()), "node " + std::to_string(nodeIndex) + " EXT_mesh_gpu_instancing " + name, {type}, cts);
+    const size_t n = out.size() / comps;
+    if (count && *count != n)
+      failAt(ap, "has " + std::to_string(n) + " instances, another attribute " + std::to_string(*count));
+    count = n;
+    return out;
+  };
+  const std::vector<float> t = read("TRANSLATION", TINYGLTF_TYPE_VEC3, 3, {F, B, UB, S, US});
+  const std::vector<float> r = read("ROTATION", TINYGLTF_TYPE_VEC4, 4, {F, B, S});
+  const std::vector<float> s = read("SCALE", TINYGLTF_TYPE_VEC3, 3, {F, B, UB, S, US});
+  if (!count) failAt(ptr + "/attributes", "names none of TRANSLATION, ROTATION and SCALE");
+  if (*count > kMaxInstances)
+    failAt(ptr, std::to_string(*count) + " instances: at most " + std::to_string(kMaxInstances) + " are drawn");
+  std::vector<glm::mat4> instances(*count, glm::mat4(1.0f));
+  for (size_t i = 0; i < *count; ++i) {
+    glm::mat4& m = instances[i];
+    if (!t.empty()) m = glm::translate(m, glm::vec3(t[3 * i], t[3 * i + 1], t[3 * i + 2]));
+    if (!r.empty()) {
+      const glm::quat q(r[4 * i + 3], r[4 * i], r[4 * i + 1], r[4 * i + 2]);  // w, x, y, z
+      const float len = glm::length(q);
+      if (len > 0.0f) m = m * glm::mat4_cast(q / len);
+    }
+    if (!s.empty()) m = glm::scale(m, glm::vec3(s[3 * i], s[3 * i + 1], s[3 * i + 2]));
+  }
+  return instances;
 }
 
 }  // namespace rgraph::gltf_detail

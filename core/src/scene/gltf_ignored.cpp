@@ -4,7 +4,6 @@
 // before tinygltf parses the file: tinygltf fails on a compressed primitive's
 // accessors (they have no buffer view) without naming the extension.
 #include <string>
-#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -23,7 +22,6 @@ struct IgnoredExtension {
   const char* instead;
 };
 constexpr IgnoredExtension kIgnoredExtensions[] = {
-    {"KHR_texture_transform", "textures untransformed"},
     {"KHR_materials_clearcoat", "drawn without the clear coat"},
     {"KHR_materials_transmission", "drawn opaque"},
     {"KHR_materials_diffuse_transmission", "drawn opaque"},
@@ -91,21 +89,7 @@ void GltfLoader::warnIgnoredFeatures() {
   for (const tinygltf::Mesh& m : model_.meshes) {
     for (const tinygltf::Primitive& p : m.primitives) {
       if (!p.targets.empty()) warnIgnored("morph targets", "drawn undeformed (default weights not applied)");
-      if (p.attributes.count("COLOR_0")) warnIgnored("COLOR_0", "base colour alone");
     }
-  }
-  for (const tinygltf::Node& n : model_.nodes)
-    if (n.extensions.count("EXT_mesh_gpu_instancing")) warnIgnored("EXT_mesh_gpu_instancing", "one instance drawn");
-  for (const tinygltf::Material& m : model_.materials) {
-    const tinygltf::TextureInfo& base = m.pbrMetallicRoughness.baseColorTexture;
-    const tinygltf::TextureInfo& mr = m.pbrMetallicRoughness.metallicRoughnessTexture;
-    const std::pair<int, int> refs[] = {{base.index, base.texCoord},
-                                        {mr.index, mr.texCoord},
-                                        {m.normalTexture.index, m.normalTexture.texCoord},
-                                        {m.occlusionTexture.index, m.occlusionTexture.texCoord},
-                                        {m.emissiveTexture.index, m.emissiveTexture.texCoord}};
-    for (const auto& [index, texCoord] : refs)
-      if (index >= 0 && texCoord == 1) warnIgnored("TEXCOORD_1", "textures that name texCoord 1 sample TEXCOORD_0");
   }
   for (const std::string& used : model_.extensionsUsed)
     for (const IgnoredExtension& e : kIgnoredExtensions)

@@ -30,6 +30,7 @@ namespace rgraph::gltf_detail {
 inline constexpr size_t kMaxElements = size_t(1) << 26;          // per accessor
 inline constexpr size_t kMaxUnbackedElements = size_t(1) << 24;  // accessors without a buffer view (zeros)
 inline constexpr int kMaxImageSide = 16384;
+inline constexpr size_t kMaxInstances = size_t(1) << 20;          // per node (EXT_mesh_gpu_instancing)
 
 std::string trimmed(std::string s);
 
@@ -98,11 +99,14 @@ class GltfLoader {
   void checkAttributeTypes(const tinygltf::Primitive& prim, const std::string& pointer);
   // `pointer`: the primitive's JSON pointer, for located refusals.
   MeshData buildMesh(const tinygltf::Primitive& prim, const std::string& what, const std::string& pointer);
+  std::optional<std::vector<glm::mat4>> nodeInstances(int nodeIndex, const tinygltf::Node& node);
 
   // ------------------------------------------------ gltf_materials.cpp
   const std::vector<uint8_t>& decodedPixels(int gltfImage, const std::string& what);
   int sceneImage(int gltfImage, bool srgb, const std::string& what);
   TextureRef textureRef(int gltfTexture, int texCoord, bool srgb, const std::string& what);
+  // KHR_texture_transform of a textureInfo onto `ref`; `pointer`: the textureInfo's JSON pointer.
+  void textureTransform(TextureRef& ref, const tinygltf::ExtensionMap& extensions, const std::string& pointer);
   Material convertMaterial(size_t index);
   int defaultMaterial();
   void addLight(int index, const glm::mat4& world, const std::string& what);

@@ -286,14 +286,17 @@ void GltfLoader::visitNode(int nodeIndex, const glm::mat4& world) {
     if (size_t(node.mesh) >= model_.meshes.size())
       fail(what + ": mesh " + std::to_string(node.mesh) + " does not exist (" + std::to_string(model_.meshes.size()) + " meshes)");
     const tinygltf::Mesh& gm = model_.meshes[size_t(node.mesh)];
-    for (size_t pi = 0; pi < gm.primitives.size(); ++pi) {
+    const std::optional<std::vector<glm::mat4>> instances = nodeInstances(nodeIndex, node);
+    const size_t primitives = instances && instances->empty() ? 0 : gm.primitives.size();  // zero instances: none drawn
+    for (size_t pi = 0; pi < primitives; ++pi) {
       const int mesh = sceneMesh(node.mesh, pi);
       if (mesh < 0) continue;
       Primitive p;
       p.mesh = mesh;
       p.material = primMaterial_[size_t(mesh)];
       p.transform = world;
-      p.bounds = scene_.meshes[size_t(mesh)].bounds.transformed(world);
+      if (instances) p.instances = *instances;
+      p.bounds = p.worldBounds(scene_.meshes[size_t(mesh)].bounds);
       p.name = node.name.empty() ? (gm.name.empty() ? what : gm.name) : node.name;
       scene_.primitives.push_back(std::move(p));
     }

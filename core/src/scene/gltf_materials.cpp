@@ -239,12 +239,61 @@ void GltfLoader::specularFromExtension(const tinygltf::Value& ext, const std::st
     if (!index.IsInt()) failAt(tp + "/index", "expected an integer");
     const tinygltf::Value& texCoord = t.Get("texCoord");
     if (texCoord.Type() != tinygltf::NULL_TYPE && !texCoord.IsInt()) failAt(tp + "/texCoord", "expected an integer");
-    return textureRef(index.GetNumberAsInt(), texCoord.IsInt() ? texCoord.GetNumberAsInt() : 0, srgb, what + " " + name);
+    TextureRef ref = textureRef(index.GetNumberAsInt(), texCoord.IsInt() ? texCoord.GetNumberAsInt() : 0, srgb,
+                                what + " " + name);
+    // Its own KHR_texture_transform, as on any textureInfo.
+    if (const tinygltf::Value& e = t.Get("extensions"); e.IsObject()) {
+      tinygltf::ExtensionMap extensions;
+      for (const std::string& key : e.Keys()) extensions[key] = e.Get(key);
+      textureTransform(ref, extensions, tp);
+    }
+    return ref;
   };
   out.specularTexture = texture("specularTexture", false);
   out.specularColorTexture = texture("specularColorTexture", true);
   const float color = std::max({out.specularColorFactor.r, out.specularColorFactor.g, out.specularColorFactor.b});
   out.specular = std::clamp(0.5f * out.specularFactor * color, 0.0f, 1.0f);
+}
+
+// KHR_texture_transform on a textureInfo: offset, rotation, scale and a
+// texCoord that replaces the textureInfo's own. Numbers must be finite.
+void GltfLoader::textureTransform(TextureRef& ref, const tinygltf::ExtensionMap& extensions, const std::string& pointer) {
+  const auto it = extensions.find("KHR_texture_transform");
+  if (it == extensions.end() || !ref.valid()) return;
+  const std::string p = pointer + "/extensions/KHR_texture_transform";
+  const tinygltf::Value& ext = it->second;
+  if (!ext.IsObject()) failAt(p, "expected an object");
+  auto finite = [&](double v, const std::string& vp) {
+    if (!(std::isfinite(v) && std::abs(v) <= double(std::numeric_limits<float>::max())))
+      failAt(vp, "must be a finite number, got " + numberText(v));
+    return float(v);
+  };
+  auto vec2 = [&](const char* key, glm::vec2& out) {
+    const tinygltf::Value& v = ext.Get(key);
+    if (v.Type() == tinygltf::NULL_TYPE) return;
+    const std::string vp = p + "/" + key;
+    if (!v.IsArray() || v.ArrayLen() != 2) failAt(vp, "expected an array of 2 numbers");
+    for (int i = 0; i < 2; ++i) {
+      if (!v.Get(i).IsNumber()) failAt(vp + "/" + std::to_string(i), "expected a number");
+      out[i] = finite(v.Get(i).GetNumberAsDouble(), vp + "/" + std::to_string(i));
+    }
+  };
+  vec2("offset", ref.offset);
+  vec2("scale", ref.scale);
+  if (const tinygltf::Value& r = ext.Get("rotation"); r.Type() != tinygltf::NULL_TYPE) {
+    if (!r.IsNumber()) failAt(p + "/rotation", "expected a number");
+    ref.rotation = finite(r.GetNumberAsDouble(), p + "/rotation");
+  }
+  if (const tinygltf::Value& t = ext.Get("texCoord"); t.Type() != tinygltf::NULL_TYPE) {
+    if (!t.IsNumber()) failAt(p + "/texCoord", "expected a number");
+    const double texCoord = t.GetNumberAsDouble();
+    if (texCoord == 0.0 || texCoord == 1.0) {
+      ref.texCoord = int(texCoord);
+    } else {
+      warnAt(p + "/texCoord", "texCoord " + std::to_string(texCoord) + " is not supported (only 0 and 1); using 0");
+      ref.texCoord = 0;
+    }
+  }
 }
 
 // ------------------------------------------------------------ materials
@@ -280,6 +329,11 @@ Material GltfLoader::convertMaterial(size_t index) {
   out.occlusionTexture = textureRef(m.occlusionTexture.index, m.occlusionTexture.texCoord, false, what + " occlusionTexture");
   out.occlusionStrength = checkedNumber(m.occlusionTexture.strength, 0.0f, 1.0f, ptr + "/occlusionTexture/strength");
   out.emissiveTexture = textureRef(m.emissiveTexture.index, m.emissiveTexture.texCoord, true, what + " emissiveTexture");
+  textureTransform(out.baseColorTexture, pbr.baseColorTexture.extensions, pbrPtr + "/baseColorTexture");
+  textureTransform(out.metallicRoughnessTexture, pbr.metallicRoughnessTexture.extensions, pbrPtr + "/metallicRoughnessTexture");
+  textureTransform(out.normalTexture, m.normalTexture.extensions, ptr + "/normalTexture");
+  textureTransform(out.occlusionTexture, m.occlusionTexture.extensions, ptr + "/occlusionTexture");
+  textureTransform(out.emissiveTexture, m.emissiveTexture.extensions, ptr + "/emissiveTexture");
   if (m.alphaMode == "OPAQUE" || m.alphaMode.empty()) {
     out.alphaMode = AlphaMode::opaque;
   } else if (m.alphaMode == "MASK") {

@@ -55,6 +55,7 @@ void computeFlatNormals(MeshData& mesh) {
   out.uv0.reserve(triCount * 3);
   const bool uv0 = mesh.uv0.size() == n, uv1 = !mesh.uv1.empty() && mesh.uv1.size() == n;
   const bool tan = !mesh.tangents.empty() && mesh.tangents.size() == n;
+  const bool colors = !mesh.colors.empty() && mesh.colors.size() == n;
   for (size_t t = 0; t < triCount; ++t) {
     uint32_t idx[3] = {mesh.indices[3 * t], mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]};
     if (idx[0] >= n || idx[1] >= n || idx[2] >= n) continue;
@@ -68,6 +69,7 @@ void computeFlatNormals(MeshData& mesh) {
       out.uv0.push_back(uv0 ? mesh.uv0[i] : glm::vec2(0.0f));
       if (uv1) out.uv1.push_back(mesh.uv1[i]);
       if (tan) out.tangents.push_back(mesh.tangents[i]);
+      if (colors) out.colors.push_back(mesh.colors[i]);
     }
   }
   out.bounds = mesh.bounds;

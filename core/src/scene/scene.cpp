@@ -54,6 +54,8 @@ bool MeshData::valid(std::string* why) const {
   if (!uv1.empty() && uv1.size() != n) return fail("uv1 count " + std::to_string(uv1.size()) + " != vertex count " + std::to_string(n));
   if (!tangents.empty() && tangents.size() != n)
     return fail("tangent count " + std::to_string(tangents.size()) + " != vertex count " + std::to_string(n));
+  if (!colors.empty() && colors.size() != n)
+    return fail("color count " + std::to_string(colors.size()) + " != vertex count " + std::to_string(n));
   if (indices.size() % 3 != 0) return fail("index count " + std::to_string(indices.size()) + " is not a multiple of 3");
   for (size_t i = 0; i < indices.size(); ++i)
     if (indices[i] >= n)
@@ -86,6 +88,26 @@ const char* alphaModeName(AlphaMode m) {
 bool SamplerDesc::usesMipmaps() const {
   return minFilter == kNearestMipmapNearest || minFilter == kLinearMipmapNearest || minFilter == kNearestMipmapLinear ||
          minFilter == kLinearMipmapLinear;
+}
+
+glm::mat3x2 TextureRef::uvTransform() const {
+  // KHR_texture_transform: translation * rotation * scale, its rotation matrix
+  // (row-major) being [cos sin; -sin cos].
+  const float c = std::cos(rotation), s = std::sin(rotation);
+  return glm::mat3x2(glm::vec2(c * scale.x, -s * scale.x), glm::vec2(s * scale.y, c * scale.y), offset);
+}
+
+Bounds Primitive::worldBounds(const Bounds& local) const {
+  if (instances.empty()) return local.transformed(transform);
+  Bounds b;
+  for (const glm::mat4& instance : instances) b.expand(local.transformed(transform * instance));
+  return b;
+}
+
+bool Material::usesUv1() const {
+  for (const TextureRef* t : textures())
+    if (t->valid() && t->texCoord == 1) return true;
+  return false;
 }
 
 // ---------------------------------------------------------------- lights
@@ -233,6 +255,16 @@ bool Scene::hasNormalMaps() const {
   return false;
 }
 
+bool Scene::hasVertexColors() const {
+  for (const Primitive& p : primitives)
+    if (p.mesh >= 0 && size_t(p.mesh) < meshes.size() && meshes[size_t(p.mesh)].hasColors()) return true;
+  return false;
+}
+
+bool Scene::hasInstancing() const {
+  return std::any_of(primitives.begin(), primitives.end(), [](const Primitive& p) { return !p.instances.empty(); });
+}
+
 bool Scene::hasTextures() const {
   for (const Material* m : usedMaterials(*this))
     if (m->baseColorTexture.valid() || m->metallicRoughnessTexture.valid() || m->normalTexture.valid() ||
@@ -271,14 +303,16 @@ bool Scene::hasShadowCastingLights() const {
 size_t Scene::triangleCount() const {
   size_t n = 0;
   for (const Primitive& p : primitives)
-    if (p.mesh >= 0 && size_t(p.mesh) < meshes.size()) n += meshes[size_t(p.mesh)].triangleCount();
+    if (p.mesh >= 0 && size_t(p.mesh) < meshes.size())
+      n += meshes[size_t(p.mesh)].triangleCount() * std::max<size_t>(p.instances.size(), 1);
   return n;
 }
 
 size_t Scene::vertexCount() const {
   size_t n = 0;
   for (const Primitive& p : primitives)
-    if (p.mesh >= 0 && size_t(p.mesh) < meshes.size()) n += meshes[size_t(p.mesh)].vertexCount();
+    if (p.mesh >= 0 && size_t(p.mesh) < meshes.size())
+      n += meshes[size_t(p.mesh)].vertexCount() * std::max<size_t>(p.instances.size(), 1);
   return n;
 }
 
@@ -531,7 +565,7 @@ void appendScene(Scene& dst, Scene src, const glm::mat4& transform) {
     p.mesh += meshBase;
     p.material += materialBase;
     p.transform = transform * p.transform;
-    p.bounds = dst.meshes[size_t(p.mesh)].bounds.transformed(p.transform);
+    p.bounds = p.worldBounds(dst.meshes[size_t(p.mesh)].bounds);
     dst.primitives.push_back(std::move(p));
   }
   const glm::mat3 dirXf(transform);

@@ -3,7 +3,9 @@
 // Scene passes share one GpuScene through PassContext::gpuScene().
 //
 // Shader conventions (see shaders/include/frame.glsl and scene.vert):
-//   vertex attributes  0 position, 1 normal, 2 uv0, 3 tangent (MeshVertex)
+//   vertex attributes  0 position, 1 normal, 2 uv0, 3 tangent (MeshVertex);
+//                      4 COLOR_0, 5 TEXCOORD_1, from a second buffer, only in
+//                      meshes that have them (uv1 only where a texture samples it)
 //   uniform block 0    Frame (camera, viewport, ambient, directional light, counts)
 //   storage buffer 0   PointLight[]: point, then spot lights (bindPointLights)
 //   per draw           u_model, u_normalMatrix, u_prevModel (the previous frame's
@@ -12,7 +14,17 @@
 //                      u_metallicFactor, u_roughnessFactor, u_specular, u_normalScale,
 //                      u_occlusionStrength, u_alphaCutoff, u_alphaMode (0 opaque,
 //                      1 mask, 2 blend), u_emissive, u_hasBaseColorTex,
-//                      u_hasMetallicRoughnessTex, u_hasNormalTex, u_hasOcclusionTex
+//                      u_hasMetallicRoughnessTex, u_hasNormalTex, u_hasOcclusionTex,
+//                      u_hasVertexColors (the mesh has COLOR_0; else white),
+//                      u_uvTransform[unit] / u_uvSet[unit] (KHR_texture_transform
+//                      and texCoord of each texture unit's texture: material_uv.glsl),
+//                      u_instanceRange (instance count, 0: not instanced; first
+//                      entry of the Instances buffer)
+//   storage buffer 7   Instances: per instance of EXT_mesh_gpu_instancing
+//                      primitives its local matrix and normal matrix (scene.vert;
+//                      written at upload: Primitive::instances edited later are not
+//                      seen, a primitive's transform is), bound for scene draws only
+//                      in scenes with instances
 //   texture units      0 base colour, 1 metallic-roughness, 2 normal, 3 occlusion, 4 emissive
 #pragma once
 
@@ -56,6 +68,10 @@ struct FrameMotion {
 class GpuScene {
  public:
   static constexpr size_t kLightBufferCacheSize = 4;
+  // Texture units whose UV transform and set bindMaterial sets (u_uvTransform's size in material_uv.glsl).
+  static constexpr int kMaterialTextureUnits = 13;
+  // Storage buffer binding of the per-instance matrices (scene.vert's Instances).
+  static constexpr uint32_t kInstanceBinding = 7;
   explicit GpuScene(const Scene& scene);  // uploads; needs a current GL context
   ~GpuScene();
   GpuScene(const GpuScene&) = delete;
@@ -225,21 +241,38 @@ class GpuScene {
   struct GpuMesh {
     gl::VertexArray vao;
     gl::Buffer vertices, indices;
+    gl::Buffer extra;  // COLOR_0 then TEXCOORD_1, where the mesh has them (else none)
     uint32_t indexCount = 0;
+    bool colors = false, uv1 = false;
   };
   struct Locations;
-  GpuMesh upload(const struct MeshData& mesh, bool tangents) const;
+  GpuMesh upload(const struct MeshData& mesh, bool tangents, bool uv1) const;
+  // Writes every instanced primitive's matrices into instances_.
+  void uploadInstances();
+  struct InstanceRange {
+    uint32_t first = 0, count = 0;  // in instances_; count 0: not instanced
+  };
+  std::vector<InstanceRange> instanceRanges_;  // per primitive (empty: none instanced)
+  gl::Buffer instances_;                       // none: no primitive is instanced
+  // Whether draws set u_hasVertexColors, and u_uvTransform / u_uvSet (else
+  // they keep 0 and the identity / uv0 every program starts with).
+  bool hasVertexColors_ = false, texCoordsPerDraw_ = false;
+  uint64_t serial_ = 0;  // this GpuScene among all made (claimGeometryUniforms)
+  // Sets `program`'s geometry uniforms to their defaults (no vertex colours,
+  // uv0 untransformed, not instanced) unless this scene set them last.
+  void claimGeometryUniforms(uint32_t program, const Locations& loc) const;
   // The primitives a filter takes, in scene order or back to front from `eye`.
   bool selects(Filter filter, size_t primitive) const;
   std::vector<size_t> select(Filter filter, bool backToFront, glm::vec3 eye) const;
-  // Draws `order` with `program` (drawPrimitives' loop); instances > 1: instanced (drawLayered).
-  void drawList(uint32_t program, const std::vector<size_t>& order, Cull cull, uint32_t instances) const;
+  // Draws `order` with `program` (drawPrimitives' loop), each primitive
+  // `views` times (drawLayered: GL instance = instance * views + view).
+  void drawList(uint32_t program, const std::vector<size_t>& order, Cull cull, uint32_t views) const;
   void ensureViewBuffers();
   Viewport applyViewport(const View& view) const;
   // Writes the next slot of views_ for `view` and binds it at uniform buffer 0.
   void bindViewBlock(const View& view, Viewport viewport);
   const Locations& locations(uint32_t program) const;
-  void bindMaterial(uint32_t program, int material) const;
+  void bindMaterial(uint32_t program, int material, bool meshHasUv1) const;
 
   const Scene& scene_;
   gl::ContextIdentity uploadedIn_;
