@@ -106,4 +106,42 @@ vec3 shadeDirectionalLight(Surface s, vec3 V) {
   return shade(s.normal, V, L, u_dirLightColor.rgb, s);
 }
 
-vec3 ambientTerm(Surface s) { return u_ambient.rgb * s.albedo * s.ao; }
+// The dielectric-metal F0 of Cook-Torrance above, for the ambient term too.
+vec3 surfaceF0(Surface s) { return mix(vec3(0.04), s.albedo, s.metallic); }
+
+#if defined(HAS_ENVIRONMENT)
+// Image-based lighting (docs/ibl.md): the split-sum (Karis 2013) with the
+// pre-filtered maps of passes/irradiance_cube, specular_cube and brdf_lut,
+// and the multiple-scattering energy of Fdez-Aguera (2019), so that a white
+// furnace returns 1 for metals and dielectrics at any roughness.
+layout(binding = 9) uniform samplerCube u_iblIrradiance;  // E / pi
+layout(binding = 10) uniform samplerCube u_iblSpecular;   // level k: roughness k / (levels - 1)
+layout(binding = 11) uniform sampler2D u_iblBrdfLut;      // (A, B) over (n.v, roughness)
+uniform int u_hasEnvironment;  // 0: the scene has none (a pipeline run unadapted): the constant ambient
+
+vec3 environmentTerm(Surface s, vec3 V) {
+  vec3 N = s.normal;
+  float NdotV = clamp(dot(N, V), 1e-4, 1.0);
+  vec3 F0 = surfaceF0(s);
+  vec2 ab = texture(u_iblBrdfLut, vec2(NdotV, s.roughness)).rg;
+  vec3 Fr = max(vec3(1.0 - s.roughness), F0) - F0;  // Fresnel with roughness
+  vec3 FssEss = (F0 + Fr * pow(1.0 - NdotV, 5.0)) * ab.x + ab.y;
+  float Ems = 1.0 - (ab.x + ab.y);
+  vec3 Favg = F0 + (1.0 - F0) / 21.0;
+  vec3 FmsEms = Ems * FssEss * Favg / (1.0 - Ems * Favg);
+  vec3 kD = s.albedo * (1.0 - FssEss - FmsEms) * (1.0 - s.metallic);
+  float lod = s.roughness * float(textureQueryLevels(u_iblSpecular) - 1);
+  vec3 radiance = textureLod(u_iblSpecular, reflect(-V, N), lod).rgb;
+  vec3 irradiance = texture(u_iblIrradiance, N).rgb;
+  return (FssEss * radiance + (FmsEms + kD) * irradiance) * s.ao;
+}
+#endif
+
+// Light that is not from a light: with an environment (HAS_ENVIRONMENT) the
+// image-based term, otherwise LearnOpenGL's constant ambient * albedo.
+vec3 ambientTerm(Surface s, vec3 V) {
+#if defined(HAS_ENVIRONMENT)
+  if (u_hasEnvironment != 0) return environmentTerm(s, V);
+#endif
+  return u_ambient.rgb * s.albedo * s.ao;
+}

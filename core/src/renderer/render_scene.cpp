@@ -1,5 +1,7 @@
 // RenderScene: one scene's CPU data, its light edits and its one GPU upload,
 // shared by every renderer drawing it (rgraph/renderer.h).
+#include <cmath>
+
 #include "rgraph/error.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/renderer.h"
@@ -11,6 +13,7 @@ struct RenderScene::Impl {
   std::unique_ptr<GpuScene> gpu;
   uint64_t uploads = 0;
   uint64_t lightsVersion = 0;
+  uint64_t environmentVersion = 0;
 
   std::string where() const { return scene.source.empty() ? std::string("scene") : scene.source; }
   void lightsEdited() {
@@ -97,6 +100,20 @@ void RenderScene::setAmbient(const glm::vec3& ambient) {
 }
 
 uint64_t RenderScene::lightsVersion() const { return impl_->lightsVersion; }
+
+void RenderScene::setEnvironment(std::optional<Environment> environment) {
+  if (environment) {
+    const Environment& e = *environment;
+    const bool finite = std::isfinite(e.intensity) && e.intensity >= 0.0f && glm::all(glm::greaterThanEqual(e.color, glm::vec3(0.0f)));
+    if (!finite) throw RuntimeError(impl_->where() + ": environment intensity and color must be finite and >= 0");
+    if (e.kind == Environment::Kind::hdr && (e.width == 0 || e.height == 0 || e.rgb.size() != size_t(e.width) * e.height * 3))
+      throw RuntimeError(impl_->where() + ": an hdr environment needs width * height RGB pixels");
+  }
+  impl_->scene.environment = std::move(environment);
+  ++impl_->environmentVersion;
+}
+
+uint64_t RenderScene::environmentVersion() const { return impl_->environmentVersion; }
 
 GpuScene& RenderScene::gpu() {
   if (!impl_->gpu) {
