@@ -17,6 +17,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -151,9 +152,25 @@ class Ibl : public ::testing::Test {
 
 }  // namespace
 
-TEST_F(Ibl, WhiteFurnaceSpheresReturnOne) {
-  auto r = pbrRenderer({96, 96});
-  ASSERT_TRUE(r);
+// deferred-pbr.json with its lighting pass of another type (the compute methods).
+std::string pbrWithLighting(const std::string& type) {
+  std::ifstream in(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/deferred-pbr.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string from = "\"type\": \"deferred_lighting\"";
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos);
+  if (at != std::string::npos) text.replace(at, from.size(), "\"type\": \"" + type + "\"");
+  return text;
+}
+
+class IblFurnace : public Ibl, public ::testing::WithParamInterface<const char*> {};
+
+TEST_P(IblFurnace, SpheresReturnOne) {
+  RendererOptions options;
+  options.size = {96, 96};
+  Diagnostics diags;
+  auto r = Renderer::fromJson(pbrWithLighting(GetParam()), std::string(GetParam()) + "-pbr.json", options, diags);
+  ASSERT_TRUE(r) << (diags.empty() ? std::string() : formatDiagnostic(diags.front()));
   r->setScene(RenderScene::load(writeScene("rgraph_ibl_furnace.json", kFurnaceScene)));
   r->render();
   const std::vector<float> hdr = r->readResourceRGBA32F("hdr");
@@ -173,12 +190,15 @@ TEST_F(Ibl, WhiteFurnaceSpheresReturnOne) {
         for (int c = 0; c < 3; ++c) maxDev = std::max(maxDev, std::abs(double(hdr[i + c]) - 1.0));
       }
     EXPECT_GT(covered, 200u) << names[q];
-    std::printf("[ furnace ] %s: %zu pixels, max |value - 1| = %.4f\n", names[q], covered, maxDev);
+    std::printf("[ furnace ] %s, %s: %zu pixels, max |value - 1| = %.4f\n", GetParam(), names[q], covered, maxDev);
     worst = std::max(worst, maxDev);
   }
   // Half floats (G-buffer, maps, target); measured 0.0005 (metal and dielectric at roughness 1).
   EXPECT_LT(worst, 0.01);
 }
+
+INSTANTIATE_TEST_SUITE_P(LightingMethods, IblFurnace,
+                         ::testing::Values("deferred_lighting", "tiled_deferred", "clustered_deferred"));
 
 TEST_F(Ibl, PrefilteredAndIrradianceCubesMatchCpuIntegrationsOfTheSky) {
   auto r = pbrRenderer({16, 16});
