@@ -366,3 +366,18 @@ TEST_F(Ibl, NoEnvironmentCullsTheIblPasses) {
   r->render();
   for (const char* p : {"environment", "irradiance", "prefilter", "brdf_lut"}) EXPECT_FALSE(culled(r->plan(), p)) << p;
 }
+
+TEST_F(Ibl, BlendedSurfacesOfTheForwardPassAreLitByTheEnvironmentToo) {
+  auto r = pbrRenderer({32, 32});
+  ASSERT_TRUE(r);
+  r->setScene(RenderScene::load(writeScene("rgraph_ibl_blend.json", R"({
+    "lights": [], "ambient": 0, "environment": {"color": 1},
+    "camera": {"position": [0, 0, 3], "target": [0, 0, 0], "fov": 30},
+    "models": [{"shape": "sphere", "material": {"baseColor": [1, 1, 1, 1], "alphaMode": "blend", "metallic": 1,
+                                                 "roughness": 0.5}}]
+  })")));
+  r->render();
+  EXPECT_FALSE(culled(r->plan(), "forward"));
+  const std::vector<float> hdr = r->readResourceRGBA32F("hdr");
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(hdr[(size_t(16) * 32 + 16) * 4 + c], 1.0f, 0.01f) << "channel " << c;
+}
