@@ -6,7 +6,7 @@
 #include "include/ibl.glsl"
 
 in vec2 v_uv;
-layout(location = 0) out vec4 outColor;
+layout(location = 0) out vec2 outColor;
 
 const uint SAMPLES = 2048u;
 
@@ -33,5 +33,5 @@ void main() {
     A += (1.0 - Fc) * visibility;
     B += Fc * visibility;
   }
-  outColor = vec4(A / float(SAMPLES), B / float(SAMPLES), 0.0, 1.0);
+  outColor = vec2(A, B) / float(SAMPLES);
 }
