@@ -381,3 +381,21 @@ TEST_F(Ibl, BlendedSurfacesOfTheForwardPassAreLitByTheEnvironmentToo) {
   const std::vector<float> hdr = r->readResourceRGBA32F("hdr");
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(hdr[(size_t(16) * 32 + 16) * 4 + c], 1.0f, 0.01f) << "channel " << c;
 }
+
+TEST_F(Ibl, AnUnusableEnvironmentIsRefusedAndChangesNothing) {
+  auto scene = RenderScene::load(writeScene("rgraph_ibl_refuse.json", kFurnaceScene));
+  Environment bad;
+  bad.intensity = -1.0f;
+  EXPECT_NE(testsupport::errorOf([&] { scene->setEnvironment(bad); }).find("environment intensity must be finite and >= 0"),
+            std::string::npos);
+  bad = Environment{};
+  bad.kind = Environment::Kind::hdr;  // no pixels
+  EXPECT_NE(testsupport::errorOf([&] { scene->setEnvironment(bad); }).find("an hdr environment needs width x height"),
+            std::string::npos);
+  EXPECT_EQ(scene->environmentVersion(), 0u);
+  ASSERT_TRUE(scene->scene().environment);
+  EXPECT_EQ(scene->scene().environment->color, glm::vec3(1.0f));
+  Scene s;
+  s.environment = bad;
+  EXPECT_NE(testsupport::errorOf([&] { RenderScene::fromScene(s); }).find("an hdr environment needs"), std::string::npos);
+}

@@ -1,7 +1,6 @@
 // RenderScene: one scene's CPU data, its light edits and its one GPU upload,
 // shared by every renderer drawing it (rgraph/renderer.h).
-#include <cmath>
-
+#include "../scene/environment_problem.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/renderer.h"
@@ -102,13 +101,8 @@ void RenderScene::setAmbient(const glm::vec3& ambient) {
 uint64_t RenderScene::lightsVersion() const { return impl_->lightsVersion; }
 
 void RenderScene::setEnvironment(std::optional<Environment> environment) {
-  if (environment) {
-    const Environment& e = *environment;
-    const bool finite = std::isfinite(e.intensity) && e.intensity >= 0.0f && glm::all(glm::greaterThanEqual(e.color, glm::vec3(0.0f)));
-    if (!finite) throw RuntimeError(impl_->where() + ": environment intensity and color must be finite and >= 0");
-    if (e.kind == Environment::Kind::hdr && (e.width == 0 || e.height == 0 || e.rgb.size() != size_t(e.width) * e.height * 3))
-      throw RuntimeError(impl_->where() + ": an hdr environment needs width * height RGB pixels");
-  }
+  if (environment)
+    if (const auto problem = environmentProblem(*environment)) throw RuntimeError(impl_->where() + ": " + *problem);
   impl_->scene.environment = std::move(environment);
   ++impl_->environmentVersion;
 }

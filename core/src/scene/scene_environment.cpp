@@ -11,6 +11,7 @@
 #include <stb_image.h>
 
 #include "rgraph/error.h"
+#include "environment_problem.h"
 #include "rgraph/scene.h"
 
 namespace rgraph {
@@ -39,7 +40,28 @@ glm::vec3 hdrRadiance(const Environment& env, const glm::vec3& d) {
   return {p[0], p[1], p[2]};
 }
 
+bool finiteNonNegative(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f;
+}
+
 }  // namespace
+
+std::optional<std::string> environmentProblem(const Environment& env) {
+  if (!(std::isfinite(env.intensity) && env.intensity >= 0.0f)) return "environment intensity must be finite and >= 0";
+  if (!finiteNonNegative(env.color)) return "environment color must be finite and >= 0";
+  if (env.kind == Environment::Kind::sky) {
+    if (!finiteNonNegative(env.sunColor) || !finiteNonNegative(env.zenith) || !finiteNonNegative(env.horizon) ||
+        !finiteNonNegative(env.ground))
+      return "environment sky colours must be finite and >= 0";
+    const float len = glm::length(env.sunDirection);
+    if (!(len > 0.0f) || !std::isfinite(len)) return "environment sun direction must be a finite, non-zero vector";
+    if (!(env.sunRadiusDeg > 0.0f && env.sunRadiusDeg <= 45.0f)) return "environment sun radius must be in (0, 45] degrees";
+  }
+  if (env.kind == Environment::Kind::hdr && (env.width == 0 || env.height == 0 ||
+                                             env.rgb.size() != size_t(env.width) * env.height * 3))
+    return "an hdr environment needs width x height RGB pixels";
+  return std::nullopt;
+}
 
 glm::vec3 environmentRadiance(const Environment& env, const glm::vec3& d) {
   switch (env.kind) {
