@@ -2,6 +2,8 @@
 
 #include <GL/glcorearb.h>
 
+#include <string>
+
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/scene.h"
