@@ -46,7 +46,7 @@ void main() {
   const vec3 V = safeNormal(u_cameraPos.xyz - s.position, s.normal);
   vec3 color = vec3(0.0);
   if (u_load != 0) color = imageLoad(u_target, px).rgb;
-  if (u_ambientAndSun != 0) color += ambientTerm(s) + shadeDirectionalLight(s, V) * sunVisibility(s);
+  if (u_ambientAndSun != 0) color += ambientTerm(s, V) + shadeDirectionalLight(s, V) * sunVisibility(s);
   const float viewDepth = max(-(u_view * vec4(s.position, 1.0)).z, 0.0);
   color += shadeClusterLights(px, viewDepth, u_pointLightCount, s, V);
 #if defined(FAR_FIELD)

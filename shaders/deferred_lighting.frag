@@ -24,7 +24,7 @@ void main() {
   vec3 color = vec3(0.0);
   if (u_ambientAndSun != 0) {
     float occlusion = u_hasAo != 0 ? texture(u_ao, gl_FragCoord.xy * u_viewport.zw).r : 1.0;
-    color += ambientTerm(s) * occlusion + shadeDirectionalLight(s, V) * sunVisibility(s);
+    color += ambientTerm(s, V) * occlusion + shadeDirectionalLight(s, V) * sunVisibility(s);
   }
   for (int i = 0; i < u_pointLightCount; ++i) color += shadePointLight(lights[i], s, V) * lightVisibility(i, s);
   if (u_ambientAndSun != 0) color += emissiveTerm(s);  // once per pixel: with the ambient

@@ -35,7 +35,7 @@ void main() {
 #if defined(HAS_VELOCITY)
   outVelocity = screenVelocity(vs_clipNow, vs_clipPrev);
 #endif
-  vec3 color = ambientTerm(s) + shadeDirectionalLight(s, V) * sunVisibility(s);
+  vec3 color = ambientTerm(s, V) + shadeDirectionalLight(s, V) * sunVisibility(s);
   if (u_clustered != 0) {
     const float viewDepth = max(-(u_view * vec4(fs.worldPos, 1.0)).z, 0.0);
     color += shadeClusterLights(ivec2(gl_FragCoord.xy), viewDepth, u_pointLightCount, s, V);

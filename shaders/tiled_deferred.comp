@@ -540,7 +540,7 @@ void main() {
   const vec3 V = safeNormal(u_cameraPos.xyz - s.position, s.normal);
   vec3 color = vec3(0.0);
   if (u_load != 0) color = imageLoad(u_target, px).rgb;
-  if (u_ambientAndSun != 0) color += ambientTerm(s) + shadeDirectionalLight(s, V) * sunVisibility(s);
+  if (u_ambientAndSun != 0) color += ambientTerm(s, V) + shadeDirectionalLight(s, V) * sunVisibility(s);
   if (count <= uint(MAX_TILE_LIGHTS)) {
 #if defined(FAR_FIELD)
     // The listed lights without their cut (their tails), the rest as the far field.

@@ -183,6 +183,7 @@ int runRender(const RenderOptions& options) {
   try {
     const std::string sceneSpec = options.scene.empty() ? std::string("learnopengl:overview") : options.scene;
     std::shared_ptr<RenderScene> scene = RenderScene::load(sceneSpec);
+    if (!options.environment.empty()) scene->setEnvironment(environmentFromSpec(options.environment));
     std::optional<Camera> camera;
     if (!options.camera.empty()) {
       std::string error;

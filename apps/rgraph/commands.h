@@ -46,6 +46,9 @@ struct RenderOptions {
   // --orbit DEGREES: the camera's turn about its target per frame (as given;
   // render checks it is a finite number).
   std::optional<std::string> orbit;
+  // --environment sky|color:R,G,B|FILE.hdr: image-based lighting for the
+  // scene, over its own (a bare glTF has none).
+  std::string environment;
   bool window = false;
   // false (--no-checks): skip the checks validate runs (graph, pass checks,
   // glslang shader checks, cached on disk) before any GL work.

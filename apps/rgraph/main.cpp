@@ -144,6 +144,11 @@ CLI::App* addRender(CLI::App& app, Options& o) {
          "turn the camera this many degrees per frame about its up axis through its target "
          "(frame i: i times that; negative: the other way, as --orbit=-D)")
       ->type_name("DEGREES");
+  cmd->add_option("--environment", r.environment,
+                  "image-based lighting for the scene, over its own \"environment\": sky (the procedural sky), "
+                  "color:R,G,B (uniform radiance) or an equirectangular .hdr file")
+      ->type_name("sky|color:R,G,B|FILE.hdr")
+      ->check(kNotEmpty);
   cmd->add_option("--stats", r.stats, "write frame and pass timings and memory as JSON")->check(kNotEmpty);
   cmd->add_option("--camera", r.camera,
                   "camera at px,py,pz looking at tx,ty,tz, optionally with a vertical field of view in degrees "

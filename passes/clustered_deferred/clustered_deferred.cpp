@@ -26,6 +26,7 @@
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/uniform.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/ibl.h"
 #include "rgraph/passes/cluster_lists.h"
 #include "rgraph/passes/far_field.h"
 #include "rgraph/passes/invocation_order.h"
@@ -104,6 +105,7 @@ class ClusteredDeferredPass final : public PassInstance {
     const int lights = ctx.params().getBool("point_lights") ? static_cast<int>(scene.pointLightCount()) : 0;
     lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
     shadows::bindInfo(ctx, shade_);
+    ibl::setUniforms(ctx, shade_);
     if (buffer_) {
       bins_.build(lights, size);  // what the list build (and the far field) culls
       builder_.build(scene, buffer_, clusters::grid(ctx.params()), size, lights, lighting::threshold(ctx.params()),
@@ -158,6 +160,7 @@ PassTypeDesc makeClusteredDeferredPass() {
   d.params.push_back(lighting::farFieldParam());
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
   shadows::declareReader(d);
+  ibl::declareReader(d);
   d.programs = [](const ParamSet& p) {
     std::vector<ShaderProgramSpec> v;
     v.push_back(clusters::depthBoundedBuildProgram(p, lighting::binDefines(binGrid(p))));
@@ -170,6 +173,7 @@ PassTypeDesc makeClusteredDeferredPass() {
       s.samplers = lighting::gbufferSamplers();
       s.drawsToAttachments = false;
       shadows::addToProgram(s, p);
+      ibl::addToProgram(s, p);
       v.push_back(std::move(s));
     }
     std::vector<std::string> defines = shadingDefines(p);

@@ -6,6 +6,7 @@
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/passes/cluster_lists.h"
+#include "rgraph/passes/ibl.h"
 #include "rgraph/passes/light_radii.h"
 #include "rgraph/passes/lighting_options.h"
 #include "rgraph/passes/shadow_sampling.h"
@@ -21,6 +22,7 @@ std::vector<ShaderProgramSpec> programs(const ParamSet& params, bool blendsSourc
   s.ownSamplers = lighting::materialSamplers();
   s.blendsSourceAlpha = blendsSourceAlpha;
   shadows::addToProgram(s, params);
+  ibl::addToProgram(s, params);
   return lighting::normalMapVariants(s);
 }
 
@@ -34,6 +36,7 @@ void SurfaceDrawer::draw(PassContext& ctx, bool blended) const {
   if (scene.primitiveCount(filter) == 0) return;
   lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
   shadows::bindInfo(ctx, program_);
+  ibl::setUniforms(ctx, program_);
   const uint32_t prog = program_;
   gl::useProgram(ctx, prog);
   pointLightCount_.set(static_cast<int>(scene.pointLightCount()));

@@ -8,6 +8,7 @@
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/ibl.h"
 #include "rgraph/passes/light_radii.h"
 #include "rgraph/passes/lighting_options.h"
 #include "rgraph/passes/shadow_sampling.h"
@@ -24,6 +25,7 @@ class DeferredLightingPass final : public gl::FullscreenPass {
     ambientAndSun_.set(1);
     // Optional ambient occlusion (e.g. the ssao plugin's output) scales the ambient term.
     hasAo_.set(ctx.bound("ao"));
+    ibl::setUniforms(ctx, program());
     lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
     shadows::bindInfo(ctx, program());
   }
@@ -51,12 +53,14 @@ PassTypeDesc makeDeferredLightingPass() {
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
   d.adapt = lighting::adaptPointLightShading;
   shadows::declareReader(d);
+  ibl::declareReader(d);
   d.programs = [](const ParamSet& p) {
     ShaderProgramSpec s = gl::fullscreenProgram("deferred_lighting.frag", lighting::gbufferSamplers(),
                                                 lighting::shadingDefines(p));
     if (p.getBool("radius_test")) s.defines.push_back("LIGHT_RADIUS_BRANCH");
     s.samplers.push_back({"ao", "u_ao", 5, /*optional=*/true});  // u_hasAo says whether it is bound
     shadows::addToProgram(s, p);
+    ibl::addToProgram(s, p);
     return std::vector<ShaderProgramSpec>{std::move(s)};
   };
   d.create = [] { return std::make_unique<DeferredLightingPass>(); };

@@ -10,6 +10,7 @@
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/ibl.h"
 #include "rgraph/passes/cluster_lists.h"
 #include "rgraph/passes/forward_shading.h"
 #include "rgraph/passes/light_radii.h"
@@ -106,6 +107,7 @@ PassTypeDesc makeForwardPass() {
     }
   };
   shadows::declareReader(d);
+  ibl::declareReader(d);
   d.programs = [](const ParamSet& p) {
     std::vector<ShaderProgramSpec> v;
     if (p.getBool("markers")) v.push_back(programSpec("light_marker.vert", "light_marker.frag"));

@@ -9,6 +9,7 @@
 #include "rgraph/format_sets.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/pass_decl.h"
+#include "rgraph/passes/ibl.h"
 #include "rgraph/passes/cluster_lists.h"
 #include "rgraph/passes/forward_shading.h"
 #include "rgraph/passes/lighting_options.h"
@@ -67,6 +68,7 @@ PassTypeDesc makeForwardLitPass() {
     }
   };
   shadows::declareReader(d);
+  ibl::declareReader(d);
   d.programs = [](const ParamSet& p) { return forward::programs(p, p.getBool("blend")); };
   d.needsScene = true;
   d.create = [] { return std::make_unique<ForwardLitPass>(); };

@@ -21,6 +21,7 @@
 #include "rgraph/gl/uniform.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/passes/far_field.h"
+#include "rgraph/passes/ibl.h"
 #include "rgraph/passes/invocation_order.h"
 #include "rgraph/passes/light_bins.h"
 #include "rgraph/passes/light_radii.h"
@@ -114,6 +115,7 @@ class TiledDeferredPass final : public PassInstance {
     const int lights = points ? static_cast<int>(scene.pointLightCount()) : 0;
     lighting::bindPointLights(scene, lighting::threshold(ctx.params()));
     shadows::bindInfo(ctx, program_);
+    ibl::setUniforms(ctx, program_);
     bins_.build(lights, size);
     glUseProgram(program_);
     pointLightCount_.set(lights);
@@ -149,6 +151,7 @@ PassTypeDesc makeTiledDeferredPass() {
   d.params.push_back(lighting::farFieldParam());
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
   shadows::declareReader(d);
+  ibl::declareReader(d);
   d.programs = [](const ParamSet& p) {
     std::vector<ShaderProgramSpec> v;
     v.push_back(lighting::binProgram(commonDefines(p), binGrid(p)));
@@ -159,6 +162,7 @@ PassTypeDesc makeTiledDeferredPass() {
       s.samplers = lighting::gbufferSamplers();
       s.drawsToAttachments = false;
       shadows::addToProgram(s, p);
+      ibl::addToProgram(s, p);
       v.push_back(std::move(s));
     }
     return v;

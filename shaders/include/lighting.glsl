@@ -114,7 +114,45 @@ vec3 shadeDirectionalLight(Surface s, vec3 V) {
   return shade(s.normal, V, L, u_dirLightColor.rgb, s);
 }
 
-vec3 ambientTerm(Surface s) { return u_ambient.rgb * s.albedo * s.ao; }
+#if defined(HAS_ENVIRONMENT)
+// Image-based lighting (docs/ibl.md): the split-sum (Karis 2013) with the
+// pre-filtered maps of passes/irradiance_cube, specular_cube and brdf_lut,
+// and the multiple-scattering energy of Fdez-Aguera (2019), so that a white
+// furnace returns 1 for metals and dielectrics at any roughness. F0 and F90
+// are Cook-Torrance's (surfaceF0, surfaceF90: KHR_materials_specular, unlit):
+// the split sum's scale and bias weigh F0 and F90, F0 * A + F90 * B.
+layout(binding = 13) uniform samplerCube u_iblIrradiance;  // E / pi
+layout(binding = 14) uniform samplerCube u_iblSpecular;   // level k: roughness k / (levels - 1)
+layout(binding = 15) uniform sampler2D u_iblBrdfLut;      // (A, B) over (n.v, roughness)
+uniform int u_hasEnvironment;  // 0: the scene has none (a pipeline run unadapted): the constant ambient
+
+vec3 environmentTerm(Surface s, vec3 V) {
+  vec3 N = s.normal;
+  float NdotV = clamp(dot(N, V), 1e-4, 1.0);
+  vec3 F0 = surfaceF0(s);
+  float F90 = surfaceF90(s);
+  vec2 ab = texture(u_iblBrdfLut, vec2(NdotV, s.roughness)).rg;
+  vec3 Fr = max(vec3(F90 * (1.0 - s.roughness)), F0) - F0;  // Fresnel with roughness, towards F90
+  vec3 FssEss = (F0 + Fr * pow(1.0 - NdotV, 5.0)) * ab.x + F90 * ab.y;
+  float Ems = 1.0 - (ab.x + ab.y);
+  vec3 Favg = F0 + (F90 - F0) / 21.0;
+  vec3 FmsEms = Ems * FssEss * Favg / (1.0 - Ems * Favg);
+  vec3 kD = s.albedo * (1.0 - FssEss - FmsEms) * (1.0 - s.metallic);
+  float lod = s.roughness * float(textureQueryLevels(u_iblSpecular) - 1);
+  vec3 radiance = textureLod(u_iblSpecular, reflect(-V, N), lod).rgb;
+  vec3 irradiance = texture(u_iblIrradiance, N).rgb;
+  return (FssEss * radiance + (FmsEms + kD) * irradiance) * s.ao;
+}
+#endif
+
+// Light that is not from a light: with an environment (HAS_ENVIRONMENT) the
+// image-based term, otherwise LearnOpenGL's constant ambient * albedo.
+vec3 ambientTerm(Surface s, vec3 V) {
+#if defined(HAS_ENVIRONMENT)
+  if (u_hasEnvironment != 0) return environmentTerm(s, V);
+#endif
+  return u_ambient.rgb * s.albedo * s.ao;
+}
 
 // Light the surface emits (glTF emissive; unlit materials' base colour):
 // added once per pixel, after the lights, before tone mapping, by whichever

@@ -190,3 +190,34 @@ TEST(HistoryConfig, PassJitterKey) {
 
 }  // namespace
 }  // namespace rgraph
+
+namespace rgraph {
+namespace {
+
+// "persistent" (ResourceDecl::persistent): true or false, anything else located.
+TEST(PersistentConfig, ParsedAndAWrongTypeIsLocated) {
+  Loaded l = loadAndCompile(R"({
+  "version": 1,
+  "resources": {
+    "lut": {"format": "rgba8", "size": [4, 4], "persistent": true},
+    "bad": {"format": "rgba8", "size": [4, 4], "persistent": "yes"},
+    "out": {"format": "rgba8"}
+  },
+  "passes": [
+    {"name": "a", "type": "fullscreen", "outputs": {"color": "lut"}},
+    {"name": "b", "type": "fullscreen", "inputs": {"source": "lut"}, "outputs": {"color": "out"}}
+  ],
+  "output": "out"
+})");
+  bool lutPersistent = false;
+  for (const auto& r : l.config.graph.resources)
+    if (r.name == "lut") lutPersistent = r.persistent;
+  EXPECT_TRUE(lutPersistent);
+  const std::string all = lines(l.diags);
+  EXPECT_NE(all.find("h.json:5:62"), std::string::npos) << all;
+  EXPECT_NE(all.find("/resources/bad/persistent"), std::string::npos) << all;
+  EXPECT_NE(all.find("true or false"), std::string::npos) << all;
+}
+
+}  // namespace
+}  // namespace rgraph

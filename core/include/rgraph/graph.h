@@ -117,6 +117,13 @@ struct ResourceDecl {
   // first frame, after a resize, a reload and a camera cut.
   std::string historyOf;
   SourceLocation historyWhere;  // the "history_of" value
+  // A persistent resource (config key "persistent": true): its content
+  // outlives the frame and stays valid until the executor is told otherwise
+  // (rgraph/gl/executor.h, invalidatePersistent): the first frame after a
+  // build or resize, or the scene's environment changed. A pass that writes
+  // only persistent resources runs only while they are invalid (the IBL
+  // pre-filter passes: steady frames skip them). Never aliased.
+  bool persistent = false;
   SourceLocation where;
 };
 
@@ -244,6 +251,7 @@ struct PlannedResource {
   ResourceIndex historyOf;
   // The source of such a live history: that history (invalid otherwise; nothing to copy then).
   ResourceIndex history;
+  bool persistent = false;  // ResourceDecl::persistent: owns its physical for the whole frame
 };
 
 struct PhysicalTexture {

@@ -81,6 +81,8 @@ struct SceneFeatures {
   bool pointLights = true;
   bool blendMaterials = true;
   bool normalMaps = true;
+  // The scene has an environment (Scene::environment): image-based lighting.
+  bool environment = false;
   // false: every drawn material has the same metallic and roughness (no
   // texture), so no G-buffer target needs to carry them.
   bool metallicRoughnessVariation = true;

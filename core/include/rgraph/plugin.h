@@ -66,7 +66,7 @@
 // 7: SceneFeatures's shadow facts (shadowCasters, shadowLights,
 // unshadowedLights), PassAdaptation::expand and ::reshape (ExpandedPass).
 // 8: SceneFeatures's light-marker facts (lightMarkers, markerSizeLimit), emissive and
-// reflectance (optional G-buffer targets),
+// reflectance (optional G-buffer targets), environment (image-based lighting),
 // PointLight::marker.
 #define RGRAPH_PLUGIN_ABI_VERSION 8u
 

@@ -130,6 +130,14 @@ class RenderScene {
   void setAmbient(const glm::vec3& ambient);
   // Increases with every light or ambient edit.
   uint64_t lightsVersion() const;
+  // The image-based lighting environment (nullopt: none). Renderers
+  // pre-filter it again at their next frame (their persistent IBL resources
+  // are invalidated); gaining or losing one adapts their pipeline again. An
+  // hdr environment with no pixels, or a negative or non-finite value, throws
+  // RuntimeError and changes nothing.
+  void setEnvironment(std::optional<Environment> environment);
+  // Increases with every setEnvironment.
+  uint64_t environmentVersion() const;
 
   // The GPU copy, uploaded on first use (a GL context must be current; later
   // calls throw RuntimeError in any other context, see Contexts above).
@@ -291,6 +299,7 @@ class Renderer {
   struct PassTiming {
     std::string name;
     double ms = 0.0;
+    uint64_t executions = 0;  // Executor::PassTiming::executions
   };
   // Per executed pass, in execution order, of the frame timingsFrame() names
   // (ms 0 while it names none). With GL_TIME_ELAPSED queries (GPUs) that is

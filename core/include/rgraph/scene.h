@@ -343,6 +343,43 @@ Camera frameScene(const Scene& scene, float fovY = 45.0f);
 // --orbit D` shows frame i with orbitCamera(camera, D * i).
 Camera orbitCamera(const Camera& camera, float degrees);
 
+// ---------------------------------------------------------------- environment
+
+// Light from every direction at infinity, for image-based lighting (the PBR
+// pipelines' IBL passes pre-filter it; docs/ibl.md). Radiance in a world
+// direction d (unit) is environmentRadiance(env, d); the passes' shaders
+// compute the same function (shaders/include/environment.glsl).
+struct Environment {
+  enum class Kind { uniform, sky, hdr };
+  Kind kind = Kind::uniform;
+  float intensity = 1.0f;           // scales every kind's radiance (>= 0)
+  glm::vec3 color{1.0f};            // uniform: the radiance everywhere (>= 0)
+  // sky: a gradient from `horizon` to `zenith` above the horizon, `ground`
+  // below it, and a sun: a disc of angular radius sunRadiusDeg around
+  // sunDirection (unit, towards the sun) of radiance sunColor, its edge
+  // smoothed over its outer fifth.
+  glm::vec3 sunDirection{0.3f, 0.8f, 0.5f};
+  glm::vec3 sunColor{1000.0f};
+  float sunRadiusDeg = 2.0f;
+  glm::vec3 zenith{0.25f, 0.45f, 0.9f}, horizon{0.9f, 0.9f, 1.0f}, ground{0.3f, 0.28f, 0.25f};
+  // hdr: an equirectangular image (longitude along x from -z turning towards
+  // +x, +y up at the top row), RGB floats, rows top-down.
+  std::string file;
+  uint32_t width = 0, height = 0;
+  std::vector<float> rgb;
+  bool operator==(const Environment&) const = default;
+};
+
+// The radiance of `env` towards world direction `d` (unit): what the
+// environment pass writes into its cube map (the hdr kind sampled nearest).
+glm::vec3 environmentRadiance(const Environment& env, const glm::vec3& d);
+// Loads an equirectangular Radiance .hdr file (stb_image) into env.rgb,
+// width and height; throws RuntimeError naming the file and stb's reason.
+void loadEnvironmentHdr(Environment& env, const std::string& path);
+// "sky", "color:R,G,B" or an .hdr file: the environment `rgraph render
+// --environment` gives a scene. Throws RuntimeError naming the value.
+Environment environmentFromSpec(const std::string& spec);
+
 // ---------------------------------------------------------------- scene
 
 struct Scene {
@@ -358,6 +395,9 @@ struct Scene {
   glm::vec3 ambient{0.1f};
   Camera camera;
   bool hasCamera = false;  // false: `camera` is the default, not from the source
+  // Image-based lighting (scene file key "environment"); none: the PBR
+  // pipelines' IBL passes are culled and ambient is the constant above.
+  std::optional<Environment> environment;
   // What the loaders warned about (also logged as spdlog warnings), in order:
   // features of the source that are not drawn and what is drawn instead
   // ("skins ignored: drawn in bind pose"), values replaced. `rgraph plan

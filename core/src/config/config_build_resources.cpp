@@ -15,7 +15,8 @@ namespace {
 
 const std::vector<std::string> kResourceKeys = {"type",         "format",      "size",     "samples",
                                                 "mips",         "layers",      "cube",     "clear",
-                                                "buffer_bytes", "description", "imported", "history_of"};
+                                                "buffer_bytes", "description", "imported", "history_of",
+                                                "persistent"};
 
 }  // namespace
 
@@ -97,6 +98,14 @@ bool Builder::checkResource(const Json& res, const std::string& pointer, Resourc
       r.imported = imported->get<bool>();
     else
       typeError(sub("imported"), "true or false", *imported);
+  }
+
+  // Content kept across frames until invalidated (ResourceDecl::persistent).
+  if (const Json* persistent = member("persistent")) {
+    if (persistent->is_boolean())
+      r.persistent = persistent->get<bool>();
+    else
+      typeError(sub("persistent"), "true or false", *persistent);
   }
 
   if (const Json* of = member("history_of")) {

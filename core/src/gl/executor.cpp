@@ -155,6 +155,14 @@ std::unique_ptr<PassRun> Executor::Impl::createRun(PassIndex pass, Extent output
   run->sampling = sampling;
   run->output = output;
   run->jitter = pd.jitter;
+  // Writes persistent resources only (and at least one): skipped while they are valid.
+  bool writes = false, onlyPersistent = true;
+  for (const BoundUse& u : plan.uses(pass)) {
+    if (!isWriteAccess(u.access)) continue;
+    writes = true;
+    onlyPersistent = onlyPersistent && u.resource.valid() && plan.resource(u.resource).persistent;
+  }
+  run->persistentOnly = writes && onlyPersistent;
   run->paramSet = defaultParams(type->params);
   if (pass.value() < pipeline.params.size())
     for (const auto& [k, v] : pipeline.params[pass.value()].values()) run->paramSet.set(k, v);
@@ -263,7 +271,7 @@ void Executor::Impl::createRuns() {
   slotUnits.clear();
   for (PassIndex pass : plan.order) runs.push_back(createRun(pass, size));
   timings.clear();
-  for (const auto& run : runs) timings.push_back({run->name, 0.0});
+  for (const auto& run : runs) timings.push_back({run->name, 0.0, 0});
   timingsFrame.reset();
   queryRing.reset();  // pending results are of the previous runs
   assignMemoryBarriers();
@@ -467,6 +475,12 @@ void Executor::renderFrame() {
   if (cpuTiming) glFinish();
   for (size_t i = 0; i < im.runs.size(); ++i) {
     PassRun& run = *im.runs[i];
+    // What it writes is persistent and still valid: nothing to do this frame.
+    if (run.persistentOnly && im.persistentHeld) {
+      if (cpuTiming) im.timings[i].ms = 0.0;
+      continue;
+    }
+    ++im.timings[i].executions;
     const Clock::time_point t0 = cpuTiming ? Clock::now() : Clock::time_point{};
     if (ring) ring->beginPass(i);
     if (run.memoryBarrier) glMemoryBarrier(run.memoryBarrier);
@@ -511,6 +525,7 @@ void Executor::renderFrame() {
   if (ring) ring->endFrame();
   if (cpuTiming) im.timingsFrame = im.frame;
   im.endHistory();
+  im.persistentHeld = true;
   ++im.frame;
   // Leave a neutral state for whoever draws next (e.g. a blit to the window:
   // sRGB encoding left on would encode the output a second time).

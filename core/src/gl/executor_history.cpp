@@ -21,7 +21,8 @@ using exec_detail::HistoryCopy;
 std::vector<bool> Executor::Impl::keptPhysicals(const Plan& plan) {
   std::vector<bool> kept(plan.physical.size(), false);
   for (const PlannedResource& pr : plan.resources)
-    if ((pr.historyOf.valid() || pr.history.valid()) && pr.physical.valid()) kept[pr.physical.value()] = true;
+    if ((pr.historyOf.valid() || pr.history.valid() || pr.persistent) && pr.physical.valid())
+      kept[pr.physical.value()] = true;
   return kept;
 }
 
@@ -97,5 +98,7 @@ void Executor::cameraCut() {
 }
 
 uint64_t Executor::frameIndex() const { return impl_->frame; }
+
+void Executor::invalidatePersistent() { impl_->persistentHeld = false; }
 
 }  // namespace rgraph

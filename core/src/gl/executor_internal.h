@@ -135,6 +135,7 @@ class PassRun final : public PassContext {
   uint32_t emptyVao = 0;  // Executor::Impl::emptyVao
   GlBindings* bindingRecord = nullptr;  // Executor::Impl::bound
   bool jitter = true;     // PassDecl::jitter
+  bool persistentOnly = false;  // writes only persistent resources: runs while they are invalid
 
   const SlotBinding* find(std::string_view slot) const {
     for (const auto& s : slots)
@@ -247,6 +248,7 @@ struct Executor::Impl {
   // survives resize(); the rest starts again on a build, a resize and a cut.
   uint64_t frame = 0;
   bool historyHeld = false;  // history textures hold the previous frame's content
+  bool persistentHeld = false;  // persistent resources hold their writers' content (invalidatePersistent)
   std::optional<glm::mat4> prevViewProj;  // the last frame's unjittered view-projection
   std::vector<exec_detail::HistoryCopy> historyCopies;
 
@@ -270,6 +272,7 @@ struct Executor::Impl {
     frameEndBarrier = 0;
     historyCopies.clear();
     historyHeld = false;
+    persistentHeld = false;
     prevViewProj.reset();
     built = false;
   }

@@ -131,6 +131,7 @@ void Compiler::finish() {
     pr.imported = rs.imported;
     pr.extent = rs.extent;
     pr.bytes = rs.bytes;
+    pr.persistent = d_.resources[r].persistent;
     if (rs.first >= 0) {
       pr.firstPass = StepIndex(static_cast<uint32_t>(rs.first));
       pr.lastPass = StepIndex(static_cast<uint32_t>(rs.last));

@@ -169,7 +169,14 @@ int Compiler::historyWriterRead(uint32_t f) const {
 // own their textures (X's content must survive the frame for the copy, H's
 // from the start). Returns whether r is such a resource; sets its lifetime.
 bool Compiler::wholeFrame(uint32_t r) {
-  if (historyCount_ == 0 || plan_.order.empty()) return false;
+  if (plan_.order.empty()) return false;
+  // A persistent resource keeps its content across frames (ResourceDecl::persistent).
+  if (d_.resources[r].persistent && r_[r].first >= 0) {
+    r_[r].first = 0;
+    r_[r].last = static_cast<int>(plan_.order.size()) - 1;
+    return true;
+  }
+  if (historyCount_ == 0) return false;
   const int h = histSrc_[r] >= 0 ? static_cast<int>(r) : keptHistory_[r];
   if (h < 0 || r_[h].first < 0 || r_[histSrc_[h]].first < 0) return false;
   r_[r].first = 0;

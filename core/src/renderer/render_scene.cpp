@@ -1,5 +1,6 @@
 // RenderScene: one scene's CPU data, its light edits and its one GPU upload,
 // shared by every renderer drawing it (rgraph/renderer.h).
+#include "../scene/environment_problem.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/renderer.h"
@@ -11,6 +12,7 @@ struct RenderScene::Impl {
   std::unique_ptr<GpuScene> gpu;
   uint64_t uploads = 0;
   uint64_t lightsVersion = 0;
+  uint64_t environmentVersion = 0;
 
   std::string where() const { return scene.source.empty() ? std::string("scene") : scene.source; }
   void lightsEdited() {
@@ -97,6 +99,15 @@ void RenderScene::setAmbient(const glm::vec3& ambient) {
 }
 
 uint64_t RenderScene::lightsVersion() const { return impl_->lightsVersion; }
+
+void RenderScene::setEnvironment(std::optional<Environment> environment) {
+  if (environment)
+    if (const auto problem = environmentProblem(*environment)) throw RuntimeError(impl_->where() + ": " + *problem);
+  impl_->scene.environment = std::move(environment);
+  ++impl_->environmentVersion;
+}
+
+uint64_t RenderScene::environmentVersion() const { return impl_->environmentVersion; }
 
 GpuScene& RenderScene::gpu() {
   if (!impl_->gpu) {

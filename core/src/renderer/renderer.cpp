@@ -47,6 +47,7 @@ std::vector<std::pair<int, uint32_t>> shadowSet(const SceneFeatures& f) {
 
 bool sameFeatures(const SceneFeatures& a, const SceneFeatures& b) {
   return a.pointLights == b.pointLights && a.blendMaterials == b.blendMaterials && a.normalMaps == b.normalMaps &&
+         a.environment == b.environment &&
          a.metallicRoughnessVariation == b.metallicRoughnessVariation && a.metallic == b.metallic &&
          a.roughness == b.roughness && a.lightMarkers == b.lightMarkers && a.markerSizeLimit == b.markerSizeLimit &&
          a.emissive == b.emissive && a.reflectance == b.reflectance && a.shadowCasters == b.shadowCasters &&
@@ -69,6 +70,7 @@ struct Renderer::Impl {
 
   std::shared_ptr<RenderScene> scene;
   uint64_t sceneVersionSeen = 0;
+  uint64_t environmentSeen = 0;  // RenderScene::environmentVersion at the last frame
   Camera camera;
   Extent size;
   std::map<std::string, uint32_t> imports;
@@ -253,6 +255,15 @@ void Renderer::Impl::prepareFrame() {
       rebuild = true;
     }
   }
+  // A new environment: pre-filtered again (persistent resources), or a
+  // pipeline adapted again when the scene gains or loses one.
+  if (scene && scene->environmentVersion() != environmentSeen) {
+    environmentSeen = scene->environmentVersion();
+    if (options.adaptToScene && adaptedFor && !sameFeatures(*adaptedFor, features()))
+      rebuild = true;
+    else if (executor)
+      executor->invalidatePersistent();
+  }
   if (rebuild || !executor) {
     try {
       buildExecutor();
@@ -354,6 +365,7 @@ void Renderer::setScene(std::shared_ptr<RenderScene> scene) {
   impl_->refuseInFrame("setScene");
   impl_->scene = std::move(scene);
   impl_->sceneVersionSeen = impl_->scene ? impl_->scene->lightsVersion() : 0;
+  impl_->environmentSeen = impl_->scene ? impl_->scene->environmentVersion() : 0;
   impl_->camera = impl_->scene ? impl_->scene->scene().camera : Camera{};
   impl_->rebuild = true;
   impl_->planBeforeFrame.reset();
@@ -504,7 +516,7 @@ const Plan& Renderer::plan() const {
 std::vector<Renderer::PassTiming> Renderer::timings() const {
   std::vector<PassTiming> out;
   if (!impl_->executor) return out;
-  for (const auto& t : impl_->executor->timings()) out.push_back({t.name, t.ms});
+  for (const auto& t : impl_->executor->timings()) out.push_back({t.name, t.ms, t.executions});
   return out;
 }
 

@@ -9,6 +9,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "environment_problem.h"
 #include "rgraph/error.h"
 
 namespace rgraph {
@@ -496,6 +497,8 @@ void validateAmbient(const glm::vec3& ambient, const std::string& where) {
 void Scene::validate() const {
   const std::string where = source.empty() ? std::string("scene") : source;
   auto fail = [&](const std::string& msg) { throw RuntimeError(where + ": " + msg); };
+  if (environment)
+    if (const auto problem = environmentProblem(*environment)) fail(*problem);
   for (size_t i = 0; i < meshes.size(); ++i) {
     std::string why;
     if (!meshes[i].valid(&why)) fail("mesh " + std::to_string(i) + " ('" + meshes[i].name + "'): " + why);

@@ -100,6 +100,7 @@ SceneFeatures sceneFeatures(const Scene& scene, const Camera& camera, float aspe
   f.pointLights = scene.hasPointLights();
   f.blendMaterials = scene.hasBlendMaterials();
   f.normalMaps = scene.hasNormalMaps();
+  f.environment = scene.environment.has_value();
   f.metallicRoughnessVariation = scene.hasMetallicRoughnessVariation();
   // The material target also carries ambient occlusion: keep it when any
   // drawn material has an occlusion map.

@@ -38,7 +38,7 @@ class SceneFileParser {
     json doc;
     if (auto error = cd::parseJsonText(text, doc)) failAtOffset(error->offset, "invalid JSON: " + error->message);
     if (!doc.is_object()) fail("", "the scene file must be a JSON object");
-    unknownKeys(doc, "", {"models", "lights", "ambient", "camera", "name", "description", "$schema"});
+    unknownKeys(doc, "", {"models", "lights", "ambient", "environment", "camera", "name", "description", "$schema"});
 
     Scene scene;
     scene.source = file_;
@@ -59,6 +59,7 @@ class SceneFileParser {
       scene.ambient = vec3OrScalar(doc["ambient"], "/ambient", kAnyValue);
       if (auto p = ambientProblem(scene.ambient)) fail("/ambient", p->message);
     }
+    if (doc.contains("environment")) scene.environment = environment(doc["environment"], "/environment");
     if (doc.contains("camera")) {
       scene.camera = camera(doc["camera"], "/camera");
       scene.hasCamera = true;
@@ -183,6 +184,52 @@ class SceneFileParser {
     for (auto it = obj.begin(); it != obj.end(); ++it)
       if (std::find_if(known.begin(), known.end(), [&](const char* k) { return it.key() == k; }) == known.end())
         warn(ptr + "/" + cd::escapePointerToken(it.key()), "unknown key ignored", true);
+  }
+
+  // "environment": exactly one of "color" (uniform radiance), "sky" (the
+  // procedural sky, its keys optional) or "hdr" (an equirectangular .hdr file
+  // relative to the scene file), and an optional "intensity".
+  Environment environment(const json& j, const std::string& ptr) const {
+    object(j, ptr);
+    unknownKeys(j, ptr, {"color", "sky", "hdr", "intensity"});
+    const int kinds = int(j.contains("color")) + int(j.contains("sky")) + int(j.contains("hdr"));
+    if (kinds != 1) fail(ptr, "an environment needs exactly one of \"color\", \"sky\" or \"hdr\"");
+    Environment env;
+    env.intensity = numberOr(j, "intensity", ptr, 1.0f);
+    if (env.intensity < 0.0f) fail(ptr + "/intensity", "must be >= 0");
+    if (j.contains("color")) {
+      env.kind = Environment::Kind::uniform;
+      env.color = vec3OrScalar(j["color"], ptr + "/color", 0.0f);
+    } else if (j.contains("sky")) {
+      const std::string sp = ptr + "/sky";
+      const json& sky = object(j["sky"], sp);
+      unknownKeys(sky, sp, {"sun_direction", "sun_color", "sun_radius_deg", "zenith", "horizon", "ground"});
+      env.kind = Environment::Kind::sky;
+      if (sky.contains("sun_direction")) {
+        const glm::vec3 d = vec3(sky["sun_direction"], sp + "/sun_direction");
+        if (!(glm::length(d) > 0.0f) || !std::isfinite(glm::length(d)))
+          fail(sp + "/sun_direction", "must be a finite, non-zero vector");
+        env.sunDirection = glm::normalize(d);
+      }
+      if (sky.contains("sun_color")) env.sunColor = vec3OrScalar(sky["sun_color"], sp + "/sun_color", 0.0f);
+      env.sunRadiusDeg = numberOr(sky, "sun_radius_deg", sp, env.sunRadiusDeg);
+      if (!(env.sunRadiusDeg > 0.0f && env.sunRadiusDeg <= 45.0f)) fail(sp + "/sun_radius_deg", "must be in (0, 45]");
+      if (sky.contains("zenith")) env.zenith = vec3OrScalar(sky["zenith"], sp + "/zenith", 0.0f);
+      if (sky.contains("horizon")) env.horizon = vec3OrScalar(sky["horizon"], sp + "/horizon", 0.0f);
+      if (sky.contains("ground")) env.ground = vec3OrScalar(sky["ground"], sp + "/ground", 0.0f);
+    } else {
+      const std::string rel = string(j["hdr"], ptr + "/hdr");
+      if (rel.empty()) fail(ptr + "/hdr", "empty path");
+      std::filesystem::path p(rel);
+      if (p.is_relative()) p = std::filesystem::path(baseDir_) / p;
+      try {
+        loadEnvironmentHdr(env, p.lexically_normal().string());
+      } catch (const RuntimeError& e) {
+        fail(ptr + "/hdr", e.what());
+      }
+      env.intensity = numberOr(j, "intensity", ptr, 1.0f);
+    }
+    return env;
   }
 
   // translation * Rz * Ry * Rx * scale: rotation_euler_deg rotates about X, then Y, then Z (fixed axes).

@@ -63,6 +63,10 @@ class Executor {
   // Frames rendered since this executor was built (resize() keeps counting;
   // it resets history like a cut).
   uint64_t frameIndex() const;
+  // Persistent resources (ResourceDecl::persistent) no longer hold what their
+  // writers would write (the scene's environment changed): those writers run
+  // again at the next frame, once. A build or resize invalidates them too.
+  void invalidatePersistent();
 
   // The caller's GL texture for a resource declared imported (rgraph/renderer.h):
   // used from now on instead of a texture the executor creates. Throws
@@ -115,6 +119,10 @@ class Executor {
   struct PassTiming {
     std::string name;
     double ms = 0.0;
+    // Frames that ran the pass since the passes were built (resize, import):
+    // a pass that writes only persistent resources runs only while they are
+    // invalid, so steady frames leave its count (and its ms at 0) alone.
+    uint64_t executions = 0;
   };
   // Per executed pass, in execution order, of the frame timingsFrame() names
   // (ms 0 while it names none). Two clocks:
