@@ -16,10 +16,11 @@ in VS_OUT {
   vec4 tangent;
 } fs;
 in vec4 vs_color;
+uniform int u_hasVertexColors;  // vs_color holds COLOR_0 (include/material.glsl says why it is asked)
 
 void main() {
   if (u_alphaMode != 1) return;
-  float alpha = u_baseColorFactor.a * vs_color.a;
+  float alpha = u_baseColorFactor.a * (u_hasVertexColors != 0 ? vs_color.a : 1.0);
   if (u_hasBaseColorTex != 0) alpha *= texture(u_baseColorTex, textureUv(0, fs.uv)).a;
   if (alpha < u_alphaCutoff) discard;
 }

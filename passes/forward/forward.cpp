@@ -78,7 +78,7 @@ PassTypeDesc makeForwardPass() {
   d.params = lighting::params();
   d.params.push_back(param("markers", ParamType::boolean, true, "draw a small cube in each point light's colour"));
   d.params.push_back(decl::ranged("marker_size", ParamType::number, 0.125, 0.0, 100.0,
-                                  "half extent of a light marker; scene adaptation shrinks it to 1/40 of the scene's "
+                                  "half extent of a light marker; scene adaptation shrinks it to 1/32 of the scene's "
                                   "bounding radius when the scene is smaller"));
   d.params.push_back(param("blend", ParamType::boolean, true, "draw BLEND materials, lit forward, back to front"));
   d.adapt = [](const SceneFeatures& f, PassAdaptation& a) {
@@ -93,7 +93,7 @@ PassTypeDesc makeForwardPass() {
     if (a.params.getBool("markers") && a.params.getNumber("marker_size") > f.markerSizeLimit) {
       a.params.set("marker_size", static_cast<double>(f.markerSizeLimit));
       a.notes.push_back("light markers sized to the scene: half extent " + std::to_string(f.markerSizeLimit) +
-                        " (1/40 of its bounding radius)");
+                        " (1/32 of its bounding radius)");
     }
     if (!f.blendMaterials && a.params.getBool("blend")) {
       a.params.set("blend", false);

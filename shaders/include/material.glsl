@@ -24,6 +24,10 @@ uniform vec3 u_emissive;  // emissiveFactor x KHR_materials_emissive_strength
 uniform vec3 u_specularColorFactor;  // KHR_materials_specular
 uniform float u_specularFactor;
 uniform int u_unlit;  // KHR_materials_unlit
+// Bit 0: u_specularTex bound, bit 1: u_specularColorTex bound. GpuScene sets
+// these three only in scenes that have KHR_materials_specular or unlit
+// materials (otherwise they keep the defaults, and units 11 and 12 are not bound).
+uniform int u_specularTextures;
 uniform int u_hasBaseColorTex;
 uniform int u_hasMetallicRoughnessTex;
 uniform int u_hasNormalTex;
@@ -36,11 +40,16 @@ in VS_OUT {
   vec4 tangent;
 } fs;
 in vec4 vs_color;  // COLOR_0 (white where the mesh has none): scales base colour and alpha
+// Read only where the mesh has COLOR_0: a constant white interpolated across a
+// triangle comes out a rounding below 1 (0.99999994), which a format that
+// truncates (r11g11b10f) turns into a whole step (1/128).
+uniform int u_hasVertexColors;
 
 vec2 materialUv(int unit) { return textureUv(unit, fs.uv); }
 
 vec4 materialBaseColor() {
-  vec4 c = u_baseColorFactor * vs_color;
+  vec4 c = u_baseColorFactor;
+  if (u_hasVertexColors != 0) c *= vs_color;
   if (u_hasBaseColorTex != 0) c *= texture(u_baseColorTex, materialUv(0));
   return c;
 }
@@ -79,8 +88,10 @@ Surface materialSurface(vec3 viewDir, out float alpha, out bool discarded) {
   s.emissive = u_emissive * texture(u_emissiveTex, materialUv(4)).rgb;
   // KHR_materials_specular's dielectric F0 and F90 (lighting.glsl's surfaceF0
   // and surfaceF90 mix in the metals).
-  s.f90 = u_specularFactor * texture(u_specularTex, materialUv(11)).a;
-  s.f0 = min(vec3(0.04) * u_specularColorFactor * texture(u_specularColorTex, materialUv(12)).rgb, vec3(1.0)) * s.f90;
+  float specularA = (u_specularTextures & 1) != 0 ? texture(u_specularTex, materialUv(11)).a : 1.0;
+  vec3 specularRgb = (u_specularTextures & 2) != 0 ? texture(u_specularColorTex, materialUv(12)).rgb : vec3(1.0);
+  s.f90 = u_specularFactor * specularA;
+  s.f0 = min(vec3(0.04) * u_specularColorFactor * specularRgb, vec3(1.0)) * s.f90;
   if (u_unlit != 0) {
     // Unlit: the base colour (with whatever materialBaseColor multiplies in,
     // vertex colours included) is all the pixel shows. It goes out as light

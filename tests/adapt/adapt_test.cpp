@@ -132,7 +132,7 @@ size_t passIndex(const PipelineConfig& c, const std::string& name) {
   return 0;
 }
 
-// Light markers: a scene-file light gets one, at most 1/40 of the scene's
+// Light markers: a scene-file light gets one, at most 1/32 of the scene's
 // bounding radius in half extent; a glTF file's own lamps get none.
 TEST(AdaptToScene, LightMarkersAreSizedFromTheSceneAndLeftToGltfLamps) {
   Scene big = cubeScene();
@@ -147,7 +147,7 @@ TEST(AdaptToScene, LightMarkersAreSizedFromTheSceneAndLeftToGltfLamps) {
   small.pointLights.push_back(PointLight{});
   a = adapt("deferred-pbr.json", small);
   EXPECT_TRUE(a.after.params[forward].getBool("markers", false));
-  EXPECT_NEAR(a.after.params[forward].getNumber("marker_size", -1), std::sqrt(3.0) / 2.0 / 40.0, 1e-6);
+  EXPECT_NEAR(a.after.params[forward].getNumber("marker_size", -1), std::sqrt(3.0) / 2.0 / 32.0, 1e-6);
 
   // LightsPunctualLamp: its spot light sits inside a lamp shade 0.1 across.
   Scene lamp = loadGltf(std::string(RGRAPH_ASSETS_DIR) + "/gltf/LightsPunctualLamp/LightsPunctualLamp.gltf");

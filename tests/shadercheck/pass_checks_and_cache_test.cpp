@@ -80,8 +80,9 @@ TEST(PassChecks, SceneIsRequiredOnlyWhenKnownToBeAbsent) {
   PassCheckOptions none;
   none.scenePresent = false;
   const Diagnostics d = runPassChecks(l.pipeline, l.plan, PassRegistry::builtins(), none);
-  // geometry, deferred_lighting and forward draw the scene; depth_blit and tonemap do not.
-  ASSERT_EQ(d.size(), 3u) << lines(d);
+  // geometry, deferred_lighting and forward draw the scene, environment_background and
+  // environment_cube read its environment; depth_blit, the other pre-filter passes and tonemap do not.
+  ASSERT_EQ(d.size(), 5u) << lines(d);
   EXPECT_EQ(d[0].code, DiagCode::needs_scene);
   EXPECT_EQ(d[0].pass, "gbuffer");
   EXPECT_EQ(d[0].where.path, "/passes/0");
@@ -89,6 +90,8 @@ TEST(PassChecks, SceneIsRequiredOnlyWhenKnownToBeAbsent) {
   EXPECT_NE(d[0].message.find("needs a scene"), std::string::npos) << d[0].message;
   EXPECT_EQ(d[1].pass, "lighting");
   EXPECT_EQ(d[2].pass, "forward");
+  EXPECT_EQ(d[3].pass, "background");
+  EXPECT_EQ(d[4].pass, "environment");
 }
 
 TEST(PassChecks, SizesComeFromThePlanAtItsOutputSize) {

@@ -265,11 +265,12 @@ TEST(ShaderCheck, EveryShippedPipelineHasNoShaderDiagnostics) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_GE(checked, 8u);
-  // Programs shared between pipelines are compiled once: 60 distinct ones in
+  // Programs shared between pipelines are compiled once: 67 distinct ones in
   // 21 pipelines (the three shadow pipelines add their SHADOWS variants; the
-  // optional emissive and reflectance targets their G-buffer variants).
+  // optional emissive and reflectance targets their G-buffer variants; the
+  // image-based lighting of deferred-pbr its pre-filter passes and HAS_ENVIRONMENT).
   EXPECT_GT(checker.stats().cacheHits, 0u);
-  EXPECT_LT(checker.stats().programsCompiled, 65u);
+  EXPECT_LT(checker.stats().programsCompiled, 70u);
   // Well under a second in a release build; generous for sanitizer builds.
   EXPECT_LT(seconds, 10.0);
   std::printf("checked %zu pipelines: %zu programs compiled, %zu cache hits, %.3f s in glslang, %.3f s in all\n",

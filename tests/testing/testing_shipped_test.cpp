@@ -50,10 +50,12 @@ TEST(TestingShipped, DefaultPipelineOrderOutputAndMemory) {
   EXPECT_TRUE(p.imported("output"));  // the output image is the caller's
   EXPECT_FALSE(p.texture("output").has_value());
   // At 64x64: rgba32f 65536 + rgba16f 32768 + rgba8 16384 + d24s8 16384 +
-  // rgba16f hdr 32768 + d24s8 forwardDepth 16384; nothing can alias.
-  EXPECT_EQ(p.naiveBytes(), 65536u + 32768u + 16384u + 16384u + 32768u + 16384u);
+  // r11g11b10f emissive 16384 (optional: adaptation drops it for a scene
+  // without emissive materials; this plan is unadapted) + rgba16f hdr 32768 +
+  // d24s8 forwardDepth 16384; nothing can alias.
+  EXPECT_EQ(p.naiveBytes(), 65536u + 32768u + 16384u + 16384u + 16384u + 32768u + 16384u);
   EXPECT_EQ(p.allocatedBytes(), p.naiveBytes());
-  EXPECT_EQ(p.textures().size(), 6u);
+  EXPECT_EQ(p.textures().size(), 7u);
   EXPECT_TRUE(p.aliasGroups().empty());
   EXPECT_EQ(p.bytes("gPosition"), 65536u);
   EXPECT_EQ(p.extent("gPosition"), (Extent{64, 64}));
@@ -94,7 +96,7 @@ TEST(TestingShipped, DefaultPipelineLifetimesVersionsAndBindings) {
   EXPECT_TRUE(src->writeVersion.empty());
   std::set<std::string> slots;
   for (const auto& b : p.bindings("gbuffer")) slots.insert(b.slot);
-  EXPECT_EQ(slots, (std::set<std::string>{"position", "normal", "albedo", "depth"}));
+  EXPECT_EQ(slots, (std::set<std::string>{"position", "normal", "albedo", "emissive", "depth"}));
 }
 
 TEST(TestingShipped, PostChainAliasesEveryOtherTexture) {

@@ -89,10 +89,11 @@ struct SceneFeatures {
   float metallic = 1.0f, roughness = 1.0f;  // the shared values when there is no variation
   // Light markers (the forward pass): whether some point light asks for one
   // (PointLight::marker), and the largest half extent that keeps them small
-  // beside the scene: kMarkerScale of its bounding radius.
+  // beside the scene: kMarkerScale of its bounding radius (LearnOpenGL's
+  // demo, radius 4.97, keeps its 0.125).
   bool lightMarkers = true;
   float markerSizeLimit = std::numeric_limits<float>::infinity();
-  static constexpr float kMarkerScale = 1.0f / 40.0f;
+  static constexpr float kMarkerScale = 1.0f / 32.0f;
   // Some drawn material emits light (Material::emits): the G-buffer carries
   // an emissive target.
   bool emissive = true;

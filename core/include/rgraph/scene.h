@@ -428,7 +428,8 @@ struct Scene {
   size_t vertexCount() const;    // over primitives (likewise)
   Bounds bounds() const;         // world space, over primitives
   // The sphere the default camera frames: centred on bounds()'s centre,
-  // reaching the farthest vertex a primitive draws (world space). Tighter than
+  // reaching the farthest vertex a primitive draws (world space; an instanced
+  // primitive: its mesh box's corners under each instance). Tighter than
   // bounds().radius() (half the box's diagonal) for all but box-shaped
   // scenes: a round model's box diagonal is sqrt(3) times its radius.
   struct Sphere {

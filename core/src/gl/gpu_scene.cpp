@@ -80,7 +80,7 @@ void detail::fillSceneMembers(FrameBlock& f, const Scene& scene) {
 struct GpuScene::Locations {
   int model, prevModel, normalMatrix, baseColorFactor, metallicFactor, roughnessFactor, specular, normalScale,
       occlusionStrength, alphaCutoff, alphaMode, emissive, hasBaseColorTex, hasMetallicRoughnessTex, hasNormalTex,
-      hasOcclusionTex, specularColorFactor, specularFactor, unlit, hasVertexColors, uvTransform, uvSet, instanceRange;
+      hasOcclusionTex, specularColorFactor, specularFactor, unlit, specularTextures, hasVertexColors, uvTransform, uvSet, instanceRange;
 };
 
 GpuScene::GpuScene(const Scene& scene) : scene_(scene), uploadedIn_(gl::currentContext()) {
@@ -98,6 +98,7 @@ GpuScene::GpuScene(const Scene& scene) : scene_(scene), uploadedIn_(gl::currentC
     meshes_.push_back(upload(scene.meshes[i], hasTangents_ && scene.meshes[i].hasTangents(), uv1[i]));
   uploadInstances();
   hasVertexColors_ = scene.hasVertexColors();
+  for (const Material& m : scene.materials) reflectancePerDraw_ = reflectancePerDraw_ || m.nonDefaultReflectance();
   // Per-draw texture coordinates only where some texture is transformed or samples a second UV set.
   for (const Material& m : scene.materials)
     for (const TextureRef* t : m.textures())
@@ -396,7 +397,7 @@ const GpuScene::Locations& GpuScene::locations(uint32_t program) const {
                    get("u_normalScale"),     get("u_occlusionStrength"), get("u_alphaCutoff"),
                    get("u_alphaMode"),       get("u_emissive"),         get("u_hasBaseColorTex"),
                    get("u_hasMetallicRoughnessTex"), get("u_hasNormalTex"), get("u_hasOcclusionTex"),
-                   get("u_specularColorFactor"), get("u_specularFactor"), get("u_unlit"),
+                   get("u_specularColorFactor"), get("u_specularFactor"), get("u_unlit"), get("u_specularTextures"),
                    get("u_hasVertexColors"), get("u_uvTransform"), get("u_uvSet"), get("u_instanceRange")};
   // clang-format on
   return *locations_.emplace(program, std::move(loc)).first->second;
@@ -423,6 +424,12 @@ void GpuScene::claimGeometryUniforms(uint32_t program, const Locations& loc) con
     glProgramUniformMatrix3x2fv(program, loc.uvTransform, kMaterialTextureUnits, GL_FALSE, glm::value_ptr(identity[0]));
   if (loc.uvSet >= 0) glProgramUniform1iv(program, loc.uvSet, kMaterialTextureUnits, uv0.data());
   if (loc.hasVertexColors >= 0) glProgramUniform1i(program, loc.hasVertexColors, 0);
+  // KHR_materials_specular's defaults (F0 0.04, F90 1, no textures), lit.
+  const glm::vec3 one(1.0f);
+  glProgramUniform3fv(program, loc.specularColorFactor, 1, glm::value_ptr(one));
+  glProgramUniform1f(program, loc.specularFactor, 1.0f);
+  glProgramUniform1i(program, loc.unlit, 0);
+  glProgramUniform1i(program, loc.specularTextures, 0);
   if (loc.instanceRange >= 0) glProgramUniform2i(program, loc.instanceRange, 0, 0);
 }
 
@@ -438,9 +445,11 @@ void GpuScene::bindMaterial(uint32_t program, int materialIndex, bool meshHasUv1
   glProgramUniform1f(program, loc.alphaCutoff, m.alphaCutoff);
   glProgramUniform1i(program, loc.alphaMode, static_cast<int>(m.alphaMode));
   glProgramUniform3fv(program, loc.emissive, 1, glm::value_ptr(m.emissiveFactor));
-  glProgramUniform3fv(program, loc.specularColorFactor, 1, glm::value_ptr(m.specularColorFactor));
-  glProgramUniform1f(program, loc.specularFactor, m.specularFactor);
-  glProgramUniform1i(program, loc.unlit, m.unlit ? 1 : 0);
+  if (reflectancePerDraw_) {
+    glProgramUniform3fv(program, loc.specularColorFactor, 1, glm::value_ptr(m.specularColorFactor));
+    glProgramUniform1f(program, loc.specularFactor, m.specularFactor);
+    glProgramUniform1i(program, loc.unlit, m.unlit ? 1 : 0);
+  }
 
   // Per texture unit: its KHR_texture_transform matrix and UV set
   // (material_uv.glsl); units without a texture keep identity and set 0.
@@ -470,8 +479,12 @@ void GpuScene::bindMaterial(uint32_t program, int materialIndex, bool meshHasUv1
   bind(3, m.occlusionTexture, loc.hasOcclusionTex, white_);
   bind(4, m.emissiveTexture, -1, white_);
   // Units 5..10 are the lighting passes' (include/gbuffer_read.glsl, shadows.glsl).
-  bind(11, m.specularTexture, -1, white_);
-  bind(12, m.specularColorTexture, -1, white_);
+  if (reflectancePerDraw_) {
+    bind(11, m.specularTexture, -1, white_);
+    bind(12, m.specularColorTexture, -1, white_);
+    glProgramUniform1i(program, loc.specularTextures,
+                       (m.specularTexture.valid() ? 1 : 0) | (m.specularColorTexture.valid() ? 2 : 0));
+  }
   if (!texCoordsPerDraw_) return;  // identity and uv0 everywhere, as claimGeometryUniforms left them
   if (loc.uvTransform >= 0)
     glProgramUniformMatrix3x2fv(program, loc.uvTransform, kMaterialTextureUnits, GL_FALSE, glm::value_ptr(uvTransforms[0]));

@@ -159,6 +159,33 @@ glm::mat4 Camera::projection(float aspect) const {
   return glm::perspective(glm::radians(fovY), a, n, f);
 }
 
+namespace {
+// Calls f with every world-space point the default camera must see: each
+// vertex of a plain primitive; for an instanced one (EXT_mesh_gpu_instancing,
+// up to 2^20 instances) the 8 corners of its mesh's box under each instance.
+template <typename F>
+void forEachDrawnPoint(const Scene& scene, F&& f) {
+  for (const Primitive& p : scene.primitives) {
+    if (p.mesh < 0 || static_cast<size_t>(p.mesh) >= scene.meshes.size()) continue;
+    const MeshData& mesh = scene.meshes[static_cast<size_t>(p.mesh)];
+    if (p.instances.empty()) {
+      for (const glm::vec3& v : mesh.positions) f(glm::vec3(p.transform * glm::vec4(v, 1.0f)));
+      continue;
+    }
+    if (mesh.bounds.empty()) continue;
+    for (const glm::mat4& instance : p.instances) {
+      const glm::mat4 m = p.transform * instance;
+      for (int i = 0; i < 8; ++i) {
+        const glm::vec3 corner((i & 1) ? mesh.bounds.max.x : mesh.bounds.min.x,
+                               (i & 2) ? mesh.bounds.max.y : mesh.bounds.min.y,
+                               (i & 4) ? mesh.bounds.max.z : mesh.bounds.min.z);
+        f(glm::vec3(m * glm::vec4(corner, 1.0f)));
+      }
+    }
+  }
+}
+}  // namespace
+
 Camera frameBounds(const Bounds& bounds, float fovY) {
   if (bounds.empty()) {
     Camera cam;
@@ -200,16 +227,13 @@ Camera frameScene(const Scene& scene, float fovY) {
   const float r = std::max(sphere.radius, 1e-3f);
   float dist = 0.0f, nearest = 0.0f;  // nearest: the largest a (the vertex closest to the camera)
   bool any = false;
-  for (const Primitive& p : scene.primitives) {
-    if (p.mesh < 0 || static_cast<size_t>(p.mesh) >= scene.meshes.size()) continue;
-    for (const glm::vec3& v : scene.meshes[static_cast<size_t>(p.mesh)].positions) {
-      const glm::vec3 d = glm::vec3(p.transform * glm::vec4(v, 1.0f)) - sphere.center;
-      const float a = glm::dot(d, dir);
-      dist = std::max(dist, a + std::max(std::abs(glm::dot(d, right)), std::abs(glm::dot(d, up))) / reach);
-      nearest = any ? std::max(nearest, a) : a;
-      any = true;
-    }
-  }
+  forEachDrawnPoint(scene, [&](const glm::vec3& world) {
+    const glm::vec3 d = world - sphere.center;
+    const float a = glm::dot(d, dir);
+    dist = std::max(dist, a + std::max(std::abs(glm::dot(d, right)), std::abs(glm::dot(d, up))) / reach);
+    nearest = any ? std::max(nearest, a) : a;
+    any = true;
+  });
   if (!any) return cam;
   dist = std::max(dist, nearest + 0.05f * r);  // never at or past a vertex
   cam.position = sphere.center + dir * dist;
@@ -331,13 +355,10 @@ Scene::Sphere Scene::boundingSphere() const {
   // Squared distances, one square root at the end; the box's radius caps it
   // (a primitive's vertices lie inside its bounds).
   float r2 = 0.0f;
-  for (const Primitive& p : primitives) {
-    if (p.mesh < 0 || static_cast<size_t>(p.mesh) >= meshes.size()) continue;
-    for (const glm::vec3& v : meshes[static_cast<size_t>(p.mesh)].positions) {
-      const glm::vec3 d = glm::vec3(p.transform * glm::vec4(v, 1.0f)) - s.center;
-      r2 = std::max(r2, glm::dot(d, d));
-    }
-  }
+  forEachDrawnPoint(*this, [&](const glm::vec3& world) {
+    const glm::vec3 d = world - s.center;
+    r2 = std::max(r2, glm::dot(d, d));
+  });
   s.radius = std::min(std::sqrt(r2), b.radius());
   return s;
 }

@@ -257,6 +257,9 @@ class GpuScene {
   // Whether draws set u_hasVertexColors, and u_uvTransform / u_uvSet (else
   // they keep 0 and the identity / uv0 every program starts with).
   bool hasVertexColors_ = false, texCoordsPerDraw_ = false;
+  // Some material has KHR_materials_specular values or is unlit: bindMaterial
+  // sets them per draw (else claimGeometryUniforms's defaults stand).
+  bool reflectancePerDraw_ = false;
   uint64_t serial_ = 0;  // this GpuScene among all made (claimGeometryUniforms)
   // Sets `program`'s geometry uniforms to their defaults (no vertex colours,
   // uv0 untransformed, not instanced) unless this scene set them last.
