@@ -164,17 +164,24 @@ PassRule gbufferReaderRule() {
     for (const auto& slot : layout.readerSlots(ctx.params().getBool("constant_material")))
       if (!ctx.bound(slot))
         checks.slotError(slot, "input '" + slot + "' is required by layout '" + layout.name + "' but not bound");
-    for (const auto& slot : gbuffer::optionalSlots()) {
-      const bool wanted = layout.uses(slot, ctx.params());
-      if (ctx.bound(slot) == wanted) continue;
-      if (wanted)
-        checks.slotError(slot, "\"" + slot + "\": true reads a '" + slot + "' target: bind it in inputs");
-      else
-        checks.slotError(slot, "input '" + slot + "' needs the pass parameter \"" + slot + "\": true" +
-                                   (layout.writes(slot) ? "" : " and a layout with that target (not '" + layout.name + "')"));
-    }
+    checkOptionalTargets(ctx, checks, /*writes=*/false);
   };
   return rule;
+}
+
+void checkOptionalTargets(const PassCheckContext& ctx, PassChecks& checks, bool writes) {
+  const gbuffer::Layout& layout = gbuffer::of(ctx.params());
+  for (const auto& slot : gbuffer::optionalSlots()) {
+    const bool wanted = layout.uses(slot, ctx.params());
+    if (ctx.bound(slot) == wanted) continue;
+    if (wanted)
+      checks.slotError(slot, "\"" + slot + "\": true " + (writes ? "writes" : "reads") + " a '" + slot +
+                                 "' target: bind it in " + (writes ? "outputs" : "inputs"));
+    else
+      checks.slotError(slot, (writes ? "a '" + slot + "' output" : "input '" + slot + "'") +
+                                 " needs the pass parameter \"" + slot + "\": true" +
+                                 (layout.writes(slot) ? "" : " and a layout with that target (not '" + layout.name + "')"));
+  }
 }
 
 std::vector<std::string> materialSamplers() {

@@ -73,15 +73,7 @@ PassRule targetsRule() {
     };
     require("position", layout.writes("position"));
     require("material", layout.uses("material", ctx.params()));
-    for (const auto& slot : gbuffer::optionalSlots()) {
-      const bool wanted = layout.uses(slot, ctx.params());
-      if (ctx.bound(slot) == wanted) continue;
-      if (wanted)
-        checks.slotError(slot, "\"" + slot + "\": true writes a '" + slot + "' target: bind it in outputs");
-      else
-        checks.slotError(slot, "a '" + slot + "' output needs the pass parameter \"" + slot + "\": true" +
-                                   (layout.writes(slot) ? "" : " and a layout with that target (not '" + layout.name + "')"));
-    }
+    lighting::checkOptionalTargets(ctx, checks, /*writes=*/true);
   };
   return rule;
 }

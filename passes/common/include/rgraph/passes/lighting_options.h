@@ -53,6 +53,10 @@ float threshold(const ParamSet& params);
 // Rule (PassTypeDesc::rules): the slots the pass's layout reads are bound
 // (gbuffer::Layout::readerSlots), its sentence listing them per layout.
 PassRule gbufferReaderRule();
+// The layout's optional targets (emissive, reflectance) bound exactly when
+// their parameter is on: the geometry pass's outputs (writes) or a reader's
+// inputs; one slot error per mismatch. Used by both rules.
+void checkOptionalTargets(const PassCheckContext& ctx, PassChecks& checks, bool writes);
 // What every pass that reads the G-buffer declares alike: name, description,
 // the sampled G-buffer slots (gbufferSlots), the checks that its layout's
 // slots are bound (gbufferReaderRule) and that its layout is its writer's
