@@ -17,6 +17,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gltf_internal.h"
+#include "image_bytes.h"
 #include "rgraph/error.h"
 
 namespace rgraph::gltf_detail {
@@ -55,6 +56,10 @@ std::string numberText(double v) {
 bool decodeImage(tinygltf::Image* image, const unsigned char* bytes, size_t size, std::string* err) {
   if (size == 0 || size > size_t(INT_MAX)) {
     if (err) *err += "image '" + image->name + "': " + (size == 0 ? "empty data" : "data too large") + "\n";
+    return false;
+  }
+  if (const auto why = image_bytes::problem(bytes, size, /*allowHdr=*/false)) {
+    if (err) *err += "image '" + image->name + image->uri + "': cannot decode (" + *why + ")\n";
     return false;
   }
   int w = 0, h = 0, comp = 0;

@@ -3,20 +3,29 @@
 // shaders' copy of environmentRadiance is shaders/include/environment.glsl:
 // the IBL oracle tests integrate this one on the CPU and compare.
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
+#include <vector>
 
 #include <glm/glm.hpp>
 #include <stb_image.h>
 
 #include "rgraph/error.h"
 #include "environment_problem.h"
+#include "image_bytes.h"
 #include "rgraph/scene.h"
 
 namespace rgraph {
 
 namespace {
+
+// An 8k equirectangular map is 8192x4096; twice that is room to spare, and
+// bounds what a hostile header can make us allocate.
+constexpr int kMaxEnvironmentSide = 16384;
 
 constexpr float kPi = 3.14159265358979f;
 
@@ -75,8 +84,20 @@ glm::vec3 environmentRadiance(const Environment& env, const glm::vec3& d) {
 void loadEnvironmentHdr(Environment& env, const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw RuntimeError(path + ": environment image not found");
+  std::ifstream in(path, std::ios::binary);
+  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw RuntimeError(path + ": cannot read the environment image");
+  if (bytes.size() > size_t(INT_MAX)) throw RuntimeError(path + ": the environment image is too large");
+  if (const auto why = image_bytes::problem(bytes.data(), bytes.size(), /*allowHdr=*/true))
+    throw RuntimeError(path + ": cannot read the environment image (" + *why + ")");
   int w = 0, h = 0, comp = 0;
-  float* px = stbi_loadf(path.c_str(), &w, &h, &comp, 3);
+  const int n = int(bytes.size());
+  if (!stbi_info_from_memory(bytes.data(), n, &w, &h, &comp))
+    throw RuntimeError(path + ": cannot read the environment image (" + stbi_failure_reason() + ")");
+  if (w <= 0 || h <= 0 || w > kMaxEnvironmentSide || h > kMaxEnvironmentSide)
+    throw RuntimeError(path + ": the environment image is " + std::to_string(w) + "x" + std::to_string(h) +
+                       " (at most " + std::to_string(kMaxEnvironmentSide) + " on a side)");
+  float* px = stbi_loadf_from_memory(bytes.data(), n, &w, &h, &comp, 3);
   if (!px) throw RuntimeError(path + ": cannot read the environment image (" + stbi_failure_reason() + ")");
   env.kind = Environment::Kind::hdr;
   env.file = path;
