@@ -27,13 +27,16 @@ class TaaPass final : public gl::FullscreenPass {
     const ParamSet& p = ctx.params();
     historyValid_.set(ctx.historyValid("history"));
     historyWeight_.set(static_cast<float>(p.getNumber("history_weight")));
+    motionWeight_.set(static_cast<float>(p.getNumber("motion_history_weight")));
     clipGamma_.set(static_cast<float>(p.getNumber("clip_gamma")));
     reject_.set(static_cast<float>(p.getNumber("reject_distance")));
     sharpen_.set(static_cast<float>(p.getNumber("sharpen")));
+    hasVelocityDepth_.set(ctx.bound("velocity_depth") ? 1 : 0);
     ctx.gpuScene()->bindFrame();  // the cameras, for motion not in the velocity input
   }
   ProgramUniform historyValid_{this, "u_historyValid"}, historyWeight_{this, "u_historyWeight"};
   ProgramUniform clipGamma_{this, "u_clipGamma"}, reject_{this, "u_rejectDistance"}, sharpen_{this, "u_sharpen"};
+  ProgramUniform hasVelocityDepth_{this, "u_hasVelocityDepth"}, motionWeight_{this, "u_motionHistoryWeight"};
 };
 
 // Every image the resolve reads per pixel has the output's size, and the
@@ -66,12 +69,23 @@ void registerTaa(PluginHost& host) {
       slot("depth", Access::sampled, true, SlotDecl::Load::never,
            "this frame's depth, of everything drawn (velocity dilation; camera motion where velocity is 0)",
            depthFormats()),
+      // Optional: a forward pass draws after the G-buffer without motion
+      // vectors (light boxes, particles). Where `depth` is nearer than this,
+      // the velocity input holds the motion of the surface behind what is
+      // seen: the pixel moves with the camera instead, reprojected by depth.
+      slot("velocity_depth", Access::sampled, false, SlotDecl::Load::never,
+           "the depth the velocity input was drawn with (the geometry pass's); where depth is nearer, "
+           "something drawn later without motion vectors is seen: it moves with the camera",
+           depthFormats()),
       slot("output", Access::color_attachment, true, SlotDecl::Load::never,
            "the resolved HDR image, next frame's history", hdrFormats()),
   };
   d.params = {
       ranged("history_weight", ParamType::number, 0.9, 0.0, 0.99,
              "share of the reprojected history in each frame (higher: smoother, slower to follow changes)"),
+      ranged("motion_history_weight", ParamType::number, 0.6, 0.0, 0.99,
+             "history_weight where the pixel moves: each frame's reprojection resamples and clips the history, "
+             "so in motion a shorter history is closer to the supersampled image (docs/performance.md, aa axis)"),
       ranged("clip_gamma", ParamType::number, 1.25, 0.25, 4.0,
              "history clip box: mean +- gamma standard deviations of the 3x3 in YCoCg (smaller: less ghosting)"),
       ranged("reject_distance", ParamType::number, 2.0, 0.0, 100.0,
@@ -81,8 +95,9 @@ void registerTaa(PluginHost& host) {
   };
   d.programs = gl::fullscreenPrograms(
       host.shaderPath("taa.frag"),
-      {{"color", "u_color", 0}, {"history", "u_history", 1}, {"velocity", "u_velocity", 2}, {"depth", "u_depth", 3}});
-  d.rules = {sameSizeRule({"color", "history", "velocity", "depth", "output"}),
+      {{"color", "u_color", 0}, {"history", "u_history", 1}, {"velocity", "u_velocity", 2}, {"depth", "u_depth", 3},
+       {"velocity_depth", "u_velocityDepth", 4}});
+  d.rules = {sameSizeRule({"color", "history", "velocity", "depth", "velocity_depth", "output"}),
              {"history is the history resource (\"history_of\") of the resource output writes", checkHistory}};
   d.needsScene = true;  // the Frame block's cameras
   d.create = [] { return std::make_unique<TaaPass>(); };

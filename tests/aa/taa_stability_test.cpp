@@ -251,7 +251,9 @@ TEST_F(TaaStability, TaaOrbitKeepsForwardDrawnLightBoxesInPlace) {
     sumGain += ea.psnr - eb.psnr;
     ++measured;
   }
-  // Measured +0.6 .. +1.6 dB (mean +1.1).
-  EXPECT_GE(worstGain, 0.0) << "TAA during the orbit is worse than the plain frame on edges";
-  EXPECT_GE(sumGain / measured, 0.5);
+  // Measured +2.8 .. +4.6 dB (mean +3.8); +0.6 .. +1.6 before the light
+  // boxes' own depth test (velocity_depth), the young-history running mean,
+  // the shorter history in motion and the linear blend below luma 1.
+  EXPECT_GE(worstGain, 2.0) << "TAA during the orbit gains too little over the plain frame on edges";
+  EXPECT_GE(sumGain / measured, 3.0);
 }

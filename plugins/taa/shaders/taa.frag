@@ -4,9 +4,11 @@
 //  - velocity dilation: the motion of the nearest surface in the 3x3 block,
 //    so that edges of moving objects reproject with the object, not with
 //    the background behind them; where the velocity input holds exactly 0
-//    (a forward pass's light boxes, the background), the camera's motion
-//    reprojected from depth (an object moving exactly with the camera would
-//    be taken for static there);
+//    (the background), or where something drawn after it without motion
+//    vectors is in front of the surface it was written for (a forward pass's
+//    light boxes: depth nearer than velocity_depth, when that is bound), the
+//    camera's motion reprojected from depth (an object moving exactly with
+//    the camera would be taken for static there);
 //  - reprojection: the history at uv - velocity (Catmull-Rom, so that the
 //    image does not soften a little more every frame it moves);
 //  - rejection: history from outside the screen is dropped; history outside
@@ -14,14 +16,20 @@
 //    YCoCg, inside the box mean +- gamma * sigma of the 3x3 (intersected with
 //    its min/max), and when it was far outside (disocclusion, a change of
 //    lighting) it gets no weight at all;
-//  - blend: history weight u_historyWeight, with Karis' inverse-luma weights
-//    so that a single bright sample does not flicker;
+//  - blend: a running mean while the pixel's history is young (n frames:
+//    weight n / (n + 1)), then u_historyWeight, or u_motionHistoryWeight
+//    where the pixel moves: every reprojection resamples and clips the
+//    history, so in motion a shorter one is closer to the supersampled image
+//    (docs/performance.md measures it). Linear in light up to luma 1, what
+//    the display shows after a clamping tone map; above it, Karis'
+//    inverse-luma weights, so that a single HDR highlight does not flicker
+//    (applied below 1 too they darkened every edge between bright and dark);
 //  - still pixels: the clip box is built from this frame's 3x3 alone, so a
 //    sub-pixel wire that the current jitter phase misses would be clipped
 //    out of the history every such frame and never accumulate. Alpha keeps,
 //    per pixel, how many frames in a row it was still (no motion, history
-//    accepted), as a fraction of kStillFrames; once a pixel has been still
-//    that long its history is neither clipped nor rejected, so it converges
+//    accepted) and the history's age (packCounters); once a pixel has been
+//    still kStillFrames frames its history is neither clipped nor rejected, so it converges
 //    to the average of every jitter phase. Motion resets the count, so trails
 //    and disocclusions are clipped as before (their pixels moved); a change
 //    of lighting on a still scene fades in over ~1 / (1 - weight) frames;
@@ -35,8 +43,11 @@ layout(binding = 0) uniform sampler2D u_color;
 layout(binding = 1) uniform sampler2D u_history;
 layout(binding = 2) uniform sampler2D u_velocity;
 layout(binding = 3) uniform sampler2D u_depth;
+layout(binding = 4) uniform sampler2D u_velocityDepth;  // bound when u_hasVelocityDepth == 1
+uniform int u_hasVelocityDepth;
 uniform int u_historyValid;      // 0: the history is cleared (first frame, resize, cut): output the current frame
 uniform float u_historyWeight;   // share of the history in the blend (0.9: ~10 frames to converge)
+uniform float u_motionHistoryWeight;  // the same where the pixel moves (each reprojection resamples it)
 uniform float u_clipGamma;       // width of the variance box in standard deviations
 uniform float u_rejectDistance;  // history farther than this many box sizes outside: disoccluded, dropped
 uniform float u_sharpen;         // unsharp mask on the current frame before the blend (0 off)
@@ -45,6 +56,21 @@ layout(location = 0) out vec4 outColor;
 // Frames a pixel must stay still before its history is trusted unclipped:
 // the jitter phases of deferred-taa.json, so that every phase was seen once.
 const float kStillFrames = 8.0;
+// Frames of history counted per pixel (its age): a history of n frames gets
+// the weight n / (n + 1) until that reaches u_historyWeight, a running mean,
+// so that a pixel whose history is young (the first frames, a disocclusion)
+// converges in a few frames instead of keeping the aliased frame it started
+// from for ~1 / (1 - weight) frames.
+const float kMaxAge = 15.0;
+
+// The history's alpha packs both counters (still frames, age) as an integer:
+// exact in rgba16f, and read without filtering at the reprojected texel.
+float packCounters(float stillFrames, float age) { return stillFrames * (kMaxAge + 1.0) + age; }
+void unpackCounters(float stored, out float stillFrames, out float age) {
+  if (isnan(stored) || isinf(stored) || stored < 0.0) stored = 0.0;
+  stillFrames = min(floor(stored / (kMaxAge + 1.0)), kStillFrames);
+  age = clamp(stored - floor(stored / (kMaxAge + 1.0)) * (kMaxAge + 1.0), 0.0, kMaxAge);
+}
 
 vec3 finite(vec3 c) {
   return mix(c, vec3(0.0), bvec3(isnan(c.r) || isinf(c.r), isnan(c.g) || isinf(c.g), isnan(c.b) || isinf(c.b)));
@@ -134,6 +160,9 @@ void main() {
 
   vec2 velocity = texelFetch(u_velocity, nearestP, 0).rg;
   if (any(isnan(velocity)) || any(isinf(velocity))) velocity = vec2(0.0);
+  // Something drawn after the velocity input (without motion vectors) is in
+  // front of the surface whose motion it holds: not this pixel's motion.
+  if (u_hasVelocityDepth == 1 && nearest < texelFetch(u_velocityDepth, nearestP, 0).r) velocity = vec2(0.0);
   // Exactly zero: nothing wrote motion there (or nothing moved): the camera's
   // motion at that depth (zero too when neither camera nor object moved).
   if (velocity == vec2(0.0)) velocity = cameraVelocity(nearestP, nearest);
@@ -141,18 +170,19 @@ void main() {
   vec2 prevUv = uv - velocity;
   bool onScreen = all(greaterThanEqual(prevUv, vec2(0.0))) && all(lessThanEqual(prevUv, vec2(1.0)));
   if (u_historyValid == 0 || !onScreen) {
-    outColor = vec4(current, 0.0);
+    outColor = vec4(current, packCounters(0.0, 1.0));
     return;
   }
   // Still: no motion at all (the motion vectors are unjittered, so a jittered
   // still camera gives exactly 0).
   bool still = all(lessThan(abs(velocity * vec2(size)), vec2(1e-3)));
-  float stillness = textureLod(u_history, prevUv, 0.0).a;
-  if (isnan(stillness) || isinf(stillness)) stillness = 0.0;
-  bool trusted = still && stillness >= 1.0;
+  float stillFrames, age;
+  ivec2 historyTexel = clamp(ivec2(floor(prevUv * vec2(size))), ivec2(0), size - 1);
+  unpackCounters(texelFetch(u_history, historyTexel, 0).a, stillFrames, age);
+  bool trusted = still && stillFrames >= kStillFrames;
   // Counted whether or not the history is used this frame: a wire pixel whose
   // history is rejected while it is still young must still come of age.
-  float nextStillness = still ? min(clamp(stillness, 0.0, 1.0) + 1.0 / kStillFrames, 1.0) : 0.0;
+  float nextStill = still ? min(stillFrames + 1.0, kStillFrames) : 0.0;
 
   // History that read NaN/Inf is garbage: dropped for this pixel (weight 0
   // below) rather than clipped.
@@ -170,19 +200,18 @@ void main() {
   float t = max(units.x, max(units.y, units.z));
   vec3 clipped = t > 1.0 && !trusted ? boxCenter + offset / t : history;
 
-  float weight = u_historyWeight;
+  float weight = min(still ? u_historyWeight : u_motionHistoryWeight, age / (age + 1.0));
   // Far outside the box: a surface the history never saw (disocclusion).
   if ((t > 1.0 + u_rejectDistance && !trusted) || !historyFinite) weight = 0.0;
   if (weight <= 0.0) {
-    outColor = vec4(current, nextStillness);  // exactly the frame without history
+    outColor = vec4(current, packCounters(nextStill, 1.0));  // exactly the frame without history
     return;
   }
   vec3 cur = current;
   vec3 his = max(fromYCoCg(clipped), vec3(0.0));
-  // Inverse-luma weights: the blend of tone-mapped-like values, so that a
-  // bright sample entering the average does not dominate it.
-  float wc = (1.0 - weight) / (1.0 + toYCoCg(cur).x);
-  float wh = weight / (1.0 + toYCoCg(his).x);
+  // Linear up to luma 1; inverse-luma weights above (see the top).
+  float wc = (1.0 - weight) / (1.0 + max(toYCoCg(cur).x - 1.0, 0.0));
+  float wh = weight / (1.0 + max(toYCoCg(his).x - 1.0, 0.0));
   vec3 result = (cur * wc + his * wh) / max(wc + wh, 1e-6);
-  outColor = vec4(finite(result), nextStillness);
+  outColor = vec4(finite(result), packCounters(nextStill, min(age + 1.0, kMaxAge)));
 }
