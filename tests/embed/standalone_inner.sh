@@ -18,6 +18,8 @@ done
 [[ ! -e "$bin/CMakeCache.txt" ]] || fail "the build tree $bin is still reachable"
 
 probe="$work/tools/png_probe"
+took() { echo "($((SECONDS - t0)) s)"; t0=$SECONDS; }  # each step's cost, for CI's time budget
+t0=$SECONDS
 rgraph="$moved/bin/rgraph"
 size_is() {  # size_is PNG W H
   local got; got=$("$probe" "$1" | head -n 1) || fail "png_probe $1: $got"
@@ -33,13 +35,13 @@ echo "$line"
 want="rgraph's own files (an install, relative to $moved/$libdir/librgraph.so): shaders $moved/share/rgraph/shaders,"
 want+=" pipelines $moved/share/rgraph/pipelines, plugins $moved/$libdir/rgraph/plugins"
 [[ "$line" == "$want" ]] || fail "rgraph's own folders are not the copy's: expected '$want'"
-echo "ok: rgraph render (default pipeline and scene) from the copy"
+echo "ok: rgraph render (default pipeline and scene) from the copy $(took)"
 
 # 2. A pipeline with plugins: the copy's plugin folder and the plugins' shaders.
 "$rgraph" render "$moved/share/rgraph/pipelines/deferred-ssao-bloom.json" --width 64 --height 48 \
   --out "$work/bloom.png" || fail "$rgraph render deferred-ssao-bloom.json: exit $?"
 size_is "$work/bloom.png" 64 48
-echo "ok: rgraph render deferred-ssao-bloom.json (plugins) from the copy"
+echo "ok: rgraph render deferred-ssao-bloom.json (plugins) from the copy $(took)"
 
 # 3. The embedding example, unmodified, built against the copy.
 cmake -S "$work/src/embed-glfw" -B "$work/build-embed" -DCMAKE_PREFIX_PATH="$moved" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
@@ -51,7 +53,7 @@ cmake --build "$work/build-embed" -j2 >"$work/embed-build.log" 2>&1 ||
 rc=$?
 [[ $rc -eq 0 ]] || { cat "$work/xvfb-errors.log" 2>/dev/null; fail "examples/embed-glfw against the copy: exit $rc"; }
 size_is "$work/embed.png" 128 96
-echo "ok: examples/embed-glfw built against the copy renders"
+echo "ok: examples/embed-glfw built against the copy renders $(took)"
 
 # 4. The plugin template built against the copy: its unit test, and a render.
 cmake -S "$work/src/plugin-template" -B "$work/build-template" -DCMAKE_PREFIX_PATH="$moved" \
@@ -64,4 +66,4 @@ ctest --test-dir "$work/build-template" --output-on-failure --no-tests=error ||
 "$rgraph" render "$work/src/plugin-template/vignette.json" --plugin-path "$work/build-template/lib/rgraph/plugins" \
   --width 96 --height 64 --out "$work/template.png" || fail "rendering the template's pipeline: exit $?"
 size_is "$work/template.png" 96 64
-echo "ok: examples/plugin-template built against the copy: unit test and render"
+echo "ok: examples/plugin-template built against the copy: unit test and render $(took)"
