@@ -7,6 +7,7 @@
 #include <regex>
 #include <nlohmann/json.hpp>
 
+#include "rgraph/own_files.h"
 #include "rgraph/pipeline_load.h"
 #include "rgraph/plugin.h"
 #include "rgraph/shader_check.h"
@@ -97,27 +98,20 @@ std::string diagnosticsJson(const Diagnostics& diags) {
   return out.dump(2);
 }
 
-namespace {
-std::filesystem::path executableDir() {
-  std::error_code ec;
-  auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return ec ? std::filesystem::path{} : exe.parent_path();
-}
-}  // namespace
-
 std::string defaultPipelinePath() {
   const std::string name = "default.json";
-  // An installed rgraph finds its pipelines beside its shaders; a build tree
-  // finds them in the source tree it was configured from.
+  // $RGRAPH_PIPELINE_DIR, else rgraph's own pipelines: an install's
+  // share/rgraph/pipelines found from librgraph's location, a build tree's
+  // source pipelines/ (rgraph/own_files.h). The last candidate is the one
+  // named in the "cannot read" message when none has the file.
   std::vector<std::filesystem::path> candidates;
   if (const char* env = std::getenv("RGRAPH_PIPELINE_DIR")) candidates.emplace_back(env);
-  candidates.push_back(executableDir() / ".." / "share" / "rgraph" / "pipelines");
-  candidates.emplace_back(RGRAPH_PIPELINE_SOURCE_DIR);
+  candidates.emplace_back(ownFiles().pipelines);
   for (const auto& dir : candidates) {
     std::error_code ec;
     if (std::filesystem::exists(dir / name, ec)) return (dir / name).lexically_normal().string();
   }
-  return (std::filesystem::path(RGRAPH_PIPELINE_SOURCE_DIR) / name).string();
+  return (candidates.back() / name).lexically_normal().string();
 }
 
 nlohmann::json memoryJson(const Plan& plan) {

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "rgraph/own_files.h"
 #include "rgraph/plugin.h"
 #include "rgraph/registry.h"
 
@@ -358,4 +359,15 @@ TEST_F(PluginLoaderTest, FindProviderNamesAShadowedPluginByItsPath) {
   ASSERT_TRUE(p.has_value());
   EXPECT_EQ(p->name, canonical(fixture("good")));
   EXPECT_EQ(p->path, canonical(fixture("good")));
+}
+
+// librgraph.so of a build tree reads the source tree's shaders and pipelines
+// (the marker CMake writes beside it) and its plugins from <build>/lib/rgraph/plugins.
+TEST(OwnFiles, ABuildTreesLibraryReadsItsSourceTree) {
+  const OwnFiles& own = ownFiles();
+  EXPECT_TRUE(own.buildTree) << own.codeFile;
+  EXPECT_EQ(own.codeFile, canonical(kPlugins + "/../../librgraph.so"));
+  EXPECT_EQ(canonical(own.shaders), canonical(std::string(RGRAPH_SOURCE_DIR) + "/shaders"));
+  EXPECT_EQ(canonical(own.pipelines), canonical(std::string(RGRAPH_SOURCE_DIR) + "/pipelines"));
+  EXPECT_EQ(own.plugins, canonical(kPlugins));
 }

@@ -86,9 +86,10 @@ class PassRegistry;
 // ------------------------------------------------------------ shader sources
 
 // The default shader search directories, in order: $RGRAPH_SHADER_DIR
-// (':'-separated), <exe dir>/../share/rgraph/shaders, the install directory,
-// the source tree's shaders/. (ShaderLibrary puts the directories added with
-// addSearchDirectory in front of these.)
+// (':'-separated), then rgraph's built-in shaders: <prefix>/share/rgraph/shaders
+// found from librgraph's own location in an install, the source tree's
+// shaders/ in a build tree (rgraph/own_files.h). (ShaderLibrary puts the
+// directories added with addSearchDirectory in front of these.)
 std::vector<std::string> defaultShaderSearchDirectories();
 // Folders added for the whole process (thread-safe), seen by every later
 // defaultShaderSearchDirectories(): `--shader-path` folders come before the

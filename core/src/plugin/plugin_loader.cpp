@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <spdlog/spdlog.h>
 
+#include "rgraph/own_files.h"
 #include "rgraph/plugin.h"
 #include "rgraph/plugin_file_check.h"
 #include "rgraph/registry.h"
@@ -51,15 +52,6 @@ std::string normal(const fs::path& p) {
   fs::path abs = p.is_absolute() ? p : fs::absolute(p, ec);
   fs::path canon = fs::weakly_canonical(abs, ec);
   return (ec ? abs.lexically_normal() : canon).string();
-}
-
-// The folder of librgraph.so itself (this code is linked into it).
-fs::path libraryDir() {
-  Dl_info info{};
-  static const int anchor = 0;
-  if (dladdr(static_cast<const void*>(&anchor), &info) && info.dli_fname && *info.dli_fname)
-    return fs::path(normal(info.dli_fname)).parent_path();
-  return {};
 }
 
 fs::path executableDir() {
@@ -204,7 +196,7 @@ std::vector<std::string> PluginLoader::searchDirectories() const {
   // both. No folder is baked in at build time: an installed rgraph must never
   // load stale plugins from the build tree it was built in, or from the
   // prefix it was configured for when it was installed elsewhere.
-  if (fs::path lib = libraryDir(); !lib.empty()) add(lib / "rgraph" / "plugins");
+  add(ownFiles().plugins);  // <libdir>/rgraph/plugins beside librgraph.so (rgraph/own_files.h)
   if (fs::path exe = executableDir(); !exe.empty()) add(exe / ".." / RGRAPH_PLUGIN_INSTALL_RELDIR);
   return out;
 }

@@ -9,14 +9,9 @@
 #include <sstream>
 #include <string_view>
 
+#include "rgraph/own_files.h"
 #include "rgraph/shader_check.h"
 
-#ifndef RGRAPH_SHADER_SOURCE_DIR
-#define RGRAPH_SHADER_SOURCE_DIR ""
-#endif
-#ifndef RGRAPH_SHADER_INSTALL_DIR
-#define RGRAPH_SHADER_INSTALL_DIR ""
-#endif
 
 namespace fs = std::filesystem;
 
@@ -181,11 +176,10 @@ std::vector<std::string> defaultShaderSearchDirectories() {
       start = end + 1;
     }
   }
-  std::error_code ec;
-  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) dirs.push_back((exe.parent_path() / ".." / "share" / "rgraph" / "shaders").lexically_normal().string());
-  if (std::string(RGRAPH_SHADER_INSTALL_DIR).size()) dirs.push_back(RGRAPH_SHADER_INSTALL_DIR);
-  if (std::string(RGRAPH_SHADER_SOURCE_DIR).size()) dirs.push_back(RGRAPH_SHADER_SOURCE_DIR);
+  // rgraph's own shaders: one folder, found from where librgraph is (an
+  // install's share/rgraph/shaders, or a build tree's source shaders/), never
+  // a path baked in at build time (rgraph/own_files.h).
+  if (const std::string& own = ownFiles().shaders; !own.empty()) dirs.push_back(own);
   ProcessShaderDirs& d = processShaderDirs();
   std::lock_guard<std::mutex> lock(d.mutex);
   for (const auto& dir : d.last) addUnique(dirs, dir);

@@ -3,8 +3,8 @@
 // rgraph::RuntimeError naming the file and line: `shaders/NAME.frag:LINE: message`.
 //
 // Search order for a relative name: directories added with addSearchDirectory
-// (latest first), $RGRAPH_SHADER_DIR (':'-separated), <exe dir>/../share/rgraph/shaders,
-// the install directory, the source tree's shaders/. Absolute paths are used as is.
+// (latest first), then defaultShaderSearchDirectories() (rgraph/shader_check.h:
+// $RGRAPH_SHADER_DIR, rgraph's built-in shaders). Absolute paths are used as is.
 //
 // Sources may `#include "file"` (one level: included files may not include),
 // resolved like any shader name (relative to the including file's directory first).
