@@ -94,8 +94,10 @@ GpuScene::GpuScene(const Scene& scene) : scene_(scene), uploadedIn_(gl::currentC
   for (const Primitive& p : scene.primitives)
     if (p.mesh >= 0 && static_cast<size_t>(p.mesh) < uv1.size() && scene.materials[p.material].usesUv1())
       uv1[p.mesh] = true;
-  for (size_t i = 0; i < scene.meshes.size(); ++i)
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
     meshes_.push_back(upload(scene.meshes[i], hasTangents_ && scene.meshes[i].hasTangents(), uv1[i]));
+    geometryBytes_ += meshes_.back().bytes;
+  }
   uploadInstances();
   hasVertexColors_ = scene.hasVertexColors();
   for (const Material& m : scene.materials) reflectancePerDraw_ = reflectancePerDraw_ || m.nonDefaultReflectance();
@@ -182,6 +184,7 @@ GpuScene::GpuMesh GpuScene::upload(const MeshData& mesh, bool tangents, bool uv1
   glNamedBufferStorage(g.indices.id(), std::max<size_t>(mesh.indices.size() * sizeof(uint32_t), 1),
                        mesh.indices.empty() ? nullptr : mesh.indices.data(), 0);
   g.indexCount = static_cast<uint32_t>(mesh.indices.size());
+  g.bytes = bytes + mesh.indices.size() * sizeof(uint32_t);
   g.vao = gl::createVertexArray();
   const GLuint vao = g.vao.id();
   glVertexArrayVertexBuffer(vao, 0, g.vertices.id(), 0, static_cast<GLsizei>(stride));
@@ -214,6 +217,7 @@ GpuScene::GpuMesh GpuScene::upload(const MeshData& mesh, bool tangents, bool uv1
     if (uvBytes) std::memcpy(extra.data() + colorBytes, mesh.uv1.data(), uvBytes);
     g.extra = gl::createBuffer();
     glNamedBufferStorage(g.extra.id(), static_cast<GLsizeiptr>(std::max<size_t>(extra.size(), 1)), extra.data(), 0);
+    g.bytes += extra.size();
     auto stream = [&](GLuint loc, GLint size, size_t offset, size_t stride) {
       glVertexArrayVertexBuffer(vao, loc - 3, g.extra.id(), static_cast<GLintptr>(offset), static_cast<GLsizei>(stride));
       glEnableVertexArrayAttrib(vao, loc);
@@ -245,6 +249,60 @@ void GpuScene::uploadInstances() {
   glNamedBufferStorage(instances_.id(), static_cast<GLsizeiptr>(data.size() * sizeof(glm::mat4)), data.data(), 0);
 }
 
+void GpuScene::meshAdded() {
+  if (meshes_.size() + 1 != scene_.meshes.size())
+    throw RuntimeError("GpuScene::meshAdded: the scene has " + std::to_string(scene_.meshes.size()) +
+                       " meshes, the GPU " + std::to_string(meshes_.size()) + ": one new mesh at a time");
+  const MeshData& mesh = scene_.meshes.back();
+  // Tangents only where the upload carries them (a scene with normal maps);
+  // the second UV set where the mesh has one (no material samples it yet).
+  meshes_.push_back(upload(mesh, hasTangents_ && mesh.hasTangents(), mesh.hasUv1()));
+  geometryBytes_ += meshes_.back().bytes;
+  hasVertexColors_ = hasVertexColors_ || mesh.hasColors();
+}
+
+void GpuScene::primitiveAdded() {
+  const size_t index = scene_.primitives.size() - 1;
+  const glm::mat4& m = scene_.primitives.back().transform;
+  // Matrices of the last frame with motion: the new one's is its own (no
+  // motion on its first frame, addedPrimitives_), the others keep theirs.
+  if (!models_.empty()) {
+    models_.push_back(m);
+    prevModels_.push_back(m);
+    addedPrimitives_.push_back(index);
+  }
+  if (!instanceRanges_.empty()) instanceRanges_.push_back(InstanceRange{});  // not instanced
+  const Material& material = scene_.materials.at(static_cast<size_t>(scene_.primitives.back().material));
+  reflectancePerDraw_ = reflectancePerDraw_ || material.nonDefaultReflectance();
+  for (const TextureRef* t : material.textures())
+    if (t->valid() && (t->texCoord != 0 || t->uvTransform() != glm::mat3x2(1.0f))) texCoordsPerDraw_ = true;
+}
+
+void GpuScene::primitiveRemoved(size_t index) {
+  auto erase = [index](auto& v) {
+    if (index < v.size()) v.erase(v.begin() + static_cast<std::ptrdiff_t>(index));
+  };
+  erase(models_);
+  erase(prevModels_);
+  erase(instanceRanges_);
+  erase(hidden_);
+  std::vector<size_t> added;
+  for (size_t i : addedPrimitives_)
+    if (i != index) added.push_back(i > index ? i - 1 : i);
+  addedPrimitives_ = std::move(added);
+}
+
+void GpuScene::setVisible(size_t primitive, bool visible) {
+  if (primitive >= scene_.primitives.size())
+    throw RuntimeError("GpuScene::setVisible: no primitive " + std::to_string(primitive) + " (the scene has " +
+                       std::to_string(scene_.primitives.size()) + ")");
+  if (hidden_.size() <= primitive) {
+    if (visible) return;
+    hidden_.resize(primitive + 1, false);
+  }
+  hidden_[primitive] = !visible;
+}
+
 void GpuScene::updateFrame(Extent viewport) { updateFrame(viewport, scene_.camera); }
 
 void GpuScene::updateFrame(Extent viewport, const Camera& cam) {
@@ -252,6 +310,7 @@ void GpuScene::updateFrame(Extent viewport, const Camera& cam) {
   models_.clear();
   prevModels_.clear();
   modelsFrame_.reset();
+  addedPrimitives_.clear();
   writeFrame(viewport, cam, nullptr);
 }
 
@@ -267,6 +326,9 @@ glm::mat4 GpuScene::updateFrame(Extent viewport, const Camera& cam, const FrameM
     prevModels_ = current;  // first frame or camera cut: no motion
   } else if (sameShape && modelsFrame_ && *modelsFrame_ + 1 == motion.frame) {
     prevModels_ = models_;  // the last frame's matrices
+    // Primitives added since were not drawn then: no motion on their first frame.
+    for (size_t i : addedPrimitives_)
+      if (i < current.size()) prevModels_[i] = current[i];
   } else if (sameShape && modelsFrame_ && *modelsFrame_ == motion.frame) {
     // The same frame again (a second renderer sharing this scene): keep its previous matrices.
   } else {
@@ -278,6 +340,7 @@ glm::mat4 GpuScene::updateFrame(Extent viewport, const Camera& cam, const FrameM
   }
   models_ = std::move(current);
   modelsFrame_ = motion.frame;
+  addedPrimitives_.clear();
   return writeFrame(viewport, cam, &motion);
 }
 
@@ -445,6 +508,10 @@ void GpuScene::bindMaterial(uint32_t program, int materialIndex, bool meshHasUv1
   glProgramUniform1f(program, loc.alphaCutoff, m.alphaCutoff);
   glProgramUniform1i(program, loc.alphaMode, static_cast<int>(m.alphaMode));
   glProgramUniform3fv(program, loc.emissive, 1, glm::value_ptr(m.emissiveFactor));
+  // (drawUniformBytes: the factors above, the four texture flags, and what follows where the scene has it.)
+  drawUniformBytes_ += sizeof(glm::vec4) + 7 * sizeof(float) + sizeof(glm::vec3) + 4 * sizeof(int);
+  if (reflectancePerDraw_) drawUniformBytes_ += sizeof(glm::vec3) + sizeof(float) + 2 * sizeof(int);
+  if (texCoordsPerDraw_) drawUniformBytes_ += kMaterialTextureUnits * (sizeof(glm::mat3x2) + sizeof(int));
   if (reflectancePerDraw_) {
     glProgramUniform3fv(program, loc.specularColorFactor, 1, glm::value_ptr(m.specularColorFactor));
     glProgramUniform1f(program, loc.specularFactor, m.specularFactor);
@@ -520,6 +587,7 @@ void GpuScene::drawList(uint32_t program, const std::vector<size_t>& order, Cull
       glProgramUniformMatrix4fv(program, loc.prevModel, 1, GL_FALSE, glm::value_ptr(moving ? prevModels_[i] : model));
     const glm::mat3 nm = moving ? glm::transpose(glm::inverse(glm::mat3(model))) : p.normalMatrix();
     glProgramUniformMatrix3fv(program, loc.normalMatrix, 1, GL_FALSE, glm::value_ptr(nm));
+    drawUniformBytes_ += sizeof(glm::mat4) * (loc.prevModel >= 0 ? 2 : 1) + sizeof(glm::mat3);
     bindMaterial(program, p.material, mesh.uv1);
     // (Both 0 until set: scenes without vertex colours or instances set nothing per draw.)
     if (hasVertexColors_ && loc.hasVertexColors >= 0) glProgramUniform1i(program, loc.hasVertexColors, mesh.colors ? 1 : 0);

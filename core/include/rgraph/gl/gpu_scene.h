@@ -103,6 +103,32 @@ class GpuScene {
   // (a power of two), so that moving, recolouring, adding and removing lights
   // creates no GL object in the common case.
   void lightsChanged() { ++lightsVersion_; }
+  // The scene's objects were edited between frames (RenderScene's instances,
+  // rgraph/renderer.h). Transforms, materials and visibility need no call:
+  // draws read them from the Scene each frame. These keep the GPU side in
+  // step with a scene that changed shape, creating GL objects only for a
+  // new mesh:
+  //   meshAdded         the last of Scene::meshes is new: uploaded now, once
+  //                     (every primitive drawing it shares the upload);
+  //   primitiveAdded    the last of Scene::primitives is new: drawn from the
+  //                     next frame, with no motion on its first frame;
+  //   primitiveRemoved  primitive `index` was erased: the others keep their
+  //                     previous frame's matrices (their motion vectors).
+  void meshAdded();
+  void primitiveAdded();
+  void primitiveRemoved(size_t index);
+  // Hidden primitives are not drawn (no filter selects them); all are shown
+  // at first. RenderScene::setVisible.
+  void setVisible(size_t primitive, bool visible);
+  bool visible(size_t primitive) const { return primitive >= hidden_.size() || !hidden_[primitive]; }
+  // Bytes of geometry (vertex and index buffers) uploaded since the scene
+  // was made: the upload's, plus each meshAdded's. Never grows per frame.
+  uint64_t geometryBytes() const { return geometryBytes_; }
+  // Bytes of per-draw data the scene's draws have set since it was made:
+  // each drawn primitive's model, previous model and normal matrices and its
+  // material's uniforms (factors, flags; texture transforms where the scene
+  // has them), the per-instance data of a frame's draws.
+  uint64_t drawUniformBytes() const { return drawUniformBytes_; }
   // Binds the Frame block at 0: the frame's jittered camera, or the same
   // camera without jitter while the executor runs a pass whose
   // PassDecl::jitter is false (selectJitter).
@@ -244,6 +270,7 @@ class GpuScene {
     gl::Buffer extra;  // COLOR_0 then TEXCOORD_1, where the mesh has them (else none)
     uint32_t indexCount = 0;
     bool colors = false, uv1 = false;
+    uint64_t bytes = 0;  // uploaded into its buffers
   };
   struct Locations;
   GpuMesh upload(const struct MeshData& mesh, bool tangents, bool uv1) const;
@@ -308,6 +335,12 @@ class GpuScene {
   // frame's, and the frame number they belong to.
   std::vector<glm::mat4> models_, prevModels_;
   std::optional<uint64_t> modelsFrame_;
+  // Primitives added since the last updateFrame (primitiveAdded): their
+  // previous matrix is their current one on their first frame.
+  std::vector<size_t> addedPrimitives_;
+  std::vector<bool> hidden_;  // per primitive (shorter: the rest are shown)
+  uint64_t geometryBytes_ = 0;
+  mutable uint64_t drawUniformBytes_ = 0;
   glm::mat4 writeFrame(Extent viewport, const Camera& camera, const FrameMotion* motion);
   struct LightBuffer {
     gl::Buffer buffer;
