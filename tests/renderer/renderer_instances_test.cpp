@@ -210,6 +210,48 @@ TEST_F(RendererInstances, HiddenAndRemovedObjectsAreNotDrawn) {
   EXPECT_EQ(r->builds(), 1u);
 }
 
+// Removing an object keeps the others' GPU data in step: an
+// EXT_mesh_gpu_instancing primitive after the removed one still draws all its
+// instances (what a scene built without the removed one draws).
+TEST_F(RendererInstances, RemovingAnObjectKeepsTheOthersInstancing) {
+  auto instanced = [](bool withFirst) {
+    Scene s = cubes(withFirst ? std::vector<glm::vec3>{{-1.5f, 0.8f, 0.0f}, {0.0f, 0.0f, 0.0f}}
+                              : std::vector<glm::vec3>{{0.0f, 0.0f, 0.0f}});
+    Primitive& p = s.primitives.back();
+    p.instances = {at(-1.2f, -0.5f), at(0.0f, 0.2f), at(1.2f, -0.5f)};
+    p.transform = glm::scale(glm::mat4(1.0f), glm::vec3(0.6f));
+    p.bounds = p.worldBounds(s.meshes[0].bounds);
+    return s;
+  };
+  auto scene = RenderScene::fromScene(instanced(true));
+  auto r = makeRenderer(kDefault, scene);
+  frame(*r);
+  scene->removeInstance(scene->instances().front());
+  const std::vector<uint8_t> after = frame(*r);
+  auto reference = makeRenderer(kDefault, RenderScene::fromScene(instanced(false)));
+  EXPECT_LE(maxDiff(after, frame(*reference)), 1);
+  // And it moves as a whole (transform * each instance).
+  const InstanceId group = scene->instances().front();
+  scene->setTransform(group, at(0.0f, 0.5f) * glm::scale(glm::mat4(1.0f), glm::vec3(0.6f)));
+  EXPECT_NE(maxDiff(frame(*r), after), 0);
+  EXPECT_EQ(r->builds(), 1u);
+}
+
+// A loaded scene (a glTF file) keeps drawing as it did; its primitives are objects.
+TEST_F(RendererInstances, ALoadedScenesPrimitivesAreObjects) {
+  auto scene = RenderScene::load(std::string(RGRAPH_ASSETS_DIR) + "/gltf/Box/Box.glb");
+  ASSERT_EQ(scene->instances().size(), scene->scene().primitives.size());
+  ASSERT_FALSE(scene->instances().empty());
+  auto r = makeRenderer(kDefault, scene);
+  const std::vector<uint8_t> still = frame(*r);
+  EXPECT_EQ(maxDiff(frame(*r), still), 0);
+  const InstanceId box = scene->instances().front();
+  EXPECT_EQ(scene->instanceAt(0), box);
+  scene->setTransform(box, glm::rotate(scene->transform(box), 0.3f, glm::vec3(0.0f, 1.0f, 0.0f)));
+  EXPECT_GT(maxDiff(frame(*r), still), 10);
+  EXPECT_EQ(r->builds(), 1u);
+}
+
 // A mesh made in code is uploaded once and shared: two objects drawing it
 // draw what a scene built with them draws; the scene's upload count stays 1.
 TEST_F(RendererInstances, AMeshMadeInCodeIsUploadedOnceAndShared) {
