@@ -11,8 +11,10 @@
 //     cpu_ms_per_frame        that CPU time (median over the frames)
 //     move_cpu_ms_per_frame   the 1,000 setTransform calls alone
 //     geometry_bytes_per_frame  vertex and index bytes uploaded (GpuScene::geometryBytes): 0
-//     draw_bytes_per_frame    per-draw data the scene's draws set (GpuScene::drawUniformBytes:
-//                             model, previous model and normal matrices, material uniforms)
+//     object_bytes_per_frame  bytes written into the scene's Objects buffer (GpuScene::objectBytes:
+//                             model, previous model and normal matrix of each object that changed)
+//     draw_bytes_per_frame    per-draw uniforms the scene's draws set (GpuScene::drawUniformBytes:
+//                             the draw's entry in Objects, the material's uniforms)
 //     gl_objects_per_frame    GL objects created (gl::createdObjectsTotal): 0
 //     gl_create_calls_per_frame  glCreate* and glGen* calls of any caller (gl_call_counter.h): 0
 //     gl_calls_per_frame      every GL call of the frame (gl_call_counter.h)
@@ -109,7 +111,7 @@ void BM_Instances(benchmark::State& state, bool moving) {
   if (!w) return;
   GpuScene& gpu = w->scene->gpu();
   const uint64_t builds = w->renderer->builds();
-  const uint64_t geometry = gpu.geometryBytes(), drawBytes = gpu.drawUniformBytes();
+  const uint64_t geometry = gpu.geometryBytes(), drawBytes = gpu.drawUniformBytes(), objectBytes = gpu.objectBytes();
   const int64_t objects = gl::createdObjectsTotal();
   const uint64_t calls = bench::GlCallCounter::total();
   const double creates = createCalls();
@@ -133,6 +135,7 @@ void BM_Instances(benchmark::State& state, bool moving) {
   state.counters["cpu_ms_per_frame"] = cli::median(frameMs);
   state.counters["move_cpu_ms_per_frame"] = cli::median(moveMs);
   state.counters["geometry_bytes_per_frame"] = double(gpu.geometryBytes() - geometry) / frames;
+  state.counters["object_bytes_per_frame"] = double(gpu.objectBytes() - objectBytes) / frames;
   state.counters["draw_bytes_per_frame"] = double(gpu.drawUniformBytes() - drawBytes) / frames;
   state.counters["gl_objects_per_frame"] = double(gl::createdObjectsTotal() - objects) / frames;
   state.counters["gl_create_calls_per_frame"] = (createCalls() - creates) / frames;

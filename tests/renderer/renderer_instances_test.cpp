@@ -146,6 +146,29 @@ TEST_F(RendererInstances, AMovedObjectDrawsAsASceneBuiltWithItThere) {
   EXPECT_NE(rgb(moved, pixelOf(cam, {-0.2f, 0.6f, 0.5f})), background);
 }
 
+// Only what changed is written: a still frame writes nothing into the
+// scene's Objects buffer, a moved object its own entry (its model, previous
+// model and normal matrices: 3 mat4s), and the frame after it stops the same
+// entry once more (its previous matrix catches up).
+TEST_F(RendererInstances, OnlyAMovedObjectsEntryIsWritten) {
+  auto scene = RenderScene::fromScene(cubes({{-1.2f, 0, 0}, {0.0f, 0, 0}, {1.2f, 0, 0}}));
+  auto r = makeRenderer(kDefault, scene);
+  frame(*r);
+  GpuScene& gpu = scene->gpu();
+  auto written = [&] {
+    const uint64_t before = gpu.objectBytes();
+    frame(*r);
+    return gpu.objectBytes() - before;
+  };
+  constexpr uint64_t kEntry = 3 * sizeof(glm::mat4);
+  EXPECT_EQ(written(), 0u) << "a still frame";
+  scene->setTransform(scene->instances()[1], at(0.0f, 0.3f));
+  EXPECT_EQ(written(), kEntry) << "the moved object's entry";
+  EXPECT_EQ(written(), kEntry) << "its previous matrix, the frame after";
+  EXPECT_EQ(written(), 0u);
+  EXPECT_EQ(scene->uploadCount(), 1u);
+}
+
 // The velocity target holds a moved object's motion (uv_now - uv_prev): its
 // front face at depth 4.5 moved 0.2 along x moves 0.2 / (2 * 4.5 * tan(22.5
 // deg) * aspect) in u, nothing in v; the object left alone and the

@@ -80,7 +80,8 @@ void detail::fillSceneMembers(FrameBlock& f, const Scene& scene) {
 struct GpuScene::Locations {
   int model, prevModel, normalMatrix, baseColorFactor, metallicFactor, roughnessFactor, specular, normalScale,
       occlusionStrength, alphaCutoff, alphaMode, emissive, hasBaseColorTex, hasMetallicRoughnessTex, hasNormalTex,
-      hasOcclusionTex, specularColorFactor, specularFactor, unlit, specularTextures, hasVertexColors, uvTransform, uvSet, instanceRange;
+      hasOcclusionTex, specularColorFactor, specularFactor, unlit, specularTextures, hasVertexColors, uvTransform, uvSet, instanceRange,
+      object;
 };
 
 GpuScene::GpuScene(const Scene& scene) : scene_(scene), uploadedIn_(gl::currentContext()) {
@@ -311,6 +312,7 @@ void GpuScene::updateFrame(Extent viewport, const Camera& cam) {
   prevModels_.clear();
   modelsFrame_.reset();
   addedPrimitives_.clear();
+  writeObjects();
   writeFrame(viewport, cam, nullptr);
 }
 
@@ -341,7 +343,46 @@ glm::mat4 GpuScene::updateFrame(Extent viewport, const Camera& cam, const FrameM
   models_ = std::move(current);
   modelsFrame_ = motion.frame;
   addedPrimitives_.clear();
+  writeObjects();
   return writeFrame(viewport, cam, &motion);
+}
+
+void GpuScene::writeObjects() const {
+  const size_t n = scene_.primitives.size();
+  const bool moving = models_.size() == n;
+  std::vector<ObjectRecord> next(n);
+  for (size_t i = 0; i < n; ++i) {
+    ObjectRecord& o = next[i];
+    o.model = moving ? models_[i] : scene_.primitives[i].transform;
+    o.prevModel = moving ? prevModels_[i] : o.model;
+    // The normal matrix only where the model matrix changed (an inverse each).
+    const bool same = i < objects_.size() && objects_[i].model == o.model;
+    o.normal = same ? objects_[i].normal : glm::mat4(glm::transpose(glm::inverse(glm::mat3(o.model))));
+  }
+  if (!objectBuffer_ || objectCapacity_ < std::max<size_t>(n, 1)) {
+    // Room for growth, so that objects added now and then reuse the buffer.
+    size_t capacity = 16;
+    while (capacity < n) capacity *= 2;
+    objectBuffer_ = gl::createBuffer();
+    glNamedBufferStorage(objectBuffer_.id(), static_cast<GLsizeiptr>(capacity * sizeof(ObjectRecord)), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+    objectCapacity_ = capacity;
+    objects_.clear();  // nothing in it yet: every entry is written
+  }
+  // One range, from the first entry that changed to the last.
+  size_t first = n, last = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (i >= objects_.size() || std::memcmp(&next[i], &objects_[i], sizeof(ObjectRecord)) != 0) {
+      first = std::min(first, i);
+      last = i + 1;
+    }
+  if (first < last) {
+    const size_t bytes = (last - first) * sizeof(ObjectRecord);
+    glNamedBufferSubData(objectBuffer_.id(), static_cast<GLintptr>(first * sizeof(ObjectRecord)),
+                         static_cast<GLsizeiptr>(bytes), &next[first]);
+    objectBytes_ += bytes;
+  }
+  objects_ = std::move(next);
 }
 
 glm::mat4 GpuScene::writeFrame(Extent viewport, const Camera& cam, const FrameMotion* motion) {
@@ -461,7 +502,8 @@ const GpuScene::Locations& GpuScene::locations(uint32_t program) const {
                    get("u_alphaMode"),       get("u_emissive"),         get("u_hasBaseColorTex"),
                    get("u_hasMetallicRoughnessTex"), get("u_hasNormalTex"), get("u_hasOcclusionTex"),
                    get("u_specularColorFactor"), get("u_specularFactor"), get("u_unlit"), get("u_specularTextures"),
-                   get("u_hasVertexColors"), get("u_uvTransform"), get("u_uvSet"), get("u_instanceRange")};
+                   get("u_hasVertexColors"), get("u_uvTransform"), get("u_uvSet"), get("u_instanceRange"),
+                   get("u_object")};
   // clang-format on
   return *locations_.emplace(program, std::move(loc)).first->second;
 }
@@ -574,20 +616,29 @@ void GpuScene::drawList(uint32_t program, const std::vector<size_t>& order, Cull
   bindProgram(program);
   claimGeometryUniforms(program, loc);
   if (instances_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBinding, instances_.id());
+  // The objects' matrices (scene.vert's Objects): written by updateFrame; a
+  // scene changed since (or drawn before any updateFrame) has them written now.
+  if (!order.empty() && objects_.size() != scene_.primitives.size()) writeObjects();
+  const bool objects = loc.object >= 0 && !order.empty();
+  if (objects) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBinding, objectBuffer_.id());
   for (size_t i : order) {
     const Primitive& p = scene_.primitives[i];
     const Material& m = scene_.materials[p.material];
     const GpuMesh& mesh = meshes_[p.mesh];
     if (mesh.indexCount == 0) continue;
-    // With motion, the matrices of this frame's animation time; else the transform.
-    const bool moving = models_.size() == scene_.primitives.size();
-    const glm::mat4& model = moving ? models_[i] : p.transform;
-    glProgramUniformMatrix4fv(program, loc.model, 1, GL_FALSE, glm::value_ptr(model));
-    if (loc.prevModel >= 0)
-      glProgramUniformMatrix4fv(program, loc.prevModel, 1, GL_FALSE, glm::value_ptr(moving ? prevModels_[i] : model));
-    const glm::mat3 nm = moving ? glm::transpose(glm::inverse(glm::mat3(model))) : p.normalMatrix();
-    glProgramUniformMatrix3fv(program, loc.normalMatrix, 1, GL_FALSE, glm::value_ptr(nm));
-    drawUniformBytes_ += sizeof(glm::mat4) * (loc.prevModel >= 0 ? 2 : 1) + sizeof(glm::mat3);
+    if (loc.object >= 0) {
+      glProgramUniform1i(program, loc.object, static_cast<GLint>(i));
+      drawUniformBytes_ += sizeof(int);
+    } else {
+      // A vertex shader of its own: the matrices as uniforms (the Objects entry's values).
+      const ObjectRecord o = i < objects_.size() ? objects_[i]
+                                                 : ObjectRecord{p.transform, p.transform, glm::mat4(p.normalMatrix())};
+      glProgramUniformMatrix4fv(program, loc.model, 1, GL_FALSE, glm::value_ptr(o.model));
+      if (loc.prevModel >= 0) glProgramUniformMatrix4fv(program, loc.prevModel, 1, GL_FALSE, glm::value_ptr(o.prevModel));
+      const glm::mat3 nm(o.normal);
+      glProgramUniformMatrix3fv(program, loc.normalMatrix, 1, GL_FALSE, glm::value_ptr(nm));
+      drawUniformBytes_ += sizeof(glm::mat4) * (loc.prevModel >= 0 ? 2 : 1) + sizeof(glm::mat3);
+    }
     bindMaterial(program, p.material, mesh.uv1);
     // (Both 0 until set: scenes without vertex colours or instances set nothing per draw.)
     if (hasVertexColors_ && loc.hasVertexColors >= 0) glProgramUniform1i(program, loc.hasVertexColors, mesh.colors ? 1 : 0);
@@ -616,6 +667,7 @@ void GpuScene::drawList(uint32_t program, const std::vector<size_t>& order, Cull
   glDisable(GL_CULL_FACE);
   for (GLuint unit = 0; unit < 5; ++unit) glBindSampler(unit, 0);
   if (instances_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBinding, 0);  // left as found
+  if (objects) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBinding, 0);
   bindVertexArray(0);
 }
 
