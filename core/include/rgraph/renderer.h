@@ -163,9 +163,9 @@ class RenderScene {
   // Every primitive of the scene is an object with an InstanceId (a loaded
   // scene's primitives too, in scene().primitives order). Edits take effect
   // at the next frame of every renderer drawing the scene, with no pipeline
-  // rebuild, no history reset and no upload but that of a new mesh: draws
-  // read each object's matrices and material from the scene every frame,
-  // and a moved object's previous transform goes into the velocity target
+  // rebuild, no history reset and no upload but that of a new mesh and the
+  // moved objects' entries of the scene's per-object buffer (GpuScene's
+  // Objects); a moved object's previous transform goes into the velocity target
   // (renderers with motion vectors: TAA follows the object, not a cut).
   // Exception, as for lights: an edit that changes what the scene needs
   // (its first blended, emissive or normal-mapped object, metallic or

@@ -3,10 +3,10 @@
 // code that they draw. Every edit is checked before anything changes, so a
 // call that throws leaves the scene as it was.
 //
-// An object is a Scene::primitives entry: the draws read its transform and
-// material from the Scene every frame (GpuScene::drawPrimitives), and the
-// GpuScene's motion path gives it the previous frame's transform. Nothing
-// here uploads but a new mesh (GpuScene::meshAdded).
+// An object is a Scene::primitives entry: GpuScene::updateFrame writes the
+// matrices that changed into its Objects buffer each frame, with the previous
+// frame's transform from its motion path, and the draws read the material
+// from the Scene. Nothing here uploads but a new mesh (GpuScene::meshAdded).
 #include <cmath>
 #include <cstdio>
 #include <string>
