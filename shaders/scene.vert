@@ -24,8 +24,20 @@ layout(location = 3) in vec4 a_tangent;
 layout(location = 4) in vec4 a_color;  // COLOR_0, bound only where the mesh has it
 layout(location = 5) in vec2 a_uv1;    // TEXCOORD_1, bound only where a texture samples it
 
-uniform mat4 u_model;
-uniform mat3 u_normalMatrix;
+// Per object (GpuScene's Objects buffer, one entry per primitive, rewritten
+// only where something moved): this frame's model matrix, the previous
+// frame's (motion vectors) and the normal matrix (a mat3 in a mat4's
+// columns). u_object: this draw's entry. The names below read it.
+struct SceneObject {
+  mat4 model;
+  mat4 prevModel;
+  mat4 normalMatrix;
+};
+layout(std430, binding = 5) readonly buffer Objects { SceneObject u_objects[]; };
+uniform int u_object;
+#define u_model (u_objects[u_object].model)
+#define u_normalMatrix (mat3(u_objects[u_object].normalMatrix))
+#define u_prevModel (u_objects[u_object].prevModel)
 // Per draw: whether the mesh has vertex colours (attribute 4 is read only
 // then: a mesh without COLOR_0 is white), and its instances
 // (EXT_mesh_gpu_instancing): x their count (0: not instanced, u_model alone),
@@ -44,7 +56,6 @@ layout(std430, binding = 7) readonly buffer Instances { SceneInstance u_instance
 #if defined(HAS_VELOCITY)
 // Motion vectors: this frame's and the previous frame's unjittered clip
 // positions (the velocity target is uv_now - uv_prev, jitter excluded).
-uniform mat4 u_prevModel;
 out vec4 vs_clipNow;
 out vec4 vs_clipPrev;
 #endif

@@ -108,8 +108,9 @@ TEST_F(GlCalls, ADefaultPipelineFrameBindsOnceAndAsksNothing) {
   const auto count = [&](const char* name) { return calls.count(name) ? calls.at(name) : 0ll; };
   EXPECT_EQ(count("glViewport"), 1) << listing(calls);
   // The Frame block when it is written, again by the first pass (the frame's
-  // state reset forgets it), and the light buffer once.
-  EXPECT_EQ(count("glBindBufferBase"), 3) << listing(calls);
+  // state reset forgets it), the light buffer once, and the scene's Objects
+  // buffer (per-object matrices) for the geometry pass's draws and back to 0.
+  EXPECT_EQ(count("glBindBufferBase"), 5) << listing(calls);
   EXPECT_EQ(count("glUseProgram"), 6) << listing(calls);  // five programs, program 0 at the end
   EXPECT_EQ(count("glDepthFunc"), 3) << listing(calls);  // the reset, light volumes' GL_GEQUAL and back
   EXPECT_LE(total(calls), 349) << listing(calls);

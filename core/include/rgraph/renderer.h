@@ -11,6 +11,7 @@
 //   while (running) {
 //     renderer->setCamera(myCamera);                    // every frame, no rebuild
 //     scene->setPointLight(0, movedLight);              // lights too
+//     scene->setTransform(crate, crateMatrix);          // and objects (addInstance)
 //     renderer->render(/*framebuffer=*/0);              // 0 = the window
 //     ... your own drawing; your GL state is as you left it ...
 //   }
@@ -93,6 +94,25 @@ namespace rgraph {
 class Executor;
 class GpuScene;
 
+// A scene object's handle (RenderScene::addInstance, instances()): stays
+// valid until that object is removed, whatever else is added or removed;
+// never reused within one RenderScene. 0 is no object.
+struct InstanceId {
+  uint64_t value = 0;
+  explicit operator bool() const { return value != 0; }
+  auto operator<=>(const InstanceId&) const = default;
+};
+
+// The material values an object may change per frame (RenderScene::
+// setMaterialParameters), in the ranges of glTF: colour factors in 0..1,
+// metallic and roughness in 0..1, emissive finite and >= 0.
+struct MaterialParameters {
+  glm::vec4 baseColorFactor{1.0f};
+  float metallicFactor = 1.0f;
+  float roughnessFactor = 1.0f;
+  glm::vec3 emissiveFactor{0.0f};
+};
+
 // A scene that renderers draw: the CPU data, edits to its lights, and one GPU
 // upload shared by every renderer that draws it, all in the one GL context
 // it was uploaded in (Contexts, top of this file).
@@ -138,6 +158,65 @@ class RenderScene {
   void setEnvironment(std::optional<Environment> environment);
   // Increases with every setEnvironment.
   uint64_t environmentVersion() const;
+
+  // ---- Objects (instances): what an editor or a game moves.
+  // Every primitive of the scene is an object with an InstanceId (a loaded
+  // scene's primitives too, in scene().primitives order). Edits take effect
+  // at the next frame of every renderer drawing the scene, with no pipeline
+  // rebuild, no history reset and no upload but that of a new mesh and the
+  // moved objects' entries of the scene's per-object buffer (GpuScene's
+  // Objects); a moved object's previous transform goes into the velocity target
+  // (renderers with motion vectors: TAA follows the object, not a cut).
+  // Exception, as for lights: an edit that changes what the scene needs
+  // (its first blended, emissive or normal-mapped object, metallic or
+  // roughness that now differ between objects, its last shadow caster gone,
+  // an object added beyond its bounds where lights draw markers) adapts
+  // renderers' pipelines again at their next frame; transform and
+  // visibility edits never do. A call a caller gets wrong (an unknown or
+  // removed id, a transform that is not finite or flattens the object, a
+  // mesh or material index out of range, a value outside the ranges of
+  // glTF, a mesh whose arrays disagree) throws RuntimeError naming the
+  // object ("instance 7 ('crate')") and the value, and changes nothing.
+  //
+  // A mesh made in code (positions, normals, uv0, indices; normals may be
+  // empty: smooth ones are computed, uv0 too: zeros; tangents are made from
+  // the UVs): returns its index in scene().meshes. Uploaded once, now when
+  // the scene is on the GPU (else with it), and shared by every object
+  // drawing it; uploadCount() does not change.
+  size_t addMesh(MeshData mesh);
+  // A material made in code (textures index scene().textures): its index.
+  // A normal-mapped one only in a scene whose upload had normal maps.
+  size_t addMaterial(Material material);
+  // A new object drawing scene().meshes[mesh] with scene().materials[material]
+  // at `transform` (local -> world). Drawn from the next frame on; no motion
+  // on its first frame.
+  InstanceId addInstance(size_t mesh, size_t material, const glm::mat4& transform, std::string name = {});
+  // The object is gone from the next frame; every other id stays valid.
+  void removeInstance(InstanceId id);
+  void setTransform(InstanceId id, const glm::mat4& transform);
+  const glm::mat4& transform(InstanceId id) const;
+  // Draws the object with another material of the scene.
+  void setMaterial(InstanceId id, size_t material);
+  // The object's own material values: the first call gives the object a
+  // material of its own (a copy of the one it draws with, added to
+  // scene().materials); later calls rewrite that copy. Other objects
+  // sharing its former material are unchanged.
+  void setMaterialParameters(InstanceId id, const MaterialParameters& parameters);
+  MaterialParameters materialParameters(InstanceId id) const;
+  // Hidden objects are not drawn (not into shadow maps either) but keep
+  // their id, transform and material; the scene's bounds still count them.
+  void setVisible(InstanceId id, bool visible);
+  bool visible(InstanceId id) const;
+  // Every object, in scene().primitives order; whether `id` is one.
+  std::vector<InstanceId> instances() const;
+  bool contains(InstanceId id) const;
+  // Where the object's Primitive is in scene().primitives now (removals
+  // move later ones down), and the object at a primitive index.
+  size_t primitiveIndex(InstanceId id) const;
+  InstanceId instanceAt(size_t primitive) const;
+  // Increases with every edit that may change what the scene needs (adding,
+  // removing, a material or material values; not transforms or visibility).
+  uint64_t instancesVersion() const;
 
   // The GPU copy, uploaded on first use (a GL context must be current; later
   // calls throw RuntimeError in any other context, see Contexts above).

@@ -80,7 +80,8 @@ void detail::fillSceneMembers(FrameBlock& f, const Scene& scene) {
 struct GpuScene::Locations {
   int model, prevModel, normalMatrix, baseColorFactor, metallicFactor, roughnessFactor, specular, normalScale,
       occlusionStrength, alphaCutoff, alphaMode, emissive, hasBaseColorTex, hasMetallicRoughnessTex, hasNormalTex,
-      hasOcclusionTex, specularColorFactor, specularFactor, unlit, specularTextures, hasVertexColors, uvTransform, uvSet, instanceRange;
+      hasOcclusionTex, specularColorFactor, specularFactor, unlit, specularTextures, hasVertexColors, uvTransform, uvSet, instanceRange,
+      object;
 };
 
 GpuScene::GpuScene(const Scene& scene) : scene_(scene), uploadedIn_(gl::currentContext()) {
@@ -94,8 +95,10 @@ GpuScene::GpuScene(const Scene& scene) : scene_(scene), uploadedIn_(gl::currentC
   for (const Primitive& p : scene.primitives)
     if (p.mesh >= 0 && static_cast<size_t>(p.mesh) < uv1.size() && scene.materials[p.material].usesUv1())
       uv1[p.mesh] = true;
-  for (size_t i = 0; i < scene.meshes.size(); ++i)
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
     meshes_.push_back(upload(scene.meshes[i], hasTangents_ && scene.meshes[i].hasTangents(), uv1[i]));
+    geometryBytes_ += meshes_.back().bytes;
+  }
   uploadInstances();
   hasVertexColors_ = scene.hasVertexColors();
   for (const Material& m : scene.materials) reflectancePerDraw_ = reflectancePerDraw_ || m.nonDefaultReflectance();
@@ -182,6 +185,7 @@ GpuScene::GpuMesh GpuScene::upload(const MeshData& mesh, bool tangents, bool uv1
   glNamedBufferStorage(g.indices.id(), std::max<size_t>(mesh.indices.size() * sizeof(uint32_t), 1),
                        mesh.indices.empty() ? nullptr : mesh.indices.data(), 0);
   g.indexCount = static_cast<uint32_t>(mesh.indices.size());
+  g.bytes = bytes + mesh.indices.size() * sizeof(uint32_t);
   g.vao = gl::createVertexArray();
   const GLuint vao = g.vao.id();
   glVertexArrayVertexBuffer(vao, 0, g.vertices.id(), 0, static_cast<GLsizei>(stride));
@@ -214,6 +218,7 @@ GpuScene::GpuMesh GpuScene::upload(const MeshData& mesh, bool tangents, bool uv1
     if (uvBytes) std::memcpy(extra.data() + colorBytes, mesh.uv1.data(), uvBytes);
     g.extra = gl::createBuffer();
     glNamedBufferStorage(g.extra.id(), static_cast<GLsizeiptr>(std::max<size_t>(extra.size(), 1)), extra.data(), 0);
+    g.bytes += extra.size();
     auto stream = [&](GLuint loc, GLint size, size_t offset, size_t stride) {
       glVertexArrayVertexBuffer(vao, loc - 3, g.extra.id(), static_cast<GLintptr>(offset), static_cast<GLsizei>(stride));
       glEnableVertexArrayAttrib(vao, loc);
@@ -245,6 +250,60 @@ void GpuScene::uploadInstances() {
   glNamedBufferStorage(instances_.id(), static_cast<GLsizeiptr>(data.size() * sizeof(glm::mat4)), data.data(), 0);
 }
 
+void GpuScene::meshAdded() {
+  if (meshes_.size() + 1 != scene_.meshes.size())
+    throw RuntimeError("GpuScene::meshAdded: the scene has " + std::to_string(scene_.meshes.size()) +
+                       " meshes, the GPU " + std::to_string(meshes_.size()) + ": one new mesh at a time");
+  const MeshData& mesh = scene_.meshes.back();
+  // Tangents only where the upload carries them (a scene with normal maps);
+  // the second UV set where the mesh has one (no material samples it yet).
+  meshes_.push_back(upload(mesh, hasTangents_ && mesh.hasTangents(), mesh.hasUv1()));
+  geometryBytes_ += meshes_.back().bytes;
+  hasVertexColors_ = hasVertexColors_ || mesh.hasColors();
+}
+
+void GpuScene::primitiveAdded() {
+  const size_t index = scene_.primitives.size() - 1;
+  const glm::mat4& m = scene_.primitives.back().transform;
+  // Matrices of the last frame with motion: the new one's is its own (no
+  // motion on its first frame, addedPrimitives_), the others keep theirs.
+  if (!models_.empty()) {
+    models_.push_back(m);
+    prevModels_.push_back(m);
+    addedPrimitives_.push_back(index);
+  }
+  if (!instanceRanges_.empty()) instanceRanges_.push_back(InstanceRange{});  // not instanced
+  const Material& material = scene_.materials.at(static_cast<size_t>(scene_.primitives.back().material));
+  reflectancePerDraw_ = reflectancePerDraw_ || material.nonDefaultReflectance();
+  for (const TextureRef* t : material.textures())
+    if (t->valid() && (t->texCoord != 0 || t->uvTransform() != glm::mat3x2(1.0f))) texCoordsPerDraw_ = true;
+}
+
+void GpuScene::primitiveRemoved(size_t index) {
+  auto erase = [index](auto& v) {
+    if (index < v.size()) v.erase(v.begin() + static_cast<std::ptrdiff_t>(index));
+  };
+  erase(models_);
+  erase(prevModels_);
+  erase(instanceRanges_);
+  erase(hidden_);
+  std::vector<size_t> added;
+  for (size_t i : addedPrimitives_)
+    if (i != index) added.push_back(i > index ? i - 1 : i);
+  addedPrimitives_ = std::move(added);
+}
+
+void GpuScene::setVisible(size_t primitive, bool visible) {
+  if (primitive >= scene_.primitives.size())
+    throw RuntimeError("GpuScene::setVisible: no primitive " + std::to_string(primitive) + " (the scene has " +
+                       std::to_string(scene_.primitives.size()) + ")");
+  if (hidden_.size() <= primitive) {
+    if (visible) return;
+    hidden_.resize(primitive + 1, false);
+  }
+  hidden_[primitive] = !visible;
+}
+
 void GpuScene::updateFrame(Extent viewport) { updateFrame(viewport, scene_.camera); }
 
 void GpuScene::updateFrame(Extent viewport, const Camera& cam) {
@@ -252,6 +311,8 @@ void GpuScene::updateFrame(Extent viewport, const Camera& cam) {
   models_.clear();
   prevModels_.clear();
   modelsFrame_.reset();
+  addedPrimitives_.clear();
+  writeObjects();
   writeFrame(viewport, cam, nullptr);
 }
 
@@ -267,6 +328,9 @@ glm::mat4 GpuScene::updateFrame(Extent viewport, const Camera& cam, const FrameM
     prevModels_ = current;  // first frame or camera cut: no motion
   } else if (sameShape && modelsFrame_ && *modelsFrame_ + 1 == motion.frame) {
     prevModels_ = models_;  // the last frame's matrices
+    // Primitives added since were not drawn then: no motion on their first frame.
+    for (size_t i : addedPrimitives_)
+      if (i < current.size()) prevModels_[i] = current[i];
   } else if (sameShape && modelsFrame_ && *modelsFrame_ == motion.frame) {
     // The same frame again (a second renderer sharing this scene): keep its previous matrices.
   } else {
@@ -278,7 +342,47 @@ glm::mat4 GpuScene::updateFrame(Extent viewport, const Camera& cam, const FrameM
   }
   models_ = std::move(current);
   modelsFrame_ = motion.frame;
+  addedPrimitives_.clear();
+  writeObjects();
   return writeFrame(viewport, cam, &motion);
+}
+
+void GpuScene::writeObjects() const {
+  const size_t n = scene_.primitives.size();
+  const bool moving = models_.size() == n;
+  std::vector<ObjectRecord> next(n);
+  for (size_t i = 0; i < n; ++i) {
+    ObjectRecord& o = next[i];
+    o.model = moving ? models_[i] : scene_.primitives[i].transform;
+    o.prevModel = moving ? prevModels_[i] : o.model;
+    // The normal matrix only where the model matrix changed (an inverse each).
+    const bool same = i < objects_.size() && objects_[i].model == o.model;
+    o.normal = same ? objects_[i].normal : glm::mat4(glm::transpose(glm::inverse(glm::mat3(o.model))));
+  }
+  if (!objectBuffer_ || objectCapacity_ < std::max<size_t>(n, 1)) {
+    // Room for growth, so that objects added now and then reuse the buffer.
+    size_t capacity = 16;
+    while (capacity < n) capacity *= 2;
+    objectBuffer_ = gl::createBuffer();
+    glNamedBufferStorage(objectBuffer_.id(), static_cast<GLsizeiptr>(capacity * sizeof(ObjectRecord)), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+    objectCapacity_ = capacity;
+    objects_.clear();  // nothing in it yet: every entry is written
+  }
+  // One range, from the first entry that changed to the last.
+  size_t first = n, last = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (i >= objects_.size() || std::memcmp(&next[i], &objects_[i], sizeof(ObjectRecord)) != 0) {
+      first = std::min(first, i);
+      last = i + 1;
+    }
+  if (first < last) {
+    const size_t bytes = (last - first) * sizeof(ObjectRecord);
+    glNamedBufferSubData(objectBuffer_.id(), static_cast<GLintptr>(first * sizeof(ObjectRecord)),
+                         static_cast<GLsizeiptr>(bytes), &next[first]);
+    objectBytes_ += bytes;
+  }
+  objects_ = std::move(next);
 }
 
 glm::mat4 GpuScene::writeFrame(Extent viewport, const Camera& cam, const FrameMotion* motion) {
@@ -398,7 +502,8 @@ const GpuScene::Locations& GpuScene::locations(uint32_t program) const {
                    get("u_alphaMode"),       get("u_emissive"),         get("u_hasBaseColorTex"),
                    get("u_hasMetallicRoughnessTex"), get("u_hasNormalTex"), get("u_hasOcclusionTex"),
                    get("u_specularColorFactor"), get("u_specularFactor"), get("u_unlit"), get("u_specularTextures"),
-                   get("u_hasVertexColors"), get("u_uvTransform"), get("u_uvSet"), get("u_instanceRange")};
+                   get("u_hasVertexColors"), get("u_uvTransform"), get("u_uvSet"), get("u_instanceRange"),
+                   get("u_object")};
   // clang-format on
   return *locations_.emplace(program, std::move(loc)).first->second;
 }
@@ -445,6 +550,10 @@ void GpuScene::bindMaterial(uint32_t program, int materialIndex, bool meshHasUv1
   glProgramUniform1f(program, loc.alphaCutoff, m.alphaCutoff);
   glProgramUniform1i(program, loc.alphaMode, static_cast<int>(m.alphaMode));
   glProgramUniform3fv(program, loc.emissive, 1, glm::value_ptr(m.emissiveFactor));
+  // (drawUniformBytes: the factors above, the four texture flags, and what follows where the scene has it.)
+  drawUniformBytes_ += sizeof(glm::vec4) + 7 * sizeof(float) + sizeof(glm::vec3) + 4 * sizeof(int);
+  if (reflectancePerDraw_) drawUniformBytes_ += sizeof(glm::vec3) + sizeof(float) + 2 * sizeof(int);
+  if (texCoordsPerDraw_) drawUniformBytes_ += kMaterialTextureUnits * (sizeof(glm::mat3x2) + sizeof(int));
   if (reflectancePerDraw_) {
     glProgramUniform3fv(program, loc.specularColorFactor, 1, glm::value_ptr(m.specularColorFactor));
     glProgramUniform1f(program, loc.specularFactor, m.specularFactor);
@@ -507,19 +616,29 @@ void GpuScene::drawList(uint32_t program, const std::vector<size_t>& order, Cull
   bindProgram(program);
   claimGeometryUniforms(program, loc);
   if (instances_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBinding, instances_.id());
+  // The objects' matrices (scene.vert's Objects): written by updateFrame; a
+  // scene changed since (or drawn before any updateFrame) has them written now.
+  if (!order.empty() && objects_.size() != scene_.primitives.size()) writeObjects();
+  const bool objects = loc.object >= 0 && !order.empty();
+  if (objects) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBinding, objectBuffer_.id());
   for (size_t i : order) {
     const Primitive& p = scene_.primitives[i];
     const Material& m = scene_.materials[p.material];
     const GpuMesh& mesh = meshes_[p.mesh];
     if (mesh.indexCount == 0) continue;
-    // With motion, the matrices of this frame's animation time; else the transform.
-    const bool moving = models_.size() == scene_.primitives.size();
-    const glm::mat4& model = moving ? models_[i] : p.transform;
-    glProgramUniformMatrix4fv(program, loc.model, 1, GL_FALSE, glm::value_ptr(model));
-    if (loc.prevModel >= 0)
-      glProgramUniformMatrix4fv(program, loc.prevModel, 1, GL_FALSE, glm::value_ptr(moving ? prevModels_[i] : model));
-    const glm::mat3 nm = moving ? glm::transpose(glm::inverse(glm::mat3(model))) : p.normalMatrix();
-    glProgramUniformMatrix3fv(program, loc.normalMatrix, 1, GL_FALSE, glm::value_ptr(nm));
+    if (loc.object >= 0) {
+      glProgramUniform1i(program, loc.object, static_cast<GLint>(i));
+      drawUniformBytes_ += sizeof(int);
+    } else {
+      // A vertex shader of its own: the matrices as uniforms (the Objects entry's values).
+      const ObjectRecord o = i < objects_.size() ? objects_[i]
+                                                 : ObjectRecord{p.transform, p.transform, glm::mat4(p.normalMatrix())};
+      glProgramUniformMatrix4fv(program, loc.model, 1, GL_FALSE, glm::value_ptr(o.model));
+      if (loc.prevModel >= 0) glProgramUniformMatrix4fv(program, loc.prevModel, 1, GL_FALSE, glm::value_ptr(o.prevModel));
+      const glm::mat3 nm(o.normal);
+      glProgramUniformMatrix3fv(program, loc.normalMatrix, 1, GL_FALSE, glm::value_ptr(nm));
+      drawUniformBytes_ += sizeof(glm::mat4) * (loc.prevModel >= 0 ? 2 : 1) + sizeof(glm::mat3);
+    }
     bindMaterial(program, p.material, mesh.uv1);
     // (Both 0 until set: scenes without vertex colours or instances set nothing per draw.)
     if (hasVertexColors_ && loc.hasVertexColors >= 0) glProgramUniform1i(program, loc.hasVertexColors, mesh.colors ? 1 : 0);
@@ -548,6 +667,7 @@ void GpuScene::drawList(uint32_t program, const std::vector<size_t>& order, Cull
   glDisable(GL_CULL_FACE);
   for (GLuint unit = 0; unit < 5; ++unit) glBindSampler(unit, 0);
   if (instances_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBinding, 0);  // left as found
+  if (objects) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBinding, 0);
   bindVertexArray(0);
 }
 

@@ -41,6 +41,7 @@ uint32_t alignUp(uint32_t bytes, uint32_t alignment) { return (bytes + alignment
 
 bool GpuScene::selects(Filter filter, size_t primitive) const {
   const Primitive& p = scene_.primitives[primitive];
+  if (!visible(primitive)) return false;  // hidden (RenderScene::setVisible)
   const bool blend = scene_.materials[p.material].alphaMode == AlphaMode::blend;
   switch (filter) {
     case Filter::all: return true;

@@ -1,30 +1,12 @@
 // RenderScene: one scene's CPU data, its light edits and its one GPU upload,
 // shared by every renderer drawing it (rgraph/renderer.h).
 #include "../scene/environment_problem.h"
+#include "render_scene_impl.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/renderer.h"
 
 namespace rgraph {
-
-struct RenderScene::Impl {
-  Scene scene;
-  std::unique_ptr<GpuScene> gpu;
-  uint64_t uploads = 0;
-  uint64_t lightsVersion = 0;
-  uint64_t environmentVersion = 0;
-
-  std::string where() const { return scene.source.empty() ? std::string("scene") : scene.source; }
-  void lightsEdited() {
-    ++lightsVersion;
-    if (gpu) gpu->lightsChanged();
-  }
-  void checkIndex(size_t index, const char* what) const {
-    if (index >= scene.pointLights.size())
-      throw RuntimeError(std::string("RenderScene::") + what + ": no point light " + std::to_string(index) + " (the scene has " +
-                         std::to_string(scene.pointLights.size()) + ")");
-  }
-};
 
 RenderScene::RenderScene() : impl_(std::make_unique<Impl>()) {}
 RenderScene::~RenderScene() = default;
@@ -39,6 +21,7 @@ std::shared_ptr<RenderScene> RenderScene::fromScene(Scene scene) {
                        " lights, more than the " + std::to_string(kMaxSceneLights) + " a scene may have");
   std::shared_ptr<RenderScene> s(new RenderScene());
   s->impl_->scene = std::move(scene);
+  s->impl_->numberPrimitives();  // each primitive an object the API can move
   return s;
 }
 
@@ -113,6 +96,8 @@ GpuScene& RenderScene::gpu() {
   if (!impl_->gpu) {
     impl_->gpu = std::make_unique<GpuScene>(impl_->scene);
     ++impl_->uploads;
+    for (size_t i = 0; i < impl_->hidden.size(); ++i)
+      if (impl_->hidden[i]) impl_->gpu->setVisible(i, false);
   } else {
     impl_->gpu->requireUploadContext("RenderScene::gpu");
   }

@@ -49,7 +49,9 @@ bool sameFeatures(const SceneFeatures& a, const SceneFeatures& b) {
   return a.pointLights == b.pointLights && a.blendMaterials == b.blendMaterials && a.normalMaps == b.normalMaps &&
          a.environment == b.environment &&
          a.metallicRoughnessVariation == b.metallicRoughnessVariation && a.metallic == b.metallic &&
-         a.roughness == b.roughness && a.lightMarkers == b.lightMarkers && a.markerSizeLimit == b.markerSizeLimit &&
+         a.roughness == b.roughness && a.lightMarkers == b.lightMarkers &&
+         // (The markers' size follows the scene's bounds: an object added beyond them matters only with markers.)
+         (!a.lightMarkers || a.markerSizeLimit == b.markerSizeLimit) &&
          a.emissive == b.emissive && a.reflectance == b.reflectance && a.shadowCasters == b.shadowCasters &&
          shadowSet(a) == shadowSet(b);
 }
@@ -71,6 +73,7 @@ struct Renderer::Impl {
   std::shared_ptr<RenderScene> scene;
   uint64_t sceneVersionSeen = 0;
   uint64_t environmentSeen = 0;  // RenderScene::environmentVersion at the last frame
+  uint64_t instancesSeen = 0;    // RenderScene::instancesVersion at the last frame
   Camera camera;
   Extent size;
   std::map<std::string, uint32_t> imports;
@@ -248,10 +251,12 @@ void Renderer::Impl::prepareFrame() {
   // Light edits change the pipeline only when they change what the scene needs
   // (its first point light, or its last one removed, or the set of shadowed
   // lights). Camera moves alone do not re-adapt.
-  if (scene && scene->lightsVersion() != sceneVersionSeen) {
+  // Object edits likewise (their first blended or emissive material, say); moves never.
+  if (scene && (scene->lightsVersion() != sceneVersionSeen || scene->instancesVersion() != instancesSeen)) {
     sceneVersionSeen = scene->lightsVersion();
+    instancesSeen = scene->instancesVersion();
     if (options.adaptToScene && adaptedFor && !sameFeatures(*adaptedFor, features())) {
-      spdlog::info("the scene's lights changed what it needs: adapting the pipeline again");
+      spdlog::info("the scene's lights or objects changed what it needs: adapting the pipeline again");
       rebuild = true;
     }
   }
@@ -366,6 +371,7 @@ void Renderer::setScene(std::shared_ptr<RenderScene> scene) {
   impl_->scene = std::move(scene);
   impl_->sceneVersionSeen = impl_->scene ? impl_->scene->lightsVersion() : 0;
   impl_->environmentSeen = impl_->scene ? impl_->scene->environmentVersion() : 0;
+  impl_->instancesSeen = impl_->scene ? impl_->scene->instancesVersion() : 0;
   impl_->camera = impl_->scene ? impl_->scene->scene().camera : Camera{};
   impl_->rebuild = true;
   impl_->planBeforeFrame.reset();

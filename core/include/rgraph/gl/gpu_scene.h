@@ -8,9 +8,15 @@
 //                      meshes that have them (uv1 only where a texture samples it)
 //   uniform block 0    Frame (camera, viewport, ambient, directional light, counts)
 //   storage buffer 0   PointLight[]: point, then spot lights (bindPointLights)
-//   per draw           u_model, u_normalMatrix, u_prevModel (the previous frame's
-//                      u_model, for motion vectors; equal to u_model without
-//                      motion), material uniforms u_baseColorFactor,
+//   storage buffer 5   Objects: per primitive its model matrix, the previous
+//                      frame's (for motion vectors; equal to the model matrix
+//                      without motion) and its normal matrix (scene.vert's
+//                      u_model, u_prevModel, u_normalMatrix), rewritten by
+//                      updateFrame only where they changed; bound for scene draws
+//   per draw           u_object (the draw's entry in Objects); a program
+//                      without u_object (a vertex shader of its own) gets
+//                      u_model, u_normalMatrix and u_prevModel as uniforms;
+//                      material uniforms u_baseColorFactor,
 //                      u_metallicFactor, u_roughnessFactor, u_specular, u_normalScale,
 //                      u_occlusionStrength, u_alphaCutoff, u_alphaMode (0 opaque,
 //                      1 mask, 2 blend), u_emissive, u_hasBaseColorTex,
@@ -72,6 +78,8 @@ class GpuScene {
   static constexpr int kMaterialTextureUnits = 13;
   // Storage buffer binding of the per-instance matrices (scene.vert's Instances).
   static constexpr uint32_t kInstanceBinding = 7;
+  // Storage buffer binding of the per-object matrices (scene.vert's Objects).
+  static constexpr uint32_t kObjectBinding = 5;
   explicit GpuScene(const Scene& scene);  // uploads; needs a current GL context
   ~GpuScene();
   GpuScene(const GpuScene&) = delete;
@@ -103,6 +111,36 @@ class GpuScene {
   // (a power of two), so that moving, recolouring, adding and removing lights
   // creates no GL object in the common case.
   void lightsChanged() { ++lightsVersion_; }
+  // The scene's objects were edited between frames (RenderScene's instances,
+  // rgraph/renderer.h). Transforms, materials and visibility need no call:
+  // draws read them from the Scene each frame. These keep the GPU side in
+  // step with a scene that changed shape, creating GL objects only for a
+  // new mesh:
+  //   meshAdded         the last of Scene::meshes is new: uploaded now, once
+  //                     (every primitive drawing it shares the upload);
+  //   primitiveAdded    the last of Scene::primitives is new: drawn from the
+  //                     next frame, with no motion on its first frame;
+  //   primitiveRemoved  primitive `index` was erased: the others keep their
+  //                     previous frame's matrices (their motion vectors).
+  void meshAdded();
+  void primitiveAdded();
+  void primitiveRemoved(size_t index);
+  // Hidden primitives are not drawn (no filter selects them); all are shown
+  // at first. RenderScene::setVisible.
+  void setVisible(size_t primitive, bool visible);
+  bool visible(size_t primitive) const { return primitive >= hidden_.size() || !hidden_[primitive]; }
+  // Bytes of geometry (vertex and index buffers) uploaded since the scene
+  // was made: the upload's, plus each meshAdded's. Never grows per frame.
+  uint64_t geometryBytes() const { return geometryBytes_; }
+  // Bytes of per-draw data the scene's draws have set since it was made:
+  // each drawn primitive's model, previous model and normal matrices and its
+  // material's uniforms (factors, flags; texture transforms where the scene
+  // has them), the per-instance data of a frame's draws.
+  uint64_t drawUniformBytes() const { return drawUniformBytes_; }
+  // Bytes written into the Objects buffer since the scene was made: every
+  // entry at the first frame, then only those that changed (a moved
+  // object's, and its previous matrix the frame after it stopped).
+  uint64_t objectBytes() const { return objectBytes_; }
   // Binds the Frame block at 0: the frame's jittered camera, or the same
   // camera without jitter while the executor runs a pass whose
   // PassDecl::jitter is false (selectJitter).
@@ -244,6 +282,7 @@ class GpuScene {
     gl::Buffer extra;  // COLOR_0 then TEXCOORD_1, where the mesh has them (else none)
     uint32_t indexCount = 0;
     bool colors = false, uv1 = false;
+    uint64_t bytes = 0;  // uploaded into its buffers
   };
   struct Locations;
   GpuMesh upload(const struct MeshData& mesh, bool tangents, bool uv1) const;
@@ -308,6 +347,24 @@ class GpuScene {
   // frame's, and the frame number they belong to.
   std::vector<glm::mat4> models_, prevModels_;
   std::optional<uint64_t> modelsFrame_;
+  // Primitives added since the last updateFrame (primitiveAdded): their
+  // previous matrix is their current one on their first frame.
+  std::vector<size_t> addedPrimitives_;
+  std::vector<bool> hidden_;  // per primitive (shorter: the rest are shown)
+  // The Objects buffer (scene.vert) and what it holds, one entry per primitive.
+  struct ObjectRecord {
+    glm::mat4 model, prevModel, normal;  // normal: a mat3 in a mat4's columns (std430)
+  };
+  mutable std::vector<ObjectRecord> objects_;
+  mutable gl::Buffer objectBuffer_;
+  mutable size_t objectCapacity_ = 0;
+  mutable uint64_t objectBytes_ = 0;
+  // Brings the Objects buffer up to date with this frame's matrices (models_
+  // and prevModels_, else each Primitive::transform): writes the one range
+  // of entries that changed; a new buffer only past its capacity.
+  void writeObjects() const;
+  uint64_t geometryBytes_ = 0;
+  mutable uint64_t drawUniformBytes_ = 0;
   glm::mat4 writeFrame(Extent viewport, const Camera& camera, const FrameMotion* motion);
   struct LightBuffer {
     gl::Buffer buffer;
