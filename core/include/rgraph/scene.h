@@ -26,6 +26,8 @@
 
 #include <glm/glm.hpp>
 
+#include "rgraph/animation.h"
+
 namespace rgraph {
 
 // ---------------------------------------------------------------- bounds
@@ -79,12 +81,18 @@ struct MeshData {
   std::vector<uint32_t> indices;
   bool hasUv0 = false;
   Bounds bounds;                    // local space; see updateBounds()
+  // Skinning and morphing (rgraph/animation.h): glTF JOINTS_n/WEIGHTS_n sets
+  // of 4 influences, and morph targets; each array empty or one per vertex.
+  // Bounds are the rest positions'.
+  std::vector<SkinInfluences> influences;
+  std::vector<MorphTarget> morphTargets;
 
   size_t vertexCount() const { return positions.size(); }
   size_t triangleCount() const { return indices.size() / 3; }
   bool hasTangents() const { return !tangents.empty(); }
   bool hasColors() const { return !colors.empty(); }
   bool hasUv1() const { return !uv1.empty(); }
+  bool skinned() const { return !influences.empty(); }
   void updateBounds();
   // Checks the invariants above; on failure writes the reason to *why.
   bool valid(std::string* why = nullptr) const;
@@ -236,6 +244,12 @@ struct Primitive {
     glm::vec3 axis{0.0f, 1.0f, 0.0f};
     float degreesPerSecond = 0.0f;
   } spin;
+
+  // The glTF node that draws it, in Scene::animation.nodes (-1: none kept, a
+  // static scene): its pose gives the primitive's matrix, skin and morph
+  // weights at a time (rgraph/animation.h). `transform` is that node's rest
+  // world matrix, what is drawn until the renderer plays animations.
+  int node = -1;
 
   // World bounds of a mesh with local bounds `local` drawn by this primitive:
   // `local` under `transform`, over every instance.
@@ -398,9 +412,12 @@ struct Scene {
   // Image-based lighting (scene file key "environment"); none: the PBR
   // pipelines' IBL passes are culled and ambient is the constant above.
   std::optional<Environment> environment;
+  // glTF nodes, skins and animations (rgraph/animation.h): empty unless a
+  // loaded file has animations, skins or morph targets.
+  SceneAnimation animation;
   // What the loaders warned about (also logged as spdlog warnings), in order:
   // features of the source that are not drawn and what is drawn instead
-  // ("skins ignored: drawn in bind pose"), values replaced. `rgraph plan
+  // ("skins not applied: drawn in bind pose"), values replaced. `rgraph plan
   // --scene` lists them.
   std::vector<std::string> warnings;
 
