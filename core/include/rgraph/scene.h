@@ -11,7 +11,9 @@
 //   Scene::textures    an image + a sampler; Scene::images decoded RGBA8 pixels
 //                      (one image per colour space: an sRGB and a linear use of
 //                      the same glTF image are two images);
-//   lights, ambient term, camera.
+//   lights, ambient term, camera;
+//   Scene::animation   glTF nodes, skins and animations of animated files
+//                      (rgraph/animation.h evaluates them; empty otherwise).
 //
 // Units: lengths in scene units, angles in degrees unless named otherwise.
 #pragma once
@@ -502,7 +504,8 @@ SceneFeatures sceneFeatures(const Scene& scene);
 SceneFeatures sceneFeatures(const Scene& scene, const Camera& camera, float aspect);
 
 // Appends `src` to `dst` under `transform` (primitives, point and directional
-// lights; src's camera is taken only when dst has none). Indices are rebased.
+// lights, and animation nodes, skins and animations with `transform` above
+// src's root nodes; src's camera is taken only when dst has none). Indices are rebased.
 void appendScene(Scene& dst, Scene src, const glm::mat4& transform = glm::mat4(1.0f));
 
 // When the scene has no camera: frameScene(scene). When it has no lights at
