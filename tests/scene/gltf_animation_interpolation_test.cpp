@@ -109,8 +109,8 @@ TEST(GltfAnimationInterpolation, ChannelClampsAfterItsLastKey) {
 TEST(GltfAnimationInterpolation, CubicSplineRotationIsNormalized) {
   const float s45 = std::sqrt(0.5f);
   GltfBuilder b = rig();
-  b.animate(2, "rotation", "CUBICSPLINE", {0, 1}, {0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, s45, s45, 0, 0, 0, 0},
-            "VEC4", 6);
+  b.animate(2, "rotation", "CUBICSPLINE", {0, 1},
+            {0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, s45, s45, 0, 0, 0, 0}, "VEC4", 6);
   const Scene s = b.load();
   const glm::mat4 local = evaluatePose(s.animation, 0.5).local[2];
   const glm::mat4 want = glm::translate(glm::mat4(1), glm::vec3(0, 0, 10)) *
@@ -154,7 +154,8 @@ TEST(GltfAnimationInterpolation, RigSkinAndMorphTogether) {
 TEST(GltfAnimationInterpolation, SecondInfluenceSet) {
   GltfBuilder b = rig();
   const int j0 = b.accessor(std::vector<uint16_t>{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}, animtest::kU16, "VEC4", 3);
-  const int w0 = b.accessor(std::vector<uint8_t>{51, 0, 0, 0, 255, 0, 0, 0, 255, 0, 0, 0}, animtest::kU8, "VEC4", 3, true);
+  const int w0 =
+      b.accessor(std::vector<uint8_t>{51, 0, 0, 0, 255, 0, 0, 0, 255, 0, 0, 0}, animtest::kU8, "VEC4", 3, true);
   const int j1 = b.accessor(std::vector<uint8_t>{1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}, animtest::kU8, "VEC4", 3);
   const int w1 = b.floats({0.8f, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}, "VEC4", 3);
   auto& attrs = b.doc["meshes"][0]["primitives"][0]["attributes"];

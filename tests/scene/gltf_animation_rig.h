@@ -28,13 +28,17 @@ struct GltfBuilder {
 
   // Appends `values` as one accessor of `count` elements; returns its index.
   template <class T>
-  int accessor(const std::vector<T>& values, int componentType, const char* type, size_t count, bool normalized = false) {
+  int accessor(const std::vector<T>& values, int componentType, const char* type, size_t count,
+               bool normalized = false) {
     while (bin.size() % 4) bin.push_back(0);
     const size_t at = bin.size();
     bin.resize(at + values.size() * sizeof(T));
     std::memcpy(bin.data() + at, values.data(), values.size() * sizeof(T));
     doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", values.size() * sizeof(T)}});
-    nlohmann::json a = {{"bufferView", doc["bufferViews"].size() - 1}, {"componentType", componentType}, {"count", count}, {"type", type}};
+    nlohmann::json a = {{"bufferView", doc["bufferViews"].size() - 1},
+                        {"componentType", componentType},
+                        {"count", count},
+                        {"type", type}};
     if (normalized) a["normalized"] = true;
     doc["accessors"].push_back(a);
     return int(doc["accessors"].size()) - 1;
@@ -78,7 +82,8 @@ inline GltfBuilder rig() {
     for (int i = 0; i < 16; ++i) ibm.push_back(i % 5 == 0 ? 1.0f : 0.0f);
   ibm[16 + 14] = -10.0f;  // joint 1's inverse bind: T(0,0,-10)
   b.floats(ibm, "MAT4", 2);
-  b.doc["meshes"].push_back(nlohmann::json::parse(R"({"primitives": [{"attributes": {"POSITION": 0, "JOINTS_0": 2, "WEIGHTS_0": 3},
+  b.doc["meshes"].push_back(
+      nlohmann::json::parse(R"({"primitives": [{"attributes": {"POSITION": 0, "JOINTS_0": 2, "WEIGHTS_0": 3},
       "indices": 1, "targets": [{"POSITION": 4}]}], "weights": [0.25]})"));
   b.doc["nodes"] = nlohmann::json::parse(R"([{"mesh": 0, "skin": 0}, {"children": [2]}, {"translation": [0, 0, 10]}])");
   b.doc["scenes"][0]["nodes"] = {0, 1};

@@ -10,8 +10,8 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
-#include <span>
 #include <set>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -116,7 +116,8 @@ TEST(GltfAnimationSamples, SimpleSkinJointMatricesAndSkinnedVertices) {
 
   // A rotation of `deg` about Z through (0,1,0).
   auto aboutJoint = [](float deg) {
-    return glm::translate(glm::mat4(1), glm::vec3(0, 1, 0)) * glm::rotate(glm::mat4(1), glm::radians(deg), glm::vec3(0, 0, 1)) *
+    return glm::translate(glm::mat4(1), glm::vec3(0, 1, 0)) *
+           glm::rotate(glm::mat4(1), glm::radians(deg), glm::vec3(0, 0, 1)) *
            glm::translate(glm::mat4(1), glm::vec3(0, -1, 0));
   };
   // t = 1 s: key 2 exactly, (0,0,0.707,0.707) normalized: 90 degrees.
@@ -167,7 +168,8 @@ TEST(GltfAnimationSamples, SkinnedNodeTransformIsIgnored) {
   const DeformedVertices a = deformPrimitive(plain, evaluatePose(plain.animation, 0.75), 0);
   const DeformedVertices b = deformPrimitive(moved, evaluatePose(moved.animation, 0.75), 0);
   ASSERT_EQ(a.positions.size(), b.positions.size());
-  for (size_t v = 0; v < a.positions.size(); ++v) expectNear(b.positions[v], a.positions[v], kTol, "vertex " + std::to_string(v));
+  for (size_t v = 0; v < a.positions.size(); ++v)
+    expectNear(b.positions[v], a.positions[v], kTol, "vertex " + std::to_string(v));
 }
 
 // RecursiveSkeletons: skin 1's joints (nodes 11-20) hang below skin 0's last
@@ -188,8 +190,10 @@ TEST(GltfAnimationSamples, RecursiveSkeletonsNestedJointsCarryTheirParents) {
     glm::mat4 chain(1.0f);  // joints 1-9 of a skin, below its first
     for (int i = 0; i < 9; ++i) chain = chain * up;
     const glm::mat4 first0 = glm::translate(glm::mat4(1), glm::vec3(25, 0, 25)) * R;
-    const glm::mat4 firstN = glm::translate(glm::mat4(1), glm::vec3(3, 0, 3)) * R * glm::scale(glm::mat4(1), glm::vec3(0.3f));
-    const glm::mat4 joint9[3] = {first0 * chain, first0 * chain * firstN * chain, first0 * chain * firstN * chain * firstN * chain};
+    const glm::mat4 firstN =
+        glm::translate(glm::mat4(1), glm::vec3(3, 0, 3)) * R * glm::scale(glm::mat4(1), glm::vec3(0.3f));
+    const glm::mat4 joint9[3] = {first0 * chain, first0 * chain * firstN * chain,
+                                 first0 * chain * firstN * chain * firstN * chain};
     const Pose pose = evaluatePose(s.animation, t);
     const int meshNode[3] = {10, 21, 32};  // the nodes drawing skins 0, 1, 2
     for (int level = 0; level < 3; ++level) {
@@ -218,8 +222,9 @@ TEST(GltfAnimationSamples, SimpleMorphWeightsAnimateAndDeform) {
   ASSERT_EQ(s.meshes[s.primitives[prim].mesh].morphTargets.size(), 2u);
   auto vertex2 = [&](double t, int animation) {
     const Pose pose = evaluatePose(s.animation, t, animation);
-    return std::make_pair(std::vector<float>(pose.nodeWeights(s.animation, 0).begin(), pose.nodeWeights(s.animation, 0).end()),
-                          deformPrimitive(s, pose, prim).positions);
+    return std::make_pair(
+        std::vector<float>(pose.nodeWeights(s.animation, 0).begin(), pose.nodeWeights(s.animation, 0).end()),
+        deformPrimitive(s, pose, prim).positions);
   };
   struct Case {
     double t;
@@ -230,9 +235,9 @@ TEST(GltfAnimationSamples, SimpleMorphWeightsAnimateAndDeform) {
   const Case cases[] = {
       {0.0, kRestPose, {0.5f, 0.5f}, {0.5f, 1.5f, 0.0f}},  // the mesh's default weights
       {0.0, 0, {0.0f, 0.0f}, {0.5f, 0.5f, 0.0f}},
-      {1.5, 0, {0.5f, 1.0f}, {1.0f, 2.0f, 0.0f}},           // halfway from (0,1) to (1,1)
-      {2.25, 0, {1.0f, 0.75f}, {0.25f, 2.25f, 0.0f}},       // a quarter from (1,1) to (1,0)
-      {4.5, 0, {0.0f, 0.5f}, {1.0f, 1.0f, 0.0f}},           // looped: 0.5 s
+      {1.5, 0, {0.5f, 1.0f}, {1.0f, 2.0f, 0.0f}},      // halfway from (0,1) to (1,1)
+      {2.25, 0, {1.0f, 0.75f}, {0.25f, 2.25f, 0.0f}},  // a quarter from (1,1) to (1,0)
+      {4.5, 0, {0.0f, 0.5f}, {1.0f, 1.0f, 0.0f}},      // looped: 0.5 s
   };
   for (const Case& c : cases) {
     const auto [w, positions] = vertex2(c.t, c.animation);

@@ -84,10 +84,10 @@ struct SceneNode {
 
 struct SceneSkin {
   std::string name;
-  std::vector<int> joints;                      // node indices
-  std::vector<glm::mat4> inverseBindMatrices;   // one per joint (identity where the file has none)
-  int skeleton = -1;                            // the file's "skeleton" node (informative: joints carry the hierarchy)
-  uint32_t firstJoint = 0;                      // where its joint matrices start in Pose::joints
+  std::vector<int> joints;                     // node indices
+  std::vector<glm::mat4> inverseBindMatrices;  // one per joint (identity where the file has none)
+  int skeleton = -1;                           // the file's "skeleton" node (informative: joints carry the hierarchy)
+  uint32_t firstJoint = 0;                     // where its joint matrices start in Pose::joints
 };
 
 enum class AnimationPath : uint8_t { translation, rotation, scale, weights };
@@ -96,7 +96,7 @@ const char* interpolationName(Interpolation i);
 
 struct AnimationSampler {
   Interpolation interpolation = Interpolation::linear;
-  std::vector<float> times;   // seconds, finite, >= 0, strictly increasing
+  std::vector<float> times;  // seconds, finite, >= 0, strictly increasing
   // `components` floats per key (3 translation/scale, 4 rotation x,y,z,w,
   // the target count for weights); cubicSpline: 3 such groups per key
   // (in-tangent, value, out-tangent).

@@ -135,7 +135,8 @@ DeformedVertices deformPrimitive(const Scene& scene, const Pose& pose, size_t pr
     out.positions[v] = glm::vec3(xf * glm::vec4(out.positions[v], 1.0f));
     if (v < out.normals.size()) out.normals[v] = unit(nx * out.normals[v], m.normals[v]);
     if (v < out.tangents.size())
-      out.tangents[v] = glm::vec4(unit(glm::mat3(xf) * glm::vec3(out.tangents[v]), glm::vec3(m.tangents[v])), m.tangents[v].w);
+      out.tangents[v] =
+          glm::vec4(unit(glm::mat3(xf) * glm::vec3(out.tangents[v]), glm::vec3(m.tangents[v])), m.tangents[v].w);
   }
   return out;
 }

@@ -13,9 +13,12 @@ namespace rgraph {
 
 const char* interpolationName(Interpolation i) {
   switch (i) {
-    case Interpolation::step: return "STEP";
-    case Interpolation::linear: return "LINEAR";
-    case Interpolation::cubicSpline: return "CUBICSPLINE";
+    case Interpolation::step:
+      return "STEP";
+    case Interpolation::linear:
+      return "LINEAR";
+    case Interpolation::cubicSpline:
+      return "CUBICSPLINE";
   }
   return "unknown";
 }
@@ -95,8 +98,10 @@ void sampleAnimation(const AnimationSampler& s, double t, bool rotation, float* 
   if (t >= double(s.times.back())) {
     k = n - 1;
   } else if (t > double(s.times.front())) {
-    k = size_t(std::upper_bound(s.times.begin(), s.times.end(), t, [](double x, float key) { return x < double(key); }) -
-               s.times.begin()) - 1;
+    k = size_t(
+            std::upper_bound(s.times.begin(), s.times.end(), t, [](double x, float key) { return x < double(key); }) -
+            s.times.begin()) -
+        1;
     u = (t - double(s.times[k])) / (double(s.times[k + 1]) - double(s.times[k]));
   }
   if (u == 0.0 || s.interpolation == Interpolation::step) {
@@ -113,9 +118,9 @@ void sampleAnimation(const AnimationSampler& s, double t, bool rotation, float* 
     const double u2 = u * u, u3 = u2 * u;
     const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = -2 * u3 + 3 * u2, h11 = u3 - u2;
     const float* v0 = value(k);
-    const float* b0 = v0 + c;               // key k's out-tangent
+    const float* b0 = v0 + c;  // key k's out-tangent
     const float* v1 = value(k + 1);
-    const float* a1 = v1 - c;               // key k+1's in-tangent
+    const float* a1 = v1 - c;  // key k+1's in-tangent
     for (size_t i = 0; i < c; ++i) out[i] = float(h00 * v0[i] + td * h10 * b0[i] + h01 * v1[i] + td * h11 * a1[i]);
   }
   if (rotation && c == 4) normalize4(out);
@@ -127,7 +132,8 @@ void applyAnimation(const SceneAnimation& a, const Animation& anim, double secon
   const double t = loopTime(seconds, anim.duration);
   float v[4];
   for (const AnimationChannel& ch : anim.channels) {
-    if (ch.sampler < 0 || size_t(ch.sampler) >= anim.samplers.size() || ch.node < 0 || size_t(ch.node) >= a.nodes.size())
+    if (ch.sampler < 0 || size_t(ch.sampler) >= anim.samplers.size() || ch.node < 0 ||
+        size_t(ch.node) >= a.nodes.size())
       continue;  // (the loader refuses these; a hand-made SceneAnimation may not)
     const AnimationSampler& s = anim.samplers[size_t(ch.sampler)];
     const size_t n = size_t(ch.node);
@@ -149,7 +155,8 @@ void applyAnimation(const SceneAnimation& a, const Animation& anim, double secon
         break;
       case AnimationPath::weights: {
         const SceneNode& node = a.nodes[n];
-        if (s.components != node.weights.size() || size_t(node.firstWeight) + node.weights.size() > out.weights.size()) break;
+        if (s.components != node.weights.size() || size_t(node.firstWeight) + node.weights.size() > out.weights.size())
+          break;
         sampleAnimation(s, t, false, out.weights.data() + node.firstWeight);
         break;
       }
@@ -197,7 +204,8 @@ void evaluatePose(const SceneAnimation& a, double seconds, int animation, Pose& 
   }
   for (int i : a.order) {
     const SceneNode& node = a.nodes[size_t(i)];
-    out.world[size_t(i)] = (node.parent >= 0 ? out.world[size_t(node.parent)] : node.rootTransform) * out.local[size_t(i)];
+    out.world[size_t(i)] =
+        (node.parent >= 0 ? out.world[size_t(node.parent)] : node.rootTransform) * out.local[size_t(i)];
   }
   out.joints.resize(a.jointCount);
   for (const SceneSkin& s : a.skins)

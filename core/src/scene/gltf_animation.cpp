@@ -16,8 +16,9 @@ namespace rgraph::gltf_detail {
 
 namespace {
 
-constexpr int F = TINYGLTF_COMPONENT_TYPE_FLOAT, B = TINYGLTF_COMPONENT_TYPE_BYTE, UB = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-              S = TINYGLTF_COMPONENT_TYPE_SHORT, US = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+constexpr int F = TINYGLTF_COMPONENT_TYPE_FLOAT, B = TINYGLTF_COMPONENT_TYPE_BYTE,
+              UB = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, S = TINYGLTF_COMPONENT_TYPE_SHORT,
+              US = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
 
 std::string str(size_t v) { return std::to_string(v); }
 
@@ -49,22 +50,27 @@ void GltfLoader::readSkinAttributes(const tinygltf::Primitive& prim, MeshData& m
     const int ja = attribute(prim.attributes, jn), wa = attribute(prim.attributes, wn);
     if (ja < 0 && wa < 0) break;
     if (ja < 0 || wa < 0)
-      failAt(pointer + "/attributes/" + (ja < 0 ? wn : jn), "has no matching " + (ja < 0 ? jn : wn) + " (skin influences come in pairs)");
+      failAt(pointer + "/attributes/" + (ja < 0 ? wn : jn),
+             "has no matching " + (ja < 0 ? jn : wn) + " (skin influences come in pairs)");
     if (wa >= 0 && size_t(wa) < model_.accessors.size()) {
       const tinygltf::Accessor& acc = model_.accessors[size_t(wa)];
       if (acc.componentType != F && !acc.normalized)
-        failAt(pointer + "/attributes/" + wn, "integer weights must be normalized (accessor " + std::to_string(wa) + ")");
+        failAt(pointer + "/attributes/" + wn,
+               "integer weights must be normalized (accessor " + std::to_string(wa) + ")");
     }
     const std::vector<float> j = readFloats(ja, what + " " + jn, {TINYGLTF_TYPE_VEC4}, {UB, US});
-    const std::vector<float> w = readFinite(wa, pointer + "/attributes/" + wn, what + " " + wn, {TINYGLTF_TYPE_VEC4}, {F, UB, US});
+    const std::vector<float> w =
+        readFinite(wa, pointer + "/attributes/" + wn, what + " " + wn, {TINYGLTF_TYPE_VEC4}, {F, UB, US});
     if (j.size() != 4 * n || w.size() != 4 * n)
-      failAt(pointer + "/attributes/" + (j.size() != 4 * n ? jn : wn),
-             "count " + str((j.size() != 4 * n ? j.size() : w.size()) / 4) + " differs from the POSITION count " + str(n));
+      failAt(
+          pointer + "/attributes/" + (j.size() != 4 * n ? jn : wn),
+          "count " + str((j.size() != 4 * n ? j.size() : w.size()) / 4) + " differs from the POSITION count " + str(n));
     SkinInfluences s;
     s.joints.resize(n);
     s.weights.resize(n);
     for (size_t v = 0; v < n; ++v) {
-      s.joints[v] = glm::u16vec4(uint16_t(j[4 * v]), uint16_t(j[4 * v + 1]), uint16_t(j[4 * v + 2]), uint16_t(j[4 * v + 3]));
+      s.joints[v] =
+          glm::u16vec4(uint16_t(j[4 * v]), uint16_t(j[4 * v + 1]), uint16_t(j[4 * v + 2]), uint16_t(j[4 * v + 3]));
       s.weights[v] = glm::vec4(w[4 * v], w[4 * v + 1], w[4 * v + 2], w[4 * v + 3]);
     }
     mesh.influences.push_back(std::move(s));
@@ -82,9 +88,12 @@ void GltfLoader::readMorphTargets(const tinygltf::Primitive& prim, MeshData& mes
       const int a = attribute(prim.targets[ti], name);
       if (a < 0) continue;
       const std::string ptr = pointer + "/targets/" + str(ti) + "/" + name;
-      const std::vector<float> d = readFinite(a, ptr, what + " target " + str(ti) + " " + name, {TINYGLTF_TYPE_VEC3}, {F, B, UB, S, US});
+      const std::vector<float> d =
+          readFinite(a, ptr, what + " target " + str(ti) + " " + name, {TINYGLTF_TYPE_VEC3}, {F, B, UB, S, US});
       if (d.size() != 3 * n) failAt(ptr, "count " + str(d.size() / 3) + " differs from the POSITION count " + str(n));
-      std::vector<glm::vec3>& out = name[0] == 'P' ? target.positions : name[0] == 'N' ? target.normals : target.tangents;
+      std::vector<glm::vec3>& out = name[0] == 'P'   ? target.positions
+                                    : name[0] == 'N' ? target.normals
+                                                     : target.tangents;
       out.resize(n);
       for (size_t v = 0; v < n; ++v) out[v] = glm::vec3(d[3 * v], d[3 * v + 1], d[3 * v + 2]);
     }
@@ -136,14 +145,16 @@ void GltfLoader::loadNodes(SceneAnimation& out) {
       for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r) n.matrix[c][r] = float(gn.matrix[size_t(c * 4 + r)]);
     }
-    if (numbers(gn.translation, 3, "translation")) n.translation = glm::vec3(gn.translation[0], gn.translation[1], gn.translation[2]);
+    if (numbers(gn.translation, 3, "translation"))
+      n.translation = glm::vec3(gn.translation[0], gn.translation[1], gn.translation[2]);
     if (numbers(gn.rotation, 4, "rotation")) {
       const glm::quat q(float(gn.rotation[3]), float(gn.rotation[0]), float(gn.rotation[1]), float(gn.rotation[2]));
       n.rotation = glm::length(q) > 0.0f ? glm::normalize(q) : glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
     }
     if (numbers(gn.scale, 3, "scale")) n.scale = glm::vec3(gn.scale[0], gn.scale[1], gn.scale[2]);
     if (gn.skin >= 0 && size_t(gn.skin) >= model_.skins.size())
-      failAt(ptr + "/skin", "skin " + std::to_string(gn.skin) + " does not exist (" + str(model_.skins.size()) + " skins)");
+      failAt(ptr + "/skin",
+             "skin " + std::to_string(gn.skin) + " does not exist (" + str(model_.skins.size()) + " skins)");
     n.skin = gn.skin;
     // Morph weights: all primitives of a mesh have the same number of
     // targets, which the mesh's and the node's "weights" match.
@@ -154,8 +165,8 @@ void GltfLoader::loadNodes(SceneAnimation& out) {
     for (size_t p = 1; p < gm.primitives.size(); ++p)
       if (gm.primitives[p].targets.size() != targets)
         failAt(mptr + "/primitives/" + str(p) + "/targets", "has " + str(gm.primitives[p].targets.size()) +
-                                                                   " morph targets, primitive 0 has " + str(targets) +
-                                                                   " (every primitive of a mesh must have as many)");
+                                                                " morph targets, primitive 0 has " + str(targets) +
+                                                                " (every primitive of a mesh must have as many)");
     auto weights = [&](const std::vector<double>& w, const std::string& wptr) {
       if (w.size() != targets) failAt(wptr, "has " + str(w.size()) + " weights for " + str(targets) + " morph targets");
       for (double d : w)
@@ -190,11 +201,13 @@ void GltfLoader::loadSkins(SceneAnimation& out) {
     for (size_t j = 0; j < gs.joints.size(); ++j) {
       const int node = gs.joints[j];
       if (node < 0 || size_t(node) >= model_.nodes.size())
-        failAt(ptr + "/joints/" + str(j), "node " + std::to_string(node) + " does not exist (" + str(model_.nodes.size()) + " nodes)");
+        failAt(ptr + "/joints/" + str(j),
+               "node " + std::to_string(node) + " does not exist (" + str(model_.nodes.size()) + " nodes)");
       s.joints.push_back(node);
     }
     if (gs.skeleton >= 0 && size_t(gs.skeleton) >= model_.nodes.size())
-      failAt(ptr + "/skeleton", "node " + std::to_string(gs.skeleton) + " does not exist (" + str(model_.nodes.size()) + " nodes)");
+      failAt(ptr + "/skeleton",
+             "node " + std::to_string(gs.skeleton) + " does not exist (" + str(model_.nodes.size()) + " nodes)");
     s.skeleton = gs.skeleton;
     s.inverseBindMatrices.assign(s.joints.size(), glm::mat4(1.0f));  // glTF: identity when absent
     if (gs.inverseBindMatrices >= 0) {
@@ -238,8 +251,9 @@ void GltfLoader::checkSkinnedMeshes(const SceneAnimation& anim) {
           for (int c = 0; c < 4; ++c)
             if (m.influences[set].joints[v][c] >= joints)
               failAt("/meshes/" + std::to_string(gn.mesh) + "/primitives/" + str(pi) + "/attributes/JOINTS_" + str(set),
-                     "joint index " + std::to_string(m.influences[set].joints[v][c]) + " (vertex " + str(v) + ") is outside skin " +
-                         std::to_string(gn.skin) + " of node " + str(ni) + ", which has " + str(joints) + " joints");
+                     "joint index " + std::to_string(m.influences[set].joints[v][c]) + " (vertex " + str(v) +
+                         ") is outside skin " + std::to_string(gn.skin) + " of node " + str(ni) + ", which has " +
+                         str(joints) + " joints");
     }
   }
 }
@@ -268,18 +282,21 @@ void GltfLoader::loadAnimation(size_t index, SceneAnimation& out) {
     // before copying it.
     for (const int a : {gs.input, gs.output})
       if (a >= 0 && size_t(a) < model_.accessors.size())
-        animationValues_ += model_.accessors[size_t(a)].count *
-                            size_t(std::max(0, tinygltf::GetNumComponentsInType(uint32_t(model_.accessors[size_t(a)].type))));
+        animationValues_ +=
+            model_.accessors[size_t(a)].count *
+            size_t(std::max(0, tinygltf::GetNumComponentsInType(uint32_t(model_.accessors[size_t(a)].type))));
     if (animationValues_ > kMaxAnimationValues)
       failAt(sptr, "the animations hold more than " + str(kMaxAnimationValues) + " key times and values in all");
     s.times = readFinite(gs.input, sptr + "/input", "animation " + str(index) + " sampler " + str(si) + " input",
                          {TINYGLTF_TYPE_SCALAR}, {F});
     if (s.times.empty()) failAt(sptr + "/input", "has no keyframes");
     for (size_t k = 0; k < s.times.size(); ++k) {
-      if (s.times[k] < 0.0f) failAt(sptr + "/input", "key " + str(k) + " is at a negative time (" + std::to_string(s.times[k]) + " s)");
+      if (s.times[k] < 0.0f)
+        failAt(sptr + "/input", "key " + str(k) + " is at a negative time (" + std::to_string(s.times[k]) + " s)");
       if (k > 0 && !(s.times[k] > s.times[k - 1]))
         failAt(sptr + "/input", "key times must increase strictly: key " + str(k) + " (" + std::to_string(s.times[k]) +
-                                    " s) does not come after key " + str(k - 1) + " (" + std::to_string(s.times[k - 1]) + " s)");
+                                    " s) does not come after key " + str(k - 1) + " (" +
+                                    std::to_string(s.times[k - 1]) + " s)");
     }
     if (s.interpolation == Interpolation::cubicSpline && s.times.size() < 2)
       failAt(sptr + "/input", "CUBICSPLINE needs at least 2 keyframes");
@@ -307,26 +324,35 @@ void GltfLoader::loadAnimation(size_t index, SceneAnimation& out) {
       continue;
     }
     if (gc.target_node < 0 || size_t(gc.target_node) >= out.nodes.size())
-      failAt(cptr + "/target/node", "node " + std::to_string(gc.target_node) + " does not exist (" + str(out.nodes.size()) + " nodes)");
+      failAt(cptr + "/target/node",
+             "node " + std::to_string(gc.target_node) + " does not exist (" + str(out.nodes.size()) + " nodes)");
     if (gc.sampler < 0 || size_t(gc.sampler) >= a.samplers.size())
-      failAt(cptr + "/sampler", "sampler " + std::to_string(gc.sampler) + " does not exist (" + str(a.samplers.size()) + " samplers)");
+      failAt(cptr + "/sampler",
+             "sampler " + std::to_string(gc.sampler) + " does not exist (" + str(a.samplers.size()) + " samplers)");
     c.node = gc.target_node;
     c.sampler = gc.sampler;
     const SceneNode& node = out.nodes[size_t(c.node)];
     if (node.hasMatrix)
-      failAt(cptr + "/target/node", "node " + std::to_string(c.node) + " is given by a matrix; glTF animates only nodes given by "
-                                    "translation, rotation and scale");
+      failAt(cptr + "/target/node", "node " + std::to_string(c.node) +
+                                        " is given by a matrix; glTF animates only nodes given by "
+                                        "translation, rotation and scale");
     AnimationSampler& s = a.samplers[size_t(c.sampler)];
     const std::string sptr = ptr + "/samplers/" + std::to_string(c.sampler) + "/output";
-    const int wantType = c.path == AnimationPath::weights ? TINYGLTF_TYPE_SCALAR
-                         : c.path == AnimationPath::rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3;
+    const int wantType = c.path == AnimationPath::weights    ? TINYGLTF_TYPE_SCALAR
+                         : c.path == AnimationPath::rotation ? TINYGLTF_TYPE_VEC4
+                                                             : TINYGLTF_TYPE_VEC3;
     if (outputType[size_t(c.sampler)] != wantType)
       failAt(sptr, "a " + gc.target_path + " channel needs " +
-                       (wantType == TINYGLTF_TYPE_SCALAR ? "SCALAR" : wantType == TINYGLTF_TYPE_VEC4 ? "VEC4" : "VEC3") + " output");
-    const uint32_t components = c.path == AnimationPath::weights ? uint32_t(node.weights.size())
-                          : c.path == AnimationPath::rotation ? 4u : 3u;
+                       (wantType == TINYGLTF_TYPE_SCALAR ? "SCALAR"
+                        : wantType == TINYGLTF_TYPE_VEC4 ? "VEC4"
+                                                         : "VEC3") +
+                       " output");
+    const uint32_t components = c.path == AnimationPath::weights    ? uint32_t(node.weights.size())
+                                : c.path == AnimationPath::rotation ? 4u
+                                                                    : 3u;
     if (components == 0)
-      failAt(cptr + "/target/node", "animates the morph weights of node " + std::to_string(c.node) + ", whose mesh has no morph targets");
+      failAt(cptr + "/target/node",
+             "animates the morph weights of node " + std::to_string(c.node) + ", whose mesh has no morph targets");
     // (A sampler shared by channels: its output type and count fix its
     // components, so they agree wherever these checks pass.)
     const size_t perKey = size_t(components) * (s.interpolation == Interpolation::cubicSpline ? 3 : 1);
@@ -341,7 +367,8 @@ void GltfLoader::loadAnimation(size_t index, SceneAnimation& out) {
       const bool cubic = s.interpolation == Interpolation::cubicSpline;
       for (size_t k = 0; k < s.times.size(); ++k) {
         float* q = s.values.data() + (cubic ? 3 * k + 1 : k) * 4;
-        const double len = std::sqrt(double(q[0]) * q[0] + double(q[1]) * q[1] + double(q[2]) * q[2] + double(q[3]) * q[3]);
+        const double len =
+            std::sqrt(double(q[0]) * q[0] + double(q[1]) * q[1] + double(q[2]) * q[2] + double(q[3]) * q[3]);
         if (!(len > 1e-12)) failAt(sptr, "rotation key " + str(k) + " is a zero quaternion");
         for (int i = 0; i < 4; ++i) q[i] = float(q[i] / len);
       }
