@@ -28,9 +28,9 @@ size_t countOf(const std::string& text, const std::string& needle) {
 // features now drawn, COLOR_0, instancing, texture transforms and TEXCOORD_1,
 // stay listed: no file may give them).
 const std::vector<std::string> kAll = {
-    "skins ignored: drawn in bind pose",
-    "animations ignored: drawn at rest",
-    "morph targets ignored: drawn undeformed (default weights not applied)",
+    "skins not applied: drawn in bind pose",
+    "animations not played: drawn at rest",
+    "morph targets not applied: drawn undeformed (default weights not applied)",
     "COLOR_0 ignored: base colour alone",
     "EXT_mesh_gpu_instancing ignored: one instance drawn",
     "KHR_texture_transform ignored: textures untransformed",
@@ -70,12 +70,12 @@ TEST(GltfIgnored, SamplesWarnOncePerIgnoredFeature) {
   expectIgnored("VertexColorTest/VertexColorTest.glb", {});
   expectIgnored("TextureTransformTest/TextureTransformTest.gltf", {});
   expectIgnored("SimpleInstancing/SimpleInstancing.glb", {});
-  expectIgnored("SimpleSkin/SimpleSkin.gltf", {"skins ignored: drawn in bind pose", "animations ignored: drawn at rest"});
+  expectIgnored("SimpleSkin/SimpleSkin.gltf", {"skins not applied: drawn in bind pose", "animations not played: drawn at rest"});
   expectIgnored("SimpleMorph/SimpleMorph.gltf",
-                {"animations ignored: drawn at rest", "morph targets ignored: drawn undeformed (default weights not applied)"});
+                {"animations not played: drawn at rest", "morph targets not applied: drawn undeformed (default weights not applied)"});
   expectIgnored("MorphPrimitivesTest/MorphPrimitivesTest.glb",
-                {"morph targets ignored: drawn undeformed (default weights not applied)"});
-  expectIgnored("AnimatedCube/AnimatedCube.gltf", {"animations ignored: drawn at rest"});
+                {"morph targets not applied: drawn undeformed (default weights not applied)"});
+  expectIgnored("AnimatedCube/AnimatedCube.gltf", {"animations not played: drawn at rest"});
   // Without any of them (emissive, KHR_materials_specular and its textures,
   // KHR_materials_unlit are drawn).
   expectIgnored("EmissiveStrengthTest/EmissiveStrengthTest.glb", {});

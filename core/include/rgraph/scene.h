@@ -11,7 +11,9 @@
 //   Scene::textures    an image + a sampler; Scene::images decoded RGBA8 pixels
 //                      (one image per colour space: an sRGB and a linear use of
 //                      the same glTF image are two images);
-//   lights, ambient term, camera.
+//   lights, ambient term, camera;
+//   Scene::animation   glTF nodes, skins and animations of animated files
+//                      (rgraph/animation.h evaluates them; empty otherwise).
 //
 // Units: lengths in scene units, angles in degrees unless named otherwise.
 #pragma once
@@ -25,6 +27,8 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "rgraph/animation.h"
 
 namespace rgraph {
 
@@ -79,12 +83,18 @@ struct MeshData {
   std::vector<uint32_t> indices;
   bool hasUv0 = false;
   Bounds bounds;                    // local space; see updateBounds()
+  // Skinning and morphing (rgraph/animation.h): glTF JOINTS_n/WEIGHTS_n sets
+  // of 4 influences, and morph targets; each array empty or one per vertex.
+  // Bounds are the rest positions'.
+  std::vector<SkinInfluences> influences;
+  std::vector<MorphTarget> morphTargets;
 
   size_t vertexCount() const { return positions.size(); }
   size_t triangleCount() const { return indices.size() / 3; }
   bool hasTangents() const { return !tangents.empty(); }
   bool hasColors() const { return !colors.empty(); }
   bool hasUv1() const { return !uv1.empty(); }
+  bool skinned() const { return !influences.empty(); }
   void updateBounds();
   // Checks the invariants above; on failure writes the reason to *why.
   bool valid(std::string* why = nullptr) const;
@@ -236,6 +246,12 @@ struct Primitive {
     glm::vec3 axis{0.0f, 1.0f, 0.0f};
     float degreesPerSecond = 0.0f;
   } spin;
+
+  // The glTF node that draws it, in Scene::animation.nodes (-1: none kept, a
+  // static scene): its pose gives the primitive's matrix, skin and morph
+  // weights at a time (rgraph/animation.h). `transform` is that node's rest
+  // world matrix, what is drawn until the renderer plays animations.
+  int node = -1;
 
   // World bounds of a mesh with local bounds `local` drawn by this primitive:
   // `local` under `transform`, over every instance.
@@ -398,9 +414,12 @@ struct Scene {
   // Image-based lighting (scene file key "environment"); none: the PBR
   // pipelines' IBL passes are culled and ambient is the constant above.
   std::optional<Environment> environment;
+  // glTF nodes, skins and animations (rgraph/animation.h): empty unless a
+  // loaded file has animations, skins or morph targets.
+  SceneAnimation animation;
   // What the loaders warned about (also logged as spdlog warnings), in order:
   // features of the source that are not drawn and what is drawn instead
-  // ("skins ignored: drawn in bind pose"), values replaced. `rgraph plan
+  // ("skins not applied: drawn in bind pose"), values replaced. `rgraph plan
   // --scene` lists them.
   std::vector<std::string> warnings;
 
@@ -485,7 +504,8 @@ SceneFeatures sceneFeatures(const Scene& scene);
 SceneFeatures sceneFeatures(const Scene& scene, const Camera& camera, float aspect);
 
 // Appends `src` to `dst` under `transform` (primitives, point and directional
-// lights; src's camera is taken only when dst has none). Indices are rebased.
+// lights, and animation nodes, skins and animations with `transform` above
+// src's root nodes; src's camera is taken only when dst has none). Indices are rebased.
 void appendScene(Scene& dst, Scene src, const glm::mat4& transform = glm::mat4(1.0f));
 
 // When the scene has no camera: frameScene(scene). When it has no lights at

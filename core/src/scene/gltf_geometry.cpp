@@ -3,6 +3,7 @@
 // from primitives (normals, tangents, UV sets). See gltf_internal.h.
 #include <algorithm>
 #include <climits>
+#include <cstdint>
 #include <cmath>
 #include <cstring>
 
@@ -16,12 +17,15 @@ namespace rgraph::gltf_detail {
 
 namespace {
 
-float readComponent(const unsigned char* p, int componentType, bool normalized) {
+// Non-finite floats read as 0 (and set *nonFinite when given).
+float readComponent(const unsigned char* p, int componentType, bool normalized, bool* nonFinite = nullptr) {
   switch (componentType) {
     case TINYGLTF_COMPONENT_TYPE_FLOAT: {
       float f;
       std::memcpy(&f, p, 4);
-      return std::isfinite(f) ? f : 0.0f;
+      if (std::isfinite(f)) return f;
+      if (nonFinite) *nonFinite = true;
+      return 0.0f;
     }
     case TINYGLTF_COMPONENT_TYPE_BYTE: {
       int8_t v;
@@ -195,7 +199,7 @@ std::string GltfLoader::checkBufferView(int index, const std::string& what) cons
 
 // Reads a numeric accessor as floats (count * components), applying sparse substitution.
 std::vector<float> GltfLoader::readFloats(int index, const std::string& what, std::initializer_list<int> types,
-                              std::initializer_list<int> componentTypes) const {
+                              std::initializer_list<int> componentTypes, size_t* firstNonFinite) const {
   const AccessorInfo info = checkAccessor(index, what, types, componentTypes);
   const size_t nc = size_t(info.components);
   const int compSize = tinygltf::GetComponentSizeInBytes(uint32_t(info.componentType));
@@ -203,15 +207,19 @@ std::vector<float> GltfLoader::readFloats(int index, const std::string& what, st
   if (info.data) {
     for (size_t i = 0; i < info.count; ++i) {
       const unsigned char* e = info.data + i * info.stride;
-      for (size_t c = 0; c < nc; ++c) out[i * nc + c] = readComponent(e + c * size_t(compSize), info.componentType, info.normalized);
+      bool bad = false;
+      for (size_t c = 0; c < nc; ++c)
+        out[i * nc + c] = readComponent(e + c * size_t(compSize), info.componentType, info.normalized, &bad);
+      if (bad && firstNonFinite && *firstNonFinite == SIZE_MAX) *firstNonFinite = i;
     }
   }
   const tinygltf::Accessor& acc = model_.accessors[size_t(index)];
-  if (acc.sparse.isSparse) applySparse(acc, what + " (accessor " + std::to_string(index) + ")", info, out);
+  if (acc.sparse.isSparse) applySparse(acc, what + " (accessor " + std::to_string(index) + ")", info, out, firstNonFinite);
   return out;
 }
 
-void GltfLoader::applySparse(const tinygltf::Accessor& acc, const std::string& name, const AccessorInfo& info, std::vector<float>& out) const {
+void GltfLoader::applySparse(const tinygltf::Accessor& acc, const std::string& name, const AccessorInfo& info, std::vector<float>& out,
+                             size_t* firstNonFinite) const {
   const int n = acc.sparse.count;
   if (n <= 0 || size_t(n) > info.count) fail(name + ": sparse count " + std::to_string(n) + " out of range");
   const int it = acc.sparse.indices.componentType;
@@ -235,8 +243,10 @@ void GltfLoader::applySparse(const tinygltf::Accessor& acc, const std::string& n
     const uint32_t target = readIndex(idx + size_t(i) * is, it);
     if (target >= info.count)
       fail(name + ": sparse index " + std::to_string(target) + " >= count " + std::to_string(info.count));
+    bool bad = false;
     for (size_t c = 0; c < nc; ++c)
-      out[size_t(target) * nc + c] = readComponent(val + size_t(i) * es + c * cs, info.componentType, info.normalized);
+      out[size_t(target) * nc + c] = readComponent(val + size_t(i) * es + c * cs, info.componentType, info.normalized, &bad);
+    if (bad && firstNonFinite) *firstNonFinite = std::min(*firstNonFinite, size_t(target));
   }
 }
 
@@ -389,6 +399,9 @@ MeshData GltfLoader::buildMesh(const tinygltf::Primitive& prim, const std::strin
     }
   }
 
+  readSkinAttributes(prim, mesh, what, pointer);
+  readMorphTargets(prim, mesh, what, pointer);
+
   mesh.hasUv0 = !uv0.empty();
   mesh.uv0.assign(n, glm::vec2(0.0f));
   if (!uv0.empty())
@@ -438,6 +451,13 @@ MeshData GltfLoader::buildMesh(const tinygltf::Primitive& prim, const std::strin
   } else {
     // glTF: "When normals are not specified, client implementations MUST calculate flat normals."
     computeFlatNormals(mesh);  // unwelds; file tangents (if any) would no longer line up
+  }
+  // Morph deltas of attributes the file does not give are meaningless:
+  // computed flat normals and generated tangents stay undeformed by them.
+  const bool fileTangents = !mesh.tangents.empty();
+  for (MorphTarget& t : mesh.morphTargets) {
+    if (nrm.empty()) t.normals.clear();
+    if (!fileTangents) t.tangents.clear();
   }
   if (wantTangents && mesh.tangents.empty()) {
     const bool useUv1 = material.normalTexture.texCoord == 1 && !mesh.uv1.empty();

@@ -84,11 +84,16 @@ void GltfLoader::checkDraco() {
 }
 
 void GltfLoader::warnIgnoredFeatures() {
-  if (!model_.skins.empty()) warnIgnored("skins", "drawn in bind pose");
-  if (!model_.animations.empty()) warnIgnored("animations", "drawn at rest");
+  // Loaded into Scene::animation and evaluated on the CPU (rgraph/animation.h),
+  // but the renderer does not play them yet: said as what the picture shows.
+  auto notDrawn = [&](const std::string& what, const std::string& instead) {
+    if (ignoredFeatures_.insert(what).second) warn(what + ": " + instead);
+  };
+  if (!model_.skins.empty()) notDrawn("skins not applied", "drawn in bind pose");
+  if (!model_.animations.empty()) notDrawn("animations not played", "drawn at rest");
   for (const tinygltf::Mesh& m : model_.meshes) {
     for (const tinygltf::Primitive& p : m.primitives) {
-      if (!p.targets.empty()) warnIgnored("morph targets", "drawn undeformed (default weights not applied)");
+      if (!p.targets.empty()) notDrawn("morph targets not applied", "drawn undeformed (default weights not applied)");
     }
   }
   for (const std::string& used : model_.extensionsUsed)

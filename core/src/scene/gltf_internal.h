@@ -3,7 +3,8 @@
 //   gltf_loader.cpp     bytes -> tinygltf model (nesting bound, file access),
 //                       node traversal, cameras, conversion;
 //   gltf_geometry.cpp   accessors, buffer views, sparse data, meshes;
-//   gltf_materials.cpp  images, textures, materials, lights, value ranges.
+//   gltf_materials.cpp  images, textures, materials, lights, value ranges;
+//   gltf_animation.cpp  skin influences, morph targets, nodes, skins, animations.
 // Every accessor, buffer view, index and texture reference is validated
 // before it is read: tinygltf does not check all of them.
 #pragma once
@@ -31,6 +32,7 @@ inline constexpr size_t kMaxElements = size_t(1) << 26;          // per accessor
 inline constexpr size_t kMaxUnbackedElements = size_t(1) << 24;  // accessors without a buffer view (zeros)
 inline constexpr int kMaxImageSide = 16384;
 inline constexpr size_t kMaxInstances = size_t(1) << 20;          // per node (EXT_mesh_gpu_instancing)
+inline constexpr size_t kMaxAnimationValues = size_t(1) << 27;    // key times and values over all animations
 
 std::string trimmed(std::string s);
 
@@ -90,16 +92,35 @@ class GltfLoader {
   AccessorInfo checkAccessor(int index, const std::string& what, std::initializer_list<int> types,
                              std::initializer_list<int> componentTypes) const;
   std::string checkBufferView(int index, const std::string& what) const;
+  // firstNonFinite (when given, SIZE_MAX on entry): set to the first element
+  // holding a NaN or infinity (read as 0).
   std::vector<float> readFloats(int index, const std::string& what, std::initializer_list<int> types,
-                                std::initializer_list<int> componentTypes) const;
+                                std::initializer_list<int> componentTypes, size_t* firstNonFinite = nullptr) const;
   void applySparse(const tinygltf::Accessor& acc, const std::string& name, const AccessorInfo& info,
-                   std::vector<float>& out) const;
+                   std::vector<float>& out, size_t* firstNonFinite = nullptr) const;
   std::vector<uint32_t> readIndices(int index, const std::string& what, size_t vertexCount) const;
   int sceneMesh(int mi, size_t pi);
   void checkAttributeTypes(const tinygltf::Primitive& prim, const std::string& pointer);
   // `pointer`: the primitive's JSON pointer, for located refusals.
   MeshData buildMesh(const tinygltf::Primitive& prim, const std::string& what, const std::string& pointer);
   std::optional<std::vector<glm::mat4>> nodeInstances(int nodeIndex, const tinygltf::Node& node);
+
+  // ------------------------------------------------ gltf_animation.cpp
+  // JOINTS_n/WEIGHTS_n and morph targets of a primitive into `mesh` (its
+  // positions read): before anything reorders vertices.
+  void readSkinAttributes(const tinygltf::Primitive& prim, MeshData& mesh, const std::string& what, const std::string& pointer);
+  void readMorphTargets(const tinygltf::Primitive& prim, MeshData& mesh, const std::string& what, const std::string& pointer);
+  // A float accessor whose every value must be finite (refused at `pointer`, naming the element).
+  std::vector<float> readFinite(int index, const std::string& pointer, const std::string& what, std::initializer_list<int> types,
+                                std::initializer_list<int> componentTypes);
+  // Whether the file needs its node table (animations, skins, morph targets).
+  bool keepsNodes() const;
+  // Scene::animation from the file's nodes, skins and animations (after traverse).
+  void loadAnimationData();
+  void loadNodes(SceneAnimation& out);
+  void loadSkins(SceneAnimation& out);
+  void checkSkinnedMeshes(const SceneAnimation& anim);
+  void loadAnimation(size_t index, SceneAnimation& out);
 
   // ------------------------------------------------ gltf_materials.cpp
   const std::vector<uint8_t>& decodedPixels(int gltfImage, const std::string& what);
@@ -141,6 +162,8 @@ class GltfLoader {
   int resolvedMaterial_ = -1;
   int defaultMaterial_ = -1;
   bool cameraHasFar_ = false;
+  bool keepNodes_ = false;  // keepsNodes(), decided before traverse
+  size_t animationValues_ = 0;  // floats read into animation samplers so far
 };
 
 }  // namespace rgraph::gltf_detail

@@ -298,6 +298,7 @@ void GltfLoader::visitNode(int nodeIndex, const glm::mat4& world) {
       if (instances) p.instances = *instances;
       p.bounds = p.worldBounds(scene_.meshes[size_t(mesh)].bounds);
       p.name = node.name.empty() ? (gm.name.empty() ? what : gm.name) : node.name;
+      if (keepNodes_) p.node = nodeIndex;
       scene_.primitives.push_back(std::move(p));
     }
   }
@@ -380,7 +381,9 @@ void GltfLoader::convert() {
     for (size_t i = 0; i < model_.nodes.size(); ++i)
       if (parents[i] == 0) roots.push_back(int(i));
   }
+  keepNodes_ = keepsNodes();
   traverse(roots);
+  if (keepNodes_) loadAnimationData();
 
   if (scene_.primitives.empty()) warn("no triangle geometry in the default scene");
   if (scene_.hasCamera && !cameraHasFar_) {

@@ -56,6 +56,12 @@ void computeFlatNormals(MeshData& mesh) {
   const bool uv0 = mesh.uv0.size() == n, uv1 = !mesh.uv1.empty() && mesh.uv1.size() == n;
   const bool tan = !mesh.tangents.empty() && mesh.tangents.size() == n;
   const bool colors = !mesh.colors.empty() && mesh.colors.size() == n;
+  // Skin influences and morph deltas follow their vertices.
+  out.influences.resize(mesh.influences.size());
+  out.morphTargets.resize(mesh.morphTargets.size());
+  auto carry = [n](auto& to, const auto& from, uint32_t i) {
+    if (from.size() == n) to.push_back(from[i]);
+  };
   for (size_t t = 0; t < triCount; ++t) {
     uint32_t idx[3] = {mesh.indices[3 * t], mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]};
     if (idx[0] >= n || idx[1] >= n || idx[2] >= n) continue;
@@ -70,6 +76,15 @@ void computeFlatNormals(MeshData& mesh) {
       if (uv1) out.uv1.push_back(mesh.uv1[i]);
       if (tan) out.tangents.push_back(mesh.tangents[i]);
       if (colors) out.colors.push_back(mesh.colors[i]);
+      for (size_t k = 0; k < mesh.influences.size(); ++k) {
+        carry(out.influences[k].joints, mesh.influences[k].joints, i);
+        carry(out.influences[k].weights, mesh.influences[k].weights, i);
+      }
+      for (size_t k = 0; k < mesh.morphTargets.size(); ++k) {
+        carry(out.morphTargets[k].positions, mesh.morphTargets[k].positions, i);
+        carry(out.morphTargets[k].normals, mesh.morphTargets[k].normals, i);
+        carry(out.morphTargets[k].tangents, mesh.morphTargets[k].tangents, i);
+      }
     }
   }
   out.bounds = mesh.bounds;

@@ -57,6 +57,15 @@ bool MeshData::valid(std::string* why) const {
     return fail("tangent count " + std::to_string(tangents.size()) + " != vertex count " + std::to_string(n));
   if (!colors.empty() && colors.size() != n)
     return fail("color count " + std::to_string(colors.size()) + " != vertex count " + std::to_string(n));
+  for (size_t k = 0; k < influences.size(); ++k)
+    if (influences[k].joints.size() != n || influences[k].weights.size() != n)
+      return fail("influence set " + std::to_string(k) + " count != vertex count " + std::to_string(n));
+  for (size_t k = 0; k < morphTargets.size(); ++k) {
+    const MorphTarget& t = morphTargets[k];
+    if ((!t.positions.empty() && t.positions.size() != n) || (!t.normals.empty() && t.normals.size() != n) ||
+        (!t.tangents.empty() && t.tangents.size() != n))
+      return fail("morph target " + std::to_string(k) + " count != vertex count " + std::to_string(n));
+  }
   if (indices.size() % 3 != 0) return fail("index count " + std::to_string(indices.size()) + " is not a multiple of 3");
   for (size_t i = 0; i < indices.size(); ++i)
     if (indices[i] >= n)
@@ -531,6 +540,10 @@ void Scene::validate() const {
       fail("primitive " + std::to_string(i) + ": material index out of range");
     if (materials[size_t(p.material)].hasNormalMap() && !meshes[size_t(p.mesh)].hasTangents())
       fail("primitive " + std::to_string(i) + ": normal-mapped material on a mesh without tangents");
+    if (p.node >= 0 && size_t(p.node) >= animation.nodes.size())
+      fail("primitive " + std::to_string(i) + ": node index out of range");
+    if (p.node >= 0 && animation.nodes[size_t(p.node)].weights.size() != meshes[size_t(p.mesh)].morphTargets.size())
+      fail("primitive " + std::to_string(i) + ": its node's morph weights do not match its mesh's morph targets");
   }
   auto checkRef = [&](const TextureRef& r, size_t mi, const char* what) {
     if (r.texture >= 0 && size_t(r.texture) >= textures.size())
@@ -585,7 +598,10 @@ void appendScene(Scene& dst, Scene src, const glm::mat4& transform) {
   }
   for (ImageData& im : src.images) dst.images.push_back(std::move(im));
   for (std::string& w : src.warnings) dst.warnings.push_back(std::move(w));
+  const int nodeBase = int(dst.animation.nodes.size());
+  appendAnimation(dst.animation, std::move(src.animation), transform);
   for (Primitive& p : src.primitives) {
+    if (p.node >= 0) p.node += nodeBase;
     p.mesh += meshBase;
     p.material += materialBase;
     p.transform = transform * p.transform;
