@@ -12,6 +12,7 @@
 #include "aa/aa_util.h"
 #include "render/test_scenes.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 
 using namespace rgraph;
 using namespace rgraph::aatest;
@@ -101,7 +102,7 @@ TEST_F(TaaStability, TaaDisocclusionRevealedBackgroundConverges) {
   for (int f = 0; f < 14; ++f) {
     taa.exec().setCamera(cameraAt(f));
     outs.push_back(taa.next());
-    Executor plain(none, PassRegistry::builtins(), *shaders, &scene);
+    Executor plain(none, processRegistry(), *shaders, &scene);
     plain.setCamera(cameraAt(f));
     plain.resize(kSize);
     plain.renderFrame();

@@ -13,6 +13,7 @@
 #include "rgraph/config.h"
 #include "rgraph/registry.h"
 #include "rgraph/shader_check.h"
+#include "rgraph/pipeline_load.h"
 
 #include "support/run_command.h"
 
@@ -53,7 +54,7 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 }
 
 const PassTypeDesc& type(const std::string& name) {
-  const PassTypeDesc* t = PassRegistry::builtins().find(name);
+  const PassTypeDesc* t = processRegistry().find(name);
   if (!t) throw std::runtime_error("no pass type " + name);
   return *t;
 }
@@ -86,11 +87,11 @@ Checked checkConfig(ShaderChecker& checker, const std::string& path) {
   Checked c;
   ConfigDocument doc = ConfigDocument::parseFile(path, c.config);
   if (!doc.ok()) return c;
-  PipelineConfig pipe = doc.build(PassRegistry::builtins(), c.config);
+  PipelineConfig pipe = doc.build(processRegistry(), c.config);
   if (hasErrors(c.config)) return c;
   Plan plan = compile(pipe.graph);
   c.config.insert(c.config.end(), plan.diagnostics.begin(), plan.diagnostics.end());
-  c.shaders = checker.checkPipeline(pipe, plan, PassRegistry::builtins());
+  c.shaders = checker.checkPipeline(pipe, plan, processRegistry());
   return c;
 }
 

@@ -53,6 +53,8 @@ class ParamEditor {
   // The pipeline file's text, parsed keeping key order. Throws RuntimeError
   // when it cannot be read or parsed.
   explicit ParamEditor(std::string pipelinePath);
+  // The pipeline file: the name edits are given to Renderer::reloadJson under (inFile relocates its messages).
+  const std::string& path() const { return path_; }
   // Re-reads the file (after a reload from disk). false when it cannot be parsed.
   bool reread();
   // Draws the widgets; returns the new JSON text when the user changed a value.
@@ -60,7 +62,11 @@ class ParamEditor {
   // The script command `param PASS NAME JSON-VALUE`: the new JSON text, or
   // nullopt with `error` set (unknown pass, a parameter the pass type does
   // not declare, value not JSON). Value types and ranges are checked by
-  // Renderer::reloadJson, which locates them in the text.
+  // Renderer::reloadJson, which locates them in the text. `types`: the
+  // renderer's pass types (Renderer::passTypes: its plugins' too).
+  std::optional<std::string> withParam(const std::string& pass, const std::string& name, const std::string& jsonValue,
+                                       const PassRegistry& types, std::string& error);
+  // The same with the built-in pass types only.
   std::optional<std::string> withParam(const std::string& pass, const std::string& name, const std::string& jsonValue,
                                        std::string& error);
   // Takes an edit that the renderer accepted as the current text.
