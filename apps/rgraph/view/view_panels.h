@@ -53,8 +53,6 @@ class ParamEditor {
   // The pipeline file's text, parsed keeping key order. Throws RuntimeError
   // when it cannot be read or parsed.
   explicit ParamEditor(std::string pipelinePath);
-  // The pipeline file: the name edits are given to Renderer::reloadJson under (inFile relocates its messages).
-  const std::string& path() const { return path_; }
   // Re-reads the file (after a reload from disk). false when it cannot be parsed.
   bool reread();
   // Draws the widgets; returns the new JSON text when the user changed a value.
