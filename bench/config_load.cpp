@@ -13,6 +13,7 @@
 #include "rgraph/graph.h"
 #include "rgraph/registry.h"
 #include "rgraph/shader_check.h"
+#include "rgraph/pipeline_load.h"
 
 namespace {
 
@@ -40,7 +41,7 @@ std::string chainConfig(size_t passes, bool fullscreen) {
 void loadValidate(benchmark::State& state, bool shaders) {
   const size_t passes = static_cast<size_t>(state.range(0));
   const std::string text = chainConfig(passes, shaders);
-  const rgraph::PassRegistry& registry = rgraph::PassRegistry::builtins();
+  const rgraph::PassRegistry& registry = rgraph::processRegistry();
   size_t live = 0, programs = 0;
   for (auto _ : state) {
     rgraph::Diagnostics diags;

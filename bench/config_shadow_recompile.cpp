@@ -50,7 +50,7 @@ void BM_ShadowRecompile(benchmark::State& state) {
   for (auto& pass : loaded.params)
     if (pass.has("max_lights")) pass.set("max_lights", int64_t{64});
   const Scene scene = sceneWithLights(lights, state.range(2) != 0);
-  const PassRegistry& registry = PassRegistry::builtins();
+  const PassRegistry& registry = processRegistry();
   size_t passes = 0, live = 0, shadowed = 0;
   for (auto _ : state) {
     PipelineConfig adapted = loaded;
@@ -91,7 +91,7 @@ void BM_ShadowRecompileStep(benchmark::State& state) {
   for (auto& pass : loaded.params)
     if (pass.has("max_lights")) pass.set("max_lights", int64_t{64});
   const Scene scene = sceneWithLights(64, true);
-  const PassRegistry& registry = PassRegistry::builtins();
+  const PassRegistry& registry = processRegistry();
   const SceneFeatures features = sceneFeatures(scene, scene.camera, 16.0f / 9.0f);
   PipelineConfig adapted = loaded;
   adaptToScene(adapted, registry, features);

@@ -114,7 +114,7 @@ gl::Framebuffer framebuffer(std::initializer_list<std::pair<GLenum, uint32_t>> a
 }
 
 std::unique_ptr<Executor> makeExecutor(const PipelineConfig& cfg, World& w, const Scene* scene, Extent size) {
-  auto exec = std::make_unique<Executor>(cfg, PassRegistry::builtins(), *w.shaders, scene);
+  auto exec = std::make_unique<Executor>(cfg, processRegistry(), *w.shaders, scene);
   exec->setCpuPassTiming(false);
   exec->resize(size);
   return exec;
@@ -167,7 +167,7 @@ void setUpChain(World& w, Case& c) {
 void setUpDefault(World& w, Case& c) {
   c.scene = std::make_unique<Scene>(loadSceneAny("learnopengl:overview"));
   PipelineConfig cfg = loadPipelineFileOrThrow(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/default.json");
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(*c.scene));
+  adaptToScene(cfg, processRegistry(), sceneFeatures(*c.scene));
   const Extent size{32, 32};
   c.exec = makeExecutor(cfg, w, c.scene.get(), size);
   Executor& e = *c.exec;

@@ -135,10 +135,10 @@ std::unique_ptr<World> makeWorld() {
     if (m.cutOffPass)
       for (size_t i = 0; i < cfg.graph.passes.size(); ++i)
         if (cfg.graph.passes[i].name == m.cutOffPass) cfg.params[i].set("threshold", 5.0 / 256.0);
-    adaptToScene(cfg, PassRegistry::builtins(), features);  // as `rgraph render` does
+    adaptToScene(cfg, processRegistry(), features);  // as `rgraph render` does
     Runner r;
     r.name = m.name;
-    r.exec = std::make_unique<Executor>(cfg, PassRegistry::builtins(), *w->shaders, w->scene.get());
+    r.exec = std::make_unique<Executor>(cfg, processRegistry(), *w->shaders, w->scene.get());
     r.exec->resize(w->size);
     for (int i = 0; i < 2; ++i) r.exec->renderFrame();  // shader compiles, first-touch allocations
     glFinish();

@@ -32,8 +32,8 @@ Measured measure(const std::string& pipelineText, const std::string& name, const
 
 std::unique_ptr<Executor> makeExecutor(PipelineConfig& cfg, const Scene& scene, Extent size, ShaderLibrary& shaders) {
   const float aspect = size.height > 0 ? float(size.width) / float(size.height) : 16.0f / 9.0f;
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene, scene.camera, aspect));  // as `rgraph render` does
-  auto exec = std::make_unique<Executor>(cfg, PassRegistry::builtins(), shaders, &scene);
+  adaptToScene(cfg, processRegistry(), sceneFeatures(scene, scene.camera, aspect));  // as `rgraph render` does
+  auto exec = std::make_unique<Executor>(cfg, processRegistry(), shaders, &scene);
   exec->resize(size);
   return exec;
 }
@@ -57,12 +57,12 @@ Measured measure(PipelineConfig cfg, const Scene& scene, Extent size, ShaderLibr
     CompileOptions opts;
     opts.output = size;
     const Plan declared = compile(cfg.graph, opts);
-    m.gbufferBytes = gbufferBytesPerPixel(cfg, declared, PassRegistry::builtins());
+    m.gbufferBytes = gbufferBytesPerPixel(cfg, declared, processRegistry());
   }
   const uint64_t errorsBefore = context.debugErrorCount();
   const std::unique_ptr<Executor> owned = makeExecutor(cfg, scene, size, shaders);
   Executor& exec = *owned;
-  m.gbufferBytesAdapted = gbufferBytesPerPixel(cfg, exec.plan(), PassRegistry::builtins());
+  m.gbufferBytesAdapted = gbufferBytesPerPixel(cfg, exec.plan(), processRegistry());
   m.allocatedBytes = exec.plan().allocatedBytes;
   m.naiveBytes = exec.plan().naiveBytes;
 

@@ -106,7 +106,7 @@ std::string unsupported(const json& shipped, const std::string& method) {
   if (method == "none") return {};
   json copy = shipped;
   const std::string type = passNamed(copy, kLightingPass).at("type");
-  const PassTypeDesc* desc = PassRegistry::builtins().find(type);
+  const PassTypeDesc* desc = processRegistry().find(type);
   if (!desc) return "no pass type '" + type + "'";
   const std::string filter = filterOf(method).filter;
   for (const ParamDecl& d : desc->params)

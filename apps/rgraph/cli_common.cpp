@@ -10,15 +10,33 @@
 #include "rgraph/own_files.h"
 #include "rgraph/pipeline_load.h"
 #include "rgraph/plugin.h"
+#include "rgraph/registry.h"
 #include "rgraph/shader_check.h"
 
 namespace rgraph::cli {
 
 namespace {
-PluginLoader& pluginLoader() { return processPluginLoader(); }
+std::vector<std::string>& pluginDirectories() {
+  static std::vector<std::string> dirs;
+  return dirs;
+}
 }  // namespace
 
-void addPluginSearchDirectory(const std::string& dir) { pluginLoader().addSearchDirectory(dir); }
+// One command per process: the process's registry is the command's.
+PassRegistry& registry() { return processRegistry(); }
+PluginLoader& pluginLoader() { return processPluginLoader(); }
+
+void addPluginSearchDirectory(const std::string& dir) {
+  pluginDirectories().push_back(dir);
+  pluginLoader().addSearchDirectory(dir);
+}
+
+RendererOptions rendererOptions() {
+  RendererOptions options;
+  options.registry = &registry();
+  options.pluginDirectories = pluginDirectories();
+  return options;
+}
 
 bool loadPlugins(const std::vector<std::string>& namesOrPaths) {
   bool ok = true;
@@ -35,7 +53,10 @@ bool loadPlugins(const std::vector<std::string>& namesOrPaths) {
 }
 
 std::optional<PipelineConfig> loadPipeline(const std::string& path, Diagnostics& diags) {
-  return loadPipelineFile(path, {}, diags);
+  PipelineLoadOptions options;
+  options.registry = &registry();
+  options.loader = &pluginLoader();
+  return loadPipelineFile(path, options, diags);
 }
 
 bool checkFolders(const std::string& option, const std::vector<std::string>& dirs) {
@@ -72,6 +93,7 @@ CompileOptions compileOptions(uint32_t width, uint32_t height, uint32_t maxTextu
 Plan checkPipeline(const PipelineConfig& pipeline, const CompileOptions& options, ShaderChecks shaders,
                    Diagnostics& diags, std::optional<bool> scenePresent) {
   PipelineCheckOptions checks;
+  checks.registry = &registry();
   checks.shaders = shaders;
   checks.scenePresent = scenePresent;
   return rgraph::checkPipeline(pipeline, options, checks, diags);

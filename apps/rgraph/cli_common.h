@@ -12,6 +12,12 @@
 #include "rgraph/gl/context.h"
 #include "rgraph/graph.h"
 #include "rgraph/pipeline_check.h"
+#include "rgraph/renderer.h"
+
+namespace rgraph {
+class PassRegistry;
+class PluginLoader;
+}  // namespace rgraph
 
 namespace rgraph::cli {
 
@@ -19,9 +25,20 @@ namespace rgraph::cli {
 constexpr int kExitOk = 0;
 constexpr int kExitFailure = 1;
 
+// The command line's pass types: a copy of PassRegistry::builtins() with the
+// plugins --plugin and the pipeline loaded, and the loader bound to it
+// (--plugin-path folders first). One command runs per process, so these are
+// processRegistry() and processPluginLoader() (rgraph/pipeline_load.h), which
+// the benchmarks' pipeline loads use too.
+PassRegistry& registry();
+PluginLoader& pluginLoader();
+// Options for the Renderer of `render` and `view`: a copy of registry() (the
+// renderer copies it) and the --plugin-path folders; the caller sets the rest.
+RendererOptions rendererOptions();
+
 // Parses a pipeline file, loads the plugins its "plugins" array names into
-// PassRegistry::builtins() (a failure is a plugin_error diagnostic at the
-// plugin's name in the file), then checks it against the registered types.
+// registry() (a failure is a plugin_error diagnostic at the plugin's name in
+// the file), then checks it against the registered types.
 // Appends every problem to diags; returns nullopt when any is an error.
 std::optional<PipelineConfig> loadPipeline(const std::string& path, Diagnostics& diags);
 

@@ -197,14 +197,14 @@ int runPlan(const std::string& path, const SizeOptions& size, bool json, const s
   }
   PipelineConfig adapted = result->first;
   const SceneFeatures features = sceneFeatures(scene, scene.camera, float(size.width) / float(size.height));
-  const AdaptReport report = adaptToScene(adapted, PassRegistry::builtins(), features);
+  const AdaptReport report = adaptToScene(adapted, registry(), features);
   Diagnostics adaptedDiags;
   Plan plan = checkPipeline(adapted, compileOptions(size.width, size.height, size.maxTextureSize), ShaderChecks::skip,
                             adaptedDiags, /*scenePresent=*/true);
   printDiagnostics(adaptedDiags);
   if (hasErrors(adaptedDiags)) return kExitFailure;
-  const uint32_t before = gbufferBytesPerPixel(result->first, result->second, PassRegistry::builtins());
-  const uint32_t after = gbufferBytesPerPixel(adapted, plan, PassRegistry::builtins());
+  const uint32_t before = gbufferBytesPerPixel(result->first, result->second, registry());
+  const uint32_t after = gbufferBytesPerPixel(adapted, plan, registry());
   if (json) {
     nlohmann::json out = planJson(plan);
     out["scene"] = {{"source", scene.source},

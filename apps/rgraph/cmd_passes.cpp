@@ -169,7 +169,7 @@ void printType(const PassTypeDesc& t, std::ostream& out) {
 // --plugin, else every registered one. nullopt (after an error) when a name
 // is unknown.
 std::optional<std::vector<const PassTypeDesc*>> selectTypes(const PassesOptions& o) {
-  const PassRegistry& registry = PassRegistry::builtins();
+  const PassRegistry& registry = cli::registry();
   std::vector<const PassTypeDesc*> out;
   if (!o.types.empty()) {
     bool ok = true;
@@ -189,7 +189,7 @@ std::optional<std::vector<const PassTypeDesc*>> selectTypes(const PassesOptions&
     return out;
   }
   if (o.plugins.empty()) return registry.all();
-  for (const auto& plugin : processPluginLoader().loaded())
+  for (const auto& plugin : pluginLoader().loaded())
     for (const auto& name : plugin.passTypes)
       if (const PassTypeDesc* t = registry.find(name); t && std::find(out.begin(), out.end(), t) == out.end())
         out.push_back(t);

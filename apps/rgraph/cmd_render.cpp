@@ -165,7 +165,7 @@ int runRender(const RenderOptions& options) {
   std::vector<NamedPath> inputs = {{"the pipeline", pipelinePath}, {"--scene", options.scene}};
   const std::vector<NamedPath> outputs = {{"--out", options.out}, {"--stats", options.stats}};
   if (!checkOutputs(inputs, outputs)) return kExitFailure;
-  RendererOptions rendererOptions;
+  RendererOptions rendererOptions = cli::rendererOptions();  // the command's pass types and --plugin-path
   rendererOptions.size = Extent{options.size.width, options.size.height};
   rendererOptions.maxTextureSize = options.size.maxTextureSize;
   rendererOptions.maxTextureSizeOrigin = compileOptions(0, 0, options.size.maxTextureSize).maxTextureSizeOrigin;
@@ -235,7 +235,7 @@ int runRender(const RenderOptions& options) {
 
     // Again with what the pipeline turned out to read: its shader files and plugins.
     for (const auto& file : renderer->watchedFiles()) inputs.push_back({"the pipeline's file", file});
-    for (const auto& plugin : processPluginLoader().loaded()) inputs.push_back({"the plugin", plugin.path});
+    for (const auto& plugin : renderer->loadedPlugins()) inputs.push_back({"the plugin", plugin});
     if (!checkOutputs(inputs, outputs)) return kExitFailure;
     const Extent extent = renderer->outputExtent();
     writePng(options.out, extent.width, extent.height, renderer->readOutputRGBA8());

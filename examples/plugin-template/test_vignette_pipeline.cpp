@@ -4,6 +4,8 @@
 //   cmake --build build && ctest --test-dir build
 #include <gtest/gtest.h>
 
+#include "rgraph/pass_decl.h"
+#include "rgraph/registry.h"
 #include "rgraph/testing.h"
 
 namespace rt = rgraph::testing;
@@ -53,4 +55,33 @@ TEST(VignettePipeline, Memory) {
   ASSERT_TRUE(ldr.has_value());
   EXPECT_EQ(ldr->firstPass, "tonemap");
   EXPECT_EQ(ldr->lastPass, "vignette");
+}
+
+// A pass type of the test's own, registered in-process under the plugin's
+// type name. Each compile copies Options::registry (or the built-in types)
+// and loads the config's plugins into its copy, so nothing one test registers
+// or loads is seen by another: the tests above and this one pass in any order
+// (CMakeLists.txt runs them shuffled, three times over).
+TEST(VignettePipeline, AnInProcessTypeOfThePluginsNameStaysInItsTest) {
+  using namespace rgraph;
+  PassRegistry types = PassRegistry::builtins();  // a copy: the built-in types, then the test's own
+  PassTypeDesc stub = decl::passType("vignette", "a stand-in declared by the test");
+  stub.slots = {decl::slot("src", Access::sampled, true, SlotDecl::Load::never, "the image"),
+                decl::slot("dst", Access::color_attachment, true, SlotDecl::Load::never, "the result")};
+  stub.create = [] { return std::unique_ptr<PassInstance>(); };  // never called: nothing runs here
+  std::string error;
+  ASSERT_TRUE(types.add(std::move(stub), &error)) << error;
+  rt::Options options;
+  options.size = {64, 64};
+  options.registry = &types;
+  const rt::CompiledPipeline p = rt::compileText(R"({
+    "version": 1,
+    "resources": { "ldr": { "format": "rgba8", "imported": true }, "output": { "format": "rgba8" } },
+    "passes": [ { "name": "v", "type": "vignette", "inputs": { "src": "ldr" }, "outputs": { "dst": "output" } } ],
+    "output": "output"
+  })", options, "stub.json");
+  ASSERT_TRUE(p.ok()) << p.describe();
+  EXPECT_EQ(p.order(), (std::vector<std::string>{"v"}));
+  // The plugin's own vignette still loads for the next compile: no "already registered".
+  EXPECT_TRUE(compileVignette().ok()) << compileVignette().describe();
 }

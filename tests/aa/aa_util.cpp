@@ -18,7 +18,7 @@ PipelineConfig shippedPipeline(const std::string& name) {
 }
 
 Frames::Frames(const PipelineConfig& cfg, const Scene& scene, Extent size, ShaderLibrary& shaders)
-    : exec_(std::make_unique<Executor>(cfg, PassRegistry::builtins(), shaders, &scene)) {
+    : exec_(std::make_unique<Executor>(cfg, processRegistry(), shaders, &scene)) {
   exec_->resize(size);
 }
 

@@ -16,7 +16,7 @@ namespace rgraph::aatest {
 using rtest::Image;
 using Mask = std::vector<bool>;  // one entry per pixel, rows top-down
 
-// pipelines/<name>, plugins loaded into PassRegistry::builtins().
+// pipelines/<name>, plugins loaded into processRegistry() (rgraph/pipeline_load.h).
 PipelineConfig shippedPipeline(const std::string& name);
 
 // One executor rendering consecutive frames of a scene the test may edit

@@ -42,7 +42,7 @@ class Fxaa : public rtest::RenderTest {
       glTextureSubImage2D(src.id(), 0, 0, h - 1 - row, w, 1, GL_RGBA, GL_UNSIGNED_BYTE, input.at(0, row));
     glTextureParameteri(src.id(), GL_TEXTURE_MIN_FILTER, static_cast<GLint>(ownFilter));
     glTextureParameteri(src.id(), GL_TEXTURE_MAG_FILTER, static_cast<GLint>(ownFilter));
-    Executor exec(cfg, PassRegistry::builtins(), *shaders);
+    Executor exec(cfg, processRegistry(), *shaders);
     exec.importTexture("src", src.id());
     exec.resize(input.extent);
     exec.renderFrame();

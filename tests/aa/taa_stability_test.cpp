@@ -18,6 +18,7 @@
 #include "render/test_scenes.h"
 #include "rgraph/pipeline_load.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 
 using namespace rgraph;
 using namespace rgraph::aatest;
@@ -107,7 +108,7 @@ TEST_F(TaaStability, TaaDisocclusionRevealedBackgroundConverges) {
   for (int f = 0; f < 14; ++f) {
     taa.exec().setCamera(cameraAt(f));
     outs.push_back(taa.next());
-    Executor plain(none, PassRegistry::builtins(), *shaders, &scene);
+    Executor plain(none, processRegistry(), *shaders, &scene);
     plain.setCamera(cameraAt(f));
     plain.resize(kSize);
     plain.renderFrame();

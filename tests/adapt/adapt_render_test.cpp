@@ -10,13 +10,14 @@
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 
 namespace rgraph {
 namespace {
 
 std::vector<uint8_t> render(const PipelineConfig& pipeline, const Scene& scene, Extent size) {
   ShaderLibrary shaders;
-  Executor exec(pipeline, PassRegistry::builtins(), shaders, &scene);
+  Executor exec(pipeline, processRegistry(), shaders, &scene);
   exec.resize(size);
   exec.renderFrame();
   return exec.readOutputRGBA8();
@@ -27,7 +28,7 @@ TEST(AdaptRender, ConstantMaterialRendersLikeTheMaterialTarget) {
   Diagnostics diags;
   PipelineConfig full =
       ConfigDocument::parseFile(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/deferred-pbr.json", diags)
-          .build(PassRegistry::builtins(), diags);
+          .build(processRegistry(), diags);
   ASSERT_FALSE(hasErrors(diags));
   // Suzanne-free, texture-free: a sphere with one metallic/roughness, lit by a point light.
   Scene scene;
@@ -51,7 +52,7 @@ TEST(AdaptRender, ConstantMaterialRendersLikeTheMaterialTarget) {
   scene.hasCamera = true;
 
   PipelineConfig adapted = full;
-  const AdaptReport report = adaptToScene(adapted, PassRegistry::builtins(), sceneFeatures(scene));
+  const AdaptReport report = adaptToScene(adapted, processRegistry(), sceneFeatures(scene));
   ASSERT_FALSE(report.notes.empty());
   const Extent size{96, 96};
   const auto a = render(full, scene, size);

@@ -10,6 +10,7 @@
 #include "rgraph/config.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 
 namespace rgraph {
 namespace {
@@ -17,7 +18,7 @@ namespace {
 PipelineConfig loadShipped(const std::string& name) {
   Diagnostics diags;
   ConfigDocument doc = ConfigDocument::parseFile(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/" + name, diags);
-  PipelineConfig p = doc.build(PassRegistry::builtins(), diags);
+  PipelineConfig p = doc.build(processRegistry(), diags);
   EXPECT_FALSE(hasErrors(diags)) << (diags.empty() ? "" : formatDiagnostic(diags.front()));
   return p;
 }
@@ -62,7 +63,7 @@ Adapted adapt(const std::string& pipeline, const Scene& scene) {
   Adapted a;
   a.before = loadShipped(pipeline);
   a.after = a.before;
-  a.report = adaptToScene(a.after, PassRegistry::builtins(), sceneFeatures(scene));
+  a.report = adaptToScene(a.after, processRegistry(), sceneFeatures(scene));
   a.planBefore = compile(a.before.graph, CompileOptions{Extent{640, 360}});
   a.planAfter = compile(a.after.graph, CompileOptions{Extent{640, 360}});
   EXPECT_TRUE(a.planBefore.ok());
@@ -171,8 +172,8 @@ TEST(AdaptToScene, OneMetallicRoughnessDropsTheMaterialTarget) {
   // PBR layout: 4 x rgba16f + depth32f = 36 bytes, + the optional emissive and
   // reflectance targets (rgba16f each) as shipped = 52; this scene needs
   // neither, nor the material target: 28.
-  EXPECT_EQ(gbufferBytesPerPixel(a.before, a.planBefore, PassRegistry::builtins()), 52u);
-  EXPECT_EQ(gbufferBytesPerPixel(a.after, a.planAfter, PassRegistry::builtins()), 28u);
+  EXPECT_EQ(gbufferBytesPerPixel(a.before, a.planBefore, processRegistry()), 52u);
+  EXPECT_EQ(gbufferBytesPerPixel(a.after, a.planAfter, processRegistry()), 28u);
   // The lighting pass gets the scene's values instead.
   const size_t lighting = 1;
   ASSERT_EQ(a.after.graph.passes[lighting].name, "lighting");
@@ -191,7 +192,7 @@ TEST(AdaptToScene, MetallicRoughnessVariationKeepsTheMaterialTarget) {
   scene.primitives.push_back(p);
   Adapted a = adapt("deferred-pbr.json", scene);
   EXPECT_TRUE(resourceNamed(a.planAfter, "gMetalRough").physical.valid());
-  EXPECT_EQ(gbufferBytesPerPixel(a.after, a.planAfter, PassRegistry::builtins()), 36u);
+  EXPECT_EQ(gbufferBytesPerPixel(a.after, a.planAfter, processRegistry()), 36u);
 }
 
 TEST(AdaptToScene, NormalMapsAreAFeatureOfTheScene) {
@@ -209,8 +210,8 @@ TEST(AdaptToScene, TheLearnOpenGLSceneNeedsEverythingItsPipelineHas) {
   for (const auto& p : a.planAfter.passes) EXPECT_FALSE(p.culled) << p.name;
   // learnopengl layout has no material target to drop; the scene emits no
   // light: only the emissive target (r11g11b10f, 4 bytes) goes.
-  EXPECT_EQ(gbufferBytesPerPixel(a.before, a.planBefore, PassRegistry::builtins()),
-            gbufferBytesPerPixel(a.after, a.planAfter, PassRegistry::builtins()) + 4u);
+  EXPECT_EQ(gbufferBytesPerPixel(a.before, a.planBefore, processRegistry()),
+            gbufferBytesPerPixel(a.after, a.planAfter, processRegistry()) + 4u);
 }
 
 // The optional G-buffer targets (gbuffer_layout.cpp): a scene with no
@@ -236,7 +237,7 @@ TEST(AdaptToScene, EmissiveAndReflectanceTargetsFollowTheScene) {
   EXPECT_TRUE(resourceNamed(e.planAfter, "gEmissive").physical.valid());
   EXPECT_FALSE(resourceNamed(e.planAfter, "gReflectance").physical.valid());
   // 28 (one metallic/roughness: no material target) + 8 (rgba16f emissive).
-  const uint32_t withEmissive = gbufferBytesPerPixel(e.after, e.planAfter, PassRegistry::builtins());
+  const uint32_t withEmissive = gbufferBytesPerPixel(e.after, e.planAfter, processRegistry());
   EXPECT_EQ(withEmissive, 36u);
 
   Scene specular = cubeScene();
@@ -255,10 +256,10 @@ TEST(AdaptToScene, EmissiveAndReflectanceTargetsFollowTheScene) {
   // compact: r11g11b10f emissive (4 bytes), rgba8 reflectance (4 bytes).
   Adapted c = adapt("deferred-compact.json", glowing);
   Adapted cp = adapt("deferred-compact.json", plain);
-  const uint32_t compactWith = gbufferBytesPerPixel(c.after, c.planAfter, PassRegistry::builtins());
-  const uint32_t compactWithout = gbufferBytesPerPixel(cp.after, cp.planAfter, PassRegistry::builtins());
+  const uint32_t compactWith = gbufferBytesPerPixel(c.after, c.planAfter, processRegistry());
+  const uint32_t compactWithout = gbufferBytesPerPixel(cp.after, cp.planAfter, processRegistry());
   std::printf("[ measure  ] G-buffer bytes per pixel: pbr %u without emissive, %u with; compact %u, %u\n",
-              gbufferBytesPerPixel(a.after, a.planAfter, PassRegistry::builtins()), withEmissive, compactWithout,
+              gbufferBytesPerPixel(a.after, a.planAfter, processRegistry()), withEmissive, compactWithout,
               compactWith);
   EXPECT_EQ(compactWith, compactWithout + 4u);
 }

@@ -16,6 +16,7 @@
 #include "rgraph/pass_decl.h"
 #include "rgraph/registry.h"
 #include "rgraph/shader_check.h"
+#include "rgraph/pipeline_load.h"
 
 namespace rgraph {
 namespace {
@@ -61,17 +62,17 @@ TEST(GBufferLayoutTable, EachRowValidatesWithItsShadersAndCountsItsBytes) {
     SCOPED_TRACE(layout.name);
     Diagnostics diags;
     ConfigDocument doc = ConfigDocument::parseText(pipelineFor(layout), layout.name + ".json", diags);
-    PipelineConfig pipeline = doc.build(PassRegistry::builtins(), diags);
+    PipelineConfig pipeline = doc.build(processRegistry(), diags);
     ASSERT_FALSE(hasErrors(diags)) << messages(diags);
     const Plan plan = compile(pipeline.graph, CompileOptions{Extent{64, 64}});
     ASSERT_TRUE(plan.ok()) << messages(plan.diagnostics);
     PassCheckOptions options;
     options.scenePresent = true;
-    EXPECT_FALSE(hasErrors(runPassChecks(pipeline, plan, PassRegistry::builtins(), options)))
-        << messages(runPassChecks(pipeline, plan, PassRegistry::builtins(), options));
-    const Diagnostics shaders = checker.checkPipeline(pipeline, plan, PassRegistry::builtins());
+    EXPECT_FALSE(hasErrors(runPassChecks(pipeline, plan, processRegistry(), options)))
+        << messages(runPassChecks(pipeline, plan, processRegistry(), options));
+    const Diagnostics shaders = checker.checkPipeline(pipeline, plan, processRegistry());
     EXPECT_FALSE(hasErrors(shaders)) << messages(shaders);
-    EXPECT_EQ(gbufferBytesPerPixel(pipeline, plan, PassRegistry::builtins()), layout.bytesPerPixel());
+    EXPECT_EQ(gbufferBytesPerPixel(pipeline, plan, processRegistry()), layout.bytesPerPixel());
   }
   // The figures docs/performance.md quotes for rgraph bench's pipelines.
   EXPECT_EQ(gbuffer::find("learnopengl").bytesPerPixel(), 24u);
@@ -83,7 +84,7 @@ TEST(GBufferLayoutTable, EachRowValidatesWithItsShadersAndCountsItsBytes) {
 // gbuffer.frag's output locations follow geometry's colour slot order, and
 // geometry must accept every format and leave optional what some layout lacks.
 TEST(GBufferLayoutTable, TheGeometryPassDeclaresWhatTheTableWrites) {
-  const PassTypeDesc* geometry = PassRegistry::builtins().find("geometry");
+  const PassTypeDesc* geometry = processRegistry().find("geometry");
   ASSERT_NE(geometry, nullptr);
   std::vector<std::string> color;
   for (const auto& s : geometry->slots) {
@@ -110,7 +111,7 @@ TEST(GBufferLayoutTable, TheGeometryPassDeclaresWhatTheTableWrites) {
     const auto& depth = geometry->findSlot("depth")->formats;
     EXPECT_TRUE(std::count(depth.begin(), depth.end(), layout.depth)) << layout.name;
   }
-  for (const PassTypeDesc* type : PassRegistry::builtins().all()) {
+  for (const PassTypeDesc* type : processRegistry().all()) {
     if (const ParamDecl* p = type->findParam("layout")) {
       EXPECT_EQ(p->choices, gbuffer::names()) << type->name;
       EXPECT_EQ(std::get<std::string>(p->defaultValue), gbuffer::kDefaultLayout) << type->name;

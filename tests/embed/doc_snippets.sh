@@ -36,6 +36,10 @@ tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
+#include <rgraph/gl/fullscreen.h>
+#include <rgraph/pass_decl.h>
+#include <rgraph/registry.h>
 #include <rgraph/renderer.h>
 namespace given {  // what the snippets take from the program around them
 std::string pipelinePath, deferred, gbufferDebug;

@@ -7,6 +7,7 @@
 #include "rgraph/error.h"
 #include "rgraph/gl/format.h"
 #include "rgraph/gl/objects.h"
+#include "rgraph/pipeline_load.h"
 
 using namespace rgraph;
 using namespace rgraph::test;
@@ -104,7 +105,7 @@ TEST_F(GlTest, WindowContextRendersAGraph) {
       g.output("out");
       g.pass("gradient", "fullscreen", {writeUse("color", Access::color_attachment, "out")},
              params({{"shader", std::string("gradient.frag")}}));
-      Executor exec(g.config(), PassRegistry::builtins(), lib);
+      Executor exec(g.config(), processRegistry(), lib);
       exec.resize(win->windowFramebufferSize());
       exec.renderFrame();
       std::string first;

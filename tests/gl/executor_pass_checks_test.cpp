@@ -9,6 +9,7 @@
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 #include "test_support.h"
 
 namespace rgraph {
@@ -17,7 +18,7 @@ namespace {
 std::string refusal(const PipelineConfig& pipeline, const Scene* scene, Extent size, size_t* objectsAfter) {
   testsupport::sharedGlContext();
   ShaderLibrary shaders;
-  Executor executor(pipeline, PassRegistry::builtins(), shaders, scene);
+  Executor executor(pipeline, processRegistry(), shaders, scene);
   std::string message;
   try {
     executor.resize(size);

@@ -155,7 +155,7 @@ TEST_F(StateTest, BuiltInPassesAnswerTruthfully) {
       if (f.path().extension() != ".json") continue;
       PipelineConfig cfg = loadPipelineFileOrThrow(f.path().string());
       if (!cfg.plugins.empty()) continue;  // plugin types keep the default answer (all)
-      adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
+      adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
       pipelines.emplace_back(f.path().filename().string(), std::move(cfg));
     }
   ASSERT_GE(pipelines.size(), 10u);
@@ -174,7 +174,7 @@ TEST_F(StateTest, BuiltInPassesAnswerTruthfully) {
     "output": "out"})", "<state test>"));
   for (auto& [name, cfg] : pipelines) {
     SCOPED_TRACE(name);
-    Executor exec(cfg, PassRegistry::builtins(), *shaders, &scene);
+    Executor exec(cfg, processRegistry(), *shaders, &scene);
     exec.setStateChecks(true);
     exec.resize({32, 24});
     EXPECT_NO_THROW(exec.renderFrame());

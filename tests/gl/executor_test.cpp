@@ -5,6 +5,7 @@
 #include "gl_test_util.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/objects.h"
+#include "rgraph/pipeline_load.h"
 
 using namespace rgraph;
 using namespace rgraph::test;
@@ -26,7 +27,7 @@ std::string px(const std::vector<uint8_t>& rgba, size_t i) {
          "," + std::to_string(rgba[i * 4 + 3]);
 }
 
-const PassRegistry& builtins() { return PassRegistry::builtins(); }
+const PassRegistry& builtins() { return processRegistry(); }
 
 }  // namespace
 

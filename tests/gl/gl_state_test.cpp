@@ -18,6 +18,7 @@
 #include "gl_test_util.h"
 #include "rgraph/gl/objects.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 #include "support/caller_drawing.h"
 #include "support/test_support.h"
 
@@ -497,7 +498,7 @@ TEST_F(GlStateTest, CaptureAndRestoreCost) {
 TEST_F(GlStateTest, CallerStateSurvivesAPipelineFrameInsideTheGuard) {
   CallerState caller;
   Scene scene = makeLearnOpenGLScene();
-  Executor exec(defaultPipeline(), PassRegistry::builtins(), *shaders, &scene);
+  Executor exec(defaultPipeline(), processRegistry(), *shaders, &scene);
   for (int frame = 0; frame < 2; ++frame) {
     {
       gl::GlStateGuard guard;
@@ -515,7 +516,7 @@ TEST_F(GlStateTest, CallerDrawingAfterAGuardedPipelineFrameIsUnchanged) {
   testsupport::CallerDrawing caller;
   const std::vector<uint8_t> alone = caller.drawAround({});
   Scene scene = makeLearnOpenGLScene();
-  Executor exec(defaultPipeline(), PassRegistry::builtins(), *shaders, &scene);
+  Executor exec(defaultPipeline(), processRegistry(), *shaders, &scene);
   for (int frame = 0; frame < 2; ++frame) {
     const std::vector<uint8_t> after = caller.drawAround([&] {
       gl::GlStateGuard guard;
@@ -534,7 +535,7 @@ TEST_F(GlStateTest, CallerDrawingAfterAGuardedPipelineFrameIsUnchanged) {
 TEST_F(GlStateTest, APipelineFrameWithoutTheGuardChangesCallerStateAndDrawing) {
   CallerState caller;
   Scene scene = makeLearnOpenGLScene();
-  Executor exec(defaultPipeline(), PassRegistry::builtins(), *shaders, &scene);
+  Executor exec(defaultPipeline(), processRegistry(), *shaders, &scene);
   gl::applyRendererDefaults();  // no uploads through the caller's pixel buffers
   caller.reread();
   exec.resize(kFrameSize);
@@ -617,7 +618,7 @@ TEST_F(GlStateTest, CallerStateLeftBehindDoesNotChangeTheFrame) {
   auto frame = [&] {
     gl::GlStateGuard guard;
     gl::applyRendererDefaults();
-    Executor exec(cfg, PassRegistry::builtins(), *shaders, &scene);
+    Executor exec(cfg, processRegistry(), *shaders, &scene);
     exec.resize(kFrameSize);
     exec.renderFrame();
     return exec.readOutputRGBA8();

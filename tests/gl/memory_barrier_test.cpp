@@ -8,6 +8,7 @@
 
 #include "gl_test_util.h"
 #include "rgraph/gl/shader_library.h"
+#include "rgraph/pipeline_load.h"
 
 using namespace rgraph;
 using namespace rgraph::test;
@@ -188,7 +189,7 @@ TEST_F(GlTest, NoStorageWritesNoBarriers) {
   g.pass("clear", "clear", {writeUse("color", Access::color_attachment, "hdr")});
   g.pass("present", "present",
          {readUse("src", Access::sampled, "hdr"), writeUse("dst", Access::color_attachment, "out")});
-  Executor exec(g.config(), PassRegistry::builtins(), *shaders);
+  Executor exec(g.config(), processRegistry(), *shaders);
   exec.resize(kSize);
   EXPECT_EQ(exec.memoryBarriers(), (std::vector<uint32_t>{0, 0}));
   EXPECT_EQ(exec.frameEndMemoryBarrier(), 0u);

@@ -12,6 +12,7 @@
 #include "gl_test_util.h"
 #include "rgraph/gl/context.h"
 #include "rgraph/gl/objects.h"
+#include "rgraph/pipeline_load.h"
 
 using namespace rgraph;
 using namespace rgraph::test;
@@ -71,9 +72,9 @@ class SamplerStateTest : public GlTest {
   std::vector<float> render(const std::string& json) {
     Diagnostics diags;
     ConfigDocument doc = ConfigDocument::parseText(json, "sampler-test.json", diags);
-    PipelineConfig cfg = doc.build(PassRegistry::builtins(), diags);
+    PipelineConfig cfg = doc.build(processRegistry(), diags);
     EXPECT_FALSE(hasErrors(diags)) << json;
-    Executor exec(cfg, PassRegistry::builtins(), *shaders);
+    Executor exec(cfg, processRegistry(), *shaders);
     exec.resize(kOut);
     exec.renderFrame();
     // Every unit samples with its texture's parameters again after the pass.
@@ -264,10 +265,10 @@ TEST_F(SamplerStateTest, OneSamplerObjectPerDistinctState) {
 })";
   Diagnostics diags;
   ConfigDocument doc = ConfigDocument::parseText(json, "cache.json", diags);
-  PipelineConfig cfg = doc.build(PassRegistry::builtins(), diags);
+  PipelineConfig cfg = doc.build(processRegistry(), diags);
   ASSERT_FALSE(hasErrors(diags));
   const int64_t before = gl::createdObjects(gl::ObjectKind::sampler);
-  Executor exec(cfg, PassRegistry::builtins(), *shaders);
+  Executor exec(cfg, processRegistry(), *shaders);
   exec.resize(kOut);
   exec.renderFrame();
   exec.renderFrame();

@@ -21,6 +21,7 @@
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 #include "support/test_support.h"
 
 namespace rgraph {
@@ -67,7 +68,7 @@ class GlCalls : public ::testing::Test {
   // Built at `size`, warmed up (programs linked, first-touch allocations
   // done), per-pass CPU timing off (on llvmpipe it adds a glFinish per pass).
   std::unique_ptr<Executor> warmed(const PipelineConfig& cfg, const Scene* scene, Extent size) {
-    auto exec = std::make_unique<Executor>(cfg, PassRegistry::builtins(), *shaders, scene);
+    auto exec = std::make_unique<Executor>(cfg, processRegistry(), *shaders, scene);
     exec->setCpuPassTiming(false);
     exec->resize(size);
     for (int i = 0; i < 3; ++i) exec->renderFrame();
@@ -102,7 +103,7 @@ TEST_F(GlCalls, AFullscreenPassCostsItsFramebufferItsInputAndItsDraw) {
 TEST_F(GlCalls, ADefaultPipelineFrameBindsOnceAndAsksNothing) {
   const Scene scene = loadSceneAny("learnopengl:overview");
   PipelineConfig cfg = testsupport::loadPipelineOrThrow(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/default.json");
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
+  adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
   auto exec = warmed(cfg, &scene, {32, 32});
   const Calls calls = frameCalls(*exec);
   const auto count = [&](const char* name) { return calls.count(name) ? calls.at(name) : 0ll; };
@@ -132,7 +133,7 @@ TEST_F(GlCalls, InstancesCostNoDrawCallMoreThanOne) {
     p.bounds = p.worldBounds(single.meshes[size_t(p.mesh)].bounds);
   }
   PipelineConfig cfg = testsupport::loadPipelineOrThrow(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/default.json");
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(instanced));
+  adaptToScene(cfg, processRegistry(), sceneFeatures(instanced));
   auto draws = [&](const Scene& scene) {
     auto exec = warmed(cfg, &scene, {32, 32});
     const Calls calls = frameCalls(*exec);

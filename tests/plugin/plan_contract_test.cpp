@@ -13,6 +13,7 @@
 #include "rgraph/config.h"
 #include "rgraph/plugin.h"
 #include "rgraph/registry.h"
+#include "rgraph/pipeline_load.h"
 
 using namespace rgraph;
 
@@ -88,7 +89,7 @@ TEST(PlanContract, CatchesAUsedResourceWithoutMemory) {
   const std::string file = std::string(RGRAPH_SOURCE_DIR) + "/pipelines/deferred-pbr.json";
   Diagnostics diags;
   ConfigDocument doc = ConfigDocument::parseFile(file, diags);
-  const PipelineConfig cfg = doc.build(PassRegistry::builtins(), diags);
+  const PipelineConfig cfg = doc.build(processRegistry(), diags);
   ASSERT_FALSE(hasErrors(diags));
   Plan plan = compile(cfg.graph);
   ASSERT_TRUE(plan.ok());

@@ -21,6 +21,7 @@
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
 #include "rgraph/shader_check.h"
+#include "rgraph/pipeline_load.h"
 
 using namespace rgraph;
 
@@ -131,11 +132,11 @@ TEST(ProgramsBuilt, SampledSlotsAreBoundToTheUnitsTheSpecNames) {
   })";
   Diagnostics diags;
   ConfigDocument doc = ConfigDocument::parseText(json, "units.json", diags);
-  const PipelineConfig cfg = doc.build(PassRegistry::builtins(), diags);
+  const PipelineConfig cfg = doc.build(processRegistry(), diags);
   ASSERT_FALSE(hasErrors(diags)) << formatDiagnostic(diags.front());
   ShaderLibrary shaders;
   shaders.addSearchDirectory(std::string(RGRAPH_SOURCE_DIR) + "/tests/plugin/shaders");
-  Executor exec(cfg, PassRegistry::builtins(), shaders);
+  Executor exec(cfg, processRegistry(), shaders);
   exec.resize({8, 8});
   exec.renderFrame();
   const std::vector<uint8_t> rgba = exec.readOutputRGBA8();

@@ -23,6 +23,7 @@
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 #include "support/render_util.h"
 #include "support/test_support.h"
 
@@ -54,7 +55,7 @@ PipelineConfig clusteredPipeline(bool fullscreen, const json& params = json::obj
 
 rtest::Image renderAdapted(PipelineConfig cfg, const Scene& scene, Extent size, ShaderLibrary& shaders,
                            const std::function<void(Executor&)>& inspect = {}) {
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
+  adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
   return rtest::render(cfg, scene, size, shaders, inspect);
 }
 
@@ -222,8 +223,8 @@ TEST_F(Clustered, ResizeRebuildsTheClusterGrid) {
   const Scene scene = makeManyLightsScene(64);
   ShaderLibrary shaders;
   PipelineConfig cfg = clusteredPipeline(false);
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
-  Executor exec(cfg, PassRegistry::builtins(), shaders, &scene);
+  adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
+  Executor exec(cfg, processRegistry(), shaders, &scene);
   exec.resize({64, 48});
   exec.renderFrame();
   exec.resize({200, 120});

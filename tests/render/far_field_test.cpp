@@ -18,6 +18,7 @@
 #include "rgraph/adapt.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 #include "support/render_util.h"
 #include "support/test_support.h"
 
@@ -56,7 +57,7 @@ PipelineConfig farFieldPipeline(const Method& m, bool exact, const json& params 
 }
 
 rtest::Image renderAdapted(PipelineConfig cfg, const Scene& scene, Extent size, ShaderLibrary& shaders) {
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
+  adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
   return rtest::render(cfg, scene, size, shaders);
 }
 

@@ -22,6 +22,7 @@
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 #include "support/render_util.h"
 #include "support/test_support.h"
 
@@ -58,7 +59,7 @@ PipelineConfig pipeline(const std::string& file, bool clustered, const json& bui
 
 rtest::Image renderAdapted(PipelineConfig cfg, const Scene& scene, Extent size, ShaderLibrary& shaders,
                            const std::function<void(Executor&)>& inspect = {}) {
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
+  adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
   return rtest::render(cfg, scene, size, shaders, inspect);
 }
 
@@ -148,8 +149,8 @@ TEST_F(ForwardPlus, DeferredClusteredBlendPassMatchesEveryLight) {
   ShaderLibrary shaders;
   const Scene scene = manyLightsWithGlass(256);
   PipelineConfig cfg = pipeline("deferred-clustered-forward-plus.json", true);
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
-  Executor exec(cfg, PassRegistry::builtins(), shaders, &scene);
+  adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
+  Executor exec(cfg, processRegistry(), shaders, &scene);
   exec.resize({64, 36});
   const Plan& plan = exec.plan();
   size_t builders = 0;

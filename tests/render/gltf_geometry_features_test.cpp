@@ -20,6 +20,7 @@
 #include "support/render_util.h"
 #include "rgraph/adapt.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 
 using namespace rgraph;
 using namespace rgraph::rtest;
@@ -30,7 +31,7 @@ constexpr Extent kSize{256, 256};
 
 PipelineConfig pipelineFor(const std::string& file, const Scene& scene) {
   PipelineConfig cfg = loadPipeline(repoPath(file));
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
+  adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
   return cfg;
 }
 

@@ -12,6 +12,7 @@
 
 #include "rgraph/adapt.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 #include "support/render_util.h"
 #include "test_scenes.h"
 
@@ -22,7 +23,7 @@ namespace {
 
 PipelineConfig adapted(const std::string& file, const Scene& scene) {
   PipelineConfig cfg = loadPipeline(repoPath("pipelines/" + file));
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
+  adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
   return cfg;
 }
 

@@ -16,6 +16,7 @@
 
 #if __has_include("rgraph/adapt.h")
 #include "rgraph/adapt.h"
+#include "rgraph/pipeline_load.h"
 #define RGRAPH_HAVE_ADAPT 1
 #endif
 
@@ -30,7 +31,7 @@ constexpr Extent kSize{128, 128};
 PipelineConfig defaultPipelineFor(const Scene& scene) {
   PipelineConfig cfg = loadPipeline(repoPath("pipelines/default.json"));
 #ifdef RGRAPH_HAVE_ADAPT
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
+  adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
 #else
   (void)scene;
 #endif

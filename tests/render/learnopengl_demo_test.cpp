@@ -14,6 +14,7 @@
 
 #if __has_include("rgraph/adapt.h")
 #include "rgraph/adapt.h"
+#include "rgraph/pipeline_load.h"
 #define RGRAPH_HAVE_ADAPT 1
 #endif
 
@@ -59,7 +60,7 @@ class LearnOpenGLDemo : public RenderTest {
   Image renderDefault(const Scene& scene) {
     PipelineConfig cfg = loadPipeline(repoPath("pipelines/default.json"));
 #ifdef RGRAPH_HAVE_ADAPT
-    adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
+    adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
 #endif
     return render(cfg, scene, kSize, *shaders);
   }

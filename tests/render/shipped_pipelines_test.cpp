@@ -14,6 +14,7 @@
 
 #if __has_include("rgraph/adapt.h")
 #include "rgraph/adapt.h"
+#include "rgraph/pipeline_load.h"
 #define RGRAPH_HAVE_ADAPT 1
 #endif
 
@@ -141,7 +142,7 @@ TEST_F(ShippedPipelines, EveryPipelineRendersEveryKindOfScene) {
       SCOPED_TRACE(file + " with " + name);
       PipelineConfig cfg = base;
 #ifdef RGRAPH_HAVE_ADAPT
-      adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
+      adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
 #endif
       const uint64_t errors = glContext().debugErrorCount();
       Image img;
@@ -156,7 +157,7 @@ TEST_F(ShippedPipelines, EveryPipelineRendersEveryKindOfScene) {
       const Scene unlit = ambientOnly(scene);
       PipelineConfig unlitCfg = base;
 #ifdef RGRAPH_HAVE_ADAPT
-      adaptToScene(unlitCfg, PassRegistry::builtins(), sceneFeatures(unlit));
+      adaptToScene(unlitCfg, processRegistry(), sceneFeatures(unlit));
 #endif
       const Image ambient = render(unlitCfg, unlit, {64, 64}, *shaders);
       const std::string stem = "shipped-" + std::filesystem::path(file).stem().string();

@@ -10,6 +10,7 @@
 #include "rgraph/gl/executor.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 #include "support/render_util.h"
 
 using namespace rgraph;
@@ -94,7 +95,7 @@ class VelocityPipeline : public RenderTest, public ::testing::WithParamInterface
 TEST_P(VelocityPipeline, FollowsCameraSpinAndCuts) {
   const PipelineConfig cfg = loadPipeline(testPipeline(GetParam()));
   const Scene scene = spinningCube();
-  Executor exec(cfg, PassRegistry::builtins(), *shaders, &scene);
+  Executor exec(cfg, processRegistry(), *shaders, &scene);
   exec.resize(kSize);
   const Primitive& cube = scene.primitives[0];
 

@@ -50,8 +50,11 @@ class RendererHistory : public ::testing::Test {
  protected:
   void SetUp() override {
     testsupport::sharedGlContext();
-    test::addHistoryTestTypes(PassRegistry::builtins());
+    // The test's pass types, in-process: the renderer's own registry (a copy of the built-ins with them).
+    PassRegistry types = PassRegistry::builtins();
+    test::addHistoryTestTypes(types);
     RendererOptions options;
+    options.registry = &types;  // copied by the factory
     options.size = {8, 4};
     Diagnostics diags;
     renderer = Renderer::fromJson(kHistoryPipeline, "history.json", options, diags);

@@ -26,6 +26,7 @@
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/registry.h"
 #include "rgraph/renderer.h"
+#include "rgraph/pipeline_load.h"
 #include "test_support.h"
 
 namespace {
@@ -101,9 +102,9 @@ TEST_F(RendererApi, RendersWhatTheExecutorRendersForTheAdaptedPipeline) {
   const auto viaApi = renderOnce(*r);
 
   PipelineConfig pipeline = testsupport::loadPipelineOrThrow(kDefault);
-  adaptToScene(pipeline, PassRegistry::builtins(), sceneFeatures(scene->scene()));
+  adaptToScene(pipeline, processRegistry(), sceneFeatures(scene->scene()));
   ShaderLibrary shaders;
-  Executor direct(pipeline, PassRegistry::builtins(), shaders, &scene->scene());
+  Executor direct(pipeline, processRegistry(), shaders, &scene->scene());
   direct.resize(kSize);
   direct.renderFrame();
   EXPECT_EQ(differing(viaApi, direct.readOutputRGBA8()), 0u);

@@ -11,6 +11,7 @@
 
 #include "rgraph/config.h"
 #include "rgraph/registry.h"
+#include "rgraph/pipeline_load.h"
 
 namespace fs = std::filesystem;
 using namespace rgraph;
@@ -30,7 +31,7 @@ struct Loaded {
   Plan plan;
 };
 
-Loaded load(const std::string& path, const PassRegistry& registry = PassRegistry::builtins()) {
+Loaded load(const std::string& path, const PassRegistry& registry = processRegistry()) {
   Diagnostics diags;
   ConfigDocument doc = ConfigDocument::parseFile(path, diags);
   EXPECT_TRUE(doc.ok()) << lines(diags);
@@ -62,7 +63,7 @@ class TempPipeline {
 TEST(GBufferLayoutCheck, AReaderOfAnotherLayoutThanItsWriterIsRefusedNamingBothPassesAndPlaces) {
   const std::string file = kChecks + "/gbuffer_layout_mismatch.json";
   Loaded l = load(file);
-  const Diagnostics d = runPassChecks(l.pipeline, l.plan, PassRegistry::builtins());
+  const Diagnostics d = runPassChecks(l.pipeline, l.plan, processRegistry());
   ASSERT_EQ(d.size(), 1u) << lines(d);  // once per writer, not once per slot it wrote
   EXPECT_EQ(d[0].code, DiagCode::pass_check);
   EXPECT_EQ(d[0].pass, "lighting");
@@ -89,7 +90,7 @@ TEST(GBufferLayoutCheck, ADefaultLayoutIsComparedToo) {
                  "   \"material\": \"m\", \"depth\": \"d\", \"position\": \"n\"}, \"outputs\": {\"color\": \"o\"}}],\n"
                  " \"output\": \"o\"}\n");
   Loaded l = load(p.str());
-  const Diagnostics d = runPassChecks(l.pipeline, l.plan, PassRegistry::builtins());
+  const Diagnostics d = runPassChecks(l.pipeline, l.plan, processRegistry());
   const Diagnostic* layout = nullptr;
   for (const auto& x : d)
     if (x.message.find("is not the layout of the G-buffer") != std::string::npos) layout = &x;
@@ -105,7 +106,7 @@ TEST(GBufferLayoutCheck, ADefaultLayoutIsComparedToo) {
 // Matching layouts pass (every shipped pipeline validates: the cli tests).
 TEST(GBufferLayoutCheck, MatchingLayoutsPass) {
   Loaded l = load(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/deferred-compact.json");
-  EXPECT_EQ(lines(runPassChecks(l.pipeline, l.plan, PassRegistry::builtins())), "");
+  EXPECT_EQ(lines(runPassChecks(l.pipeline, l.plan, processRegistry())), "");
 }
 
 // What PassCheckContext::writer gives a check: the writing pass, its slot and

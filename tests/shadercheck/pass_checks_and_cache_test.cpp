@@ -16,6 +16,7 @@
 #include "rgraph/registry.h"
 #include "rgraph/shader_check.h"
 #include "rgraph/shader_check_cache.h"
+#include "rgraph/pipeline_load.h"
 
 namespace fs = std::filesystem;
 using namespace rgraph;
@@ -35,7 +36,7 @@ Loaded load(const std::string& path) {
   ConfigDocument doc = ConfigDocument::parseFile(path, diags);
   EXPECT_TRUE(doc.ok());
   Loaded l;
-  l.pipeline = doc.build(PassRegistry::builtins(), diags);
+  l.pipeline = doc.build(processRegistry(), diags);
   EXPECT_FALSE(hasErrors(diags)) << (diags.empty() ? "" : formatDiagnostic(diags.front()));
   l.plan = compile(l.pipeline.graph);
   return l;
@@ -69,17 +70,17 @@ TEST(PassChecks, ShippedPipelinesPassEveryCheckWithAScene) {
     Loaded l = load(kPipelines + "/" + name);
     PassCheckOptions o;
     o.scenePresent = true;
-    EXPECT_EQ(lines(runPassChecks(l.pipeline, l.plan, PassRegistry::builtins(), o)), "") << name;
+    EXPECT_EQ(lines(runPassChecks(l.pipeline, l.plan, processRegistry(), o)), "") << name;
   }
 }
 
 TEST(PassChecks, SceneIsRequiredOnlyWhenKnownToBeAbsent) {
   Loaded l = load(kPipelines + "/deferred-pbr.json");
   PassCheckOptions unknown;  // plain validate: no scene named, none refused
-  EXPECT_EQ(lines(runPassChecks(l.pipeline, l.plan, PassRegistry::builtins(), unknown)), "");
+  EXPECT_EQ(lines(runPassChecks(l.pipeline, l.plan, processRegistry(), unknown)), "");
   PassCheckOptions none;
   none.scenePresent = false;
-  const Diagnostics d = runPassChecks(l.pipeline, l.plan, PassRegistry::builtins(), none);
+  const Diagnostics d = runPassChecks(l.pipeline, l.plan, processRegistry(), none);
   // geometry, deferred_lighting and forward draw the scene, environment_background and
   // environment_cube read its environment; depth_blit, the other pre-filter passes and tonemap do not.
   ASSERT_EQ(d.size(), 5u) << lines(d);
@@ -99,7 +100,7 @@ TEST(PassChecks, SizesComeFromThePlanAtItsOutputSize) {
   CompileOptions small;
   small.output = {64, 32};
   const Plan plan = compile(l.pipeline.graph, small);
-  const Diagnostics d = runPassChecks(l.pipeline, plan, PassRegistry::builtins());
+  const Diagnostics d = runPassChecks(l.pipeline, plan, processRegistry());
   ASSERT_EQ(d.size(), 1u) << lines(d);
   EXPECT_EQ(d[0].code, DiagCode::pass_check);
   EXPECT_EQ(d[0].slot, "hdr");
@@ -121,7 +122,7 @@ TEST(PassChecks, SlotsCountTheMipLevelsTheyBind) {
        "outputs": {"color": "five_3.mip[3]"}}],
     "output": "hdr"})";
   Diagnostics diags;
-  PipelineConfig pipeline = ConfigDocument::parseText(text, "mips.json", diags).build(PassRegistry::builtins(), diags);
+  PipelineConfig pipeline = ConfigDocument::parseText(text, "mips.json", diags).build(processRegistry(), diags);
   ASSERT_FALSE(hasErrors(diags)) << lines(diags);
   const Plan plan = compile(pipeline.graph);
   auto slot = [&](size_t pass, const std::string& name) {
@@ -218,12 +219,12 @@ TEST(ShaderCheckCache, ACleanPipelineIsAHitTheSecondTime) {
   TempDir dir;
   Loaded l = load(kPipelines + "/deferred-pbr.json");
   ShaderChecker first;
-  const CachedShaderCheck a = checkPipelineCached(first, l.pipeline, l.plan, PassRegistry::builtins(), dir.str());
+  const CachedShaderCheck a = checkPipelineCached(first, l.pipeline, l.plan, processRegistry(), dir.str());
   EXPECT_FALSE(a.hit);
   EXPECT_GT(first.stats().programsCompiled, 0u);
   ASSERT_TRUE(a.diagnostics.empty()) << lines(a.diagnostics);
   ShaderChecker second;
-  const CachedShaderCheck b = checkPipelineCached(second, l.pipeline, l.plan, PassRegistry::builtins(), dir.str());
+  const CachedShaderCheck b = checkPipelineCached(second, l.pipeline, l.plan, processRegistry(), dir.str());
   EXPECT_TRUE(b.hit);
   EXPECT_EQ(second.stats().programsCompiled, 0u) << "a hit must not run glslang";
   EXPECT_TRUE(b.diagnostics.empty());
@@ -234,10 +235,10 @@ TEST(ShaderCheckCache, AFailedCheckIsCheckedAgainEveryTime) {
   TempDir dir;
   Loaded l = load(kChecks + "/lighting_missing_material.json");  // has shader errors and warnings
   ShaderChecker first;
-  const CachedShaderCheck a = checkPipelineCached(first, l.pipeline, l.plan, PassRegistry::builtins(), dir.str());
+  const CachedShaderCheck a = checkPipelineCached(first, l.pipeline, l.plan, processRegistry(), dir.str());
   ASSERT_TRUE(hasErrors(a.diagnostics));
   ShaderChecker second;
-  const CachedShaderCheck b = checkPipelineCached(second, l.pipeline, l.plan, PassRegistry::builtins(), dir.str());
+  const CachedShaderCheck b = checkPipelineCached(second, l.pipeline, l.plan, processRegistry(), dir.str());
   EXPECT_FALSE(b.hit);
   EXPECT_GT(second.stats().programsCompiled, 0u);
   EXPECT_EQ(lines(b.diagnostics), lines(a.diagnostics));
@@ -248,10 +249,10 @@ TEST(ShaderCheckCache, ADifferentParamIsAMiss) {
   TempDir dir;
   Loaded l = load(kPipelines + "/deferred-pbr.json");
   ShaderChecker c;
-  EXPECT_FALSE(checkPipelineCached(c, l.pipeline, l.plan, PassRegistry::builtins(), dir.str()).hit);
+  EXPECT_FALSE(checkPipelineCached(c, l.pipeline, l.plan, processRegistry(), dir.str()).hit);
   l.pipeline.params[1].set("model", std::string("blinn_phong"));  // other defines for the lighting program
-  EXPECT_FALSE(checkPipelineCached(c, l.pipeline, l.plan, PassRegistry::builtins(), dir.str()).hit);
-  EXPECT_TRUE(checkPipelineCached(c, l.pipeline, l.plan, PassRegistry::builtins(), dir.str()).hit);
+  EXPECT_FALSE(checkPipelineCached(c, l.pipeline, l.plan, processRegistry(), dir.str()).hit);
+  EXPECT_TRUE(checkPipelineCached(c, l.pipeline, l.plan, processRegistry(), dir.str()).hit);
 }
 
 // The one entry a clean check of `l` leaves in `dir`.
@@ -265,7 +266,7 @@ fs::path onlyEntry(const TempDir& dir) {
 // The entry a first check of `l` writes into `dir` (empty, with a failure, when not exactly one).
 fs::path firstEntry(const TempDir& dir, const Loaded& l) {
   ShaderChecker c;
-  checkPipelineCached(c, l.pipeline, l.plan, PassRegistry::builtins(), dir.str());
+  checkPipelineCached(c, l.pipeline, l.plan, processRegistry(), dir.str());
   return onlyEntry(dir);
 }
 
@@ -273,7 +274,7 @@ TEST(ShaderCheckCache, DamagedEntriesAreIgnoredAndRewritten) {
   TempDir dir;
   Loaded l = load(kPipelines + "/deferred-pbr.json");
   ShaderChecker c;
-  const CachedShaderCheck fresh = checkPipelineCached(c, l.pipeline, l.plan, PassRegistry::builtins(), dir.str());
+  const CachedShaderCheck fresh = checkPipelineCached(c, l.pipeline, l.plan, processRegistry(), dir.str());
   ASSERT_TRUE(fresh.diagnostics.empty()) << lines(fresh.diagnostics);
   const fs::path entry = onlyEntry(dir);
   ASSERT_FALSE(entry.empty());
@@ -288,11 +289,11 @@ TEST(ShaderCheckCache, DamagedEntriesAreIgnoredAndRewritten) {
         check + ",\"clean\":\"yes\"}", check + ",\"clean\":true,\"more\":1}", text + std::string(5000, ' ')}) {
     std::ofstream(entry, std::ios::trunc) << damaged;
     ShaderChecker again;
-    const CachedShaderCheck r = checkPipelineCached(again, l.pipeline, l.plan, PassRegistry::builtins(), dir.str());
+    const CachedShaderCheck r = checkPipelineCached(again, l.pipeline, l.plan, processRegistry(), dir.str());
     EXPECT_FALSE(r.hit) << "damaged entry used: " << damaged.substr(0, 60);
     EXPECT_EQ(lines(r.diagnostics), lines(fresh.diagnostics));
     ShaderChecker third;
-    EXPECT_TRUE(checkPipelineCached(third, l.pipeline, l.plan, PassRegistry::builtins(), dir.str()).hit)
+    EXPECT_TRUE(checkPipelineCached(third, l.pipeline, l.plan, processRegistry(), dir.str()).hit)
         << "the damaged entry was not rewritten";
   }
 }
@@ -314,7 +315,7 @@ TEST(ShaderCheckCache, AnEntryWithMessagesIsAMissAndNothingIsReplayed) {
         check + ",\"clean\":true,\"diagnostics\":[[0,0,\"crafted\",\"\",\"\",\"\",\"\",0,0,\"\"]]}"}) {
     std::ofstream(entry, std::ios::trunc) << crafted;
     ShaderChecker again;
-    const CachedShaderCheck r = checkPipelineCached(again, l.pipeline, l.plan, PassRegistry::builtins(), dir.str());
+    const CachedShaderCheck r = checkPipelineCached(again, l.pipeline, l.plan, processRegistry(), dir.str());
     EXPECT_FALSE(r.hit) << crafted;
     EXPECT_TRUE(r.diagnostics.empty()) << "replayed from the cache: " << lines(r.diagnostics);
   }
@@ -340,7 +341,7 @@ TEST(ShaderCheckCache, AFifoEntryIsAMissNotAHang) {
     if (fd >= 0) ::close(fd);
   });
   ShaderChecker again;
-  const CachedShaderCheck r = checkPipelineCached(again, l.pipeline, l.plan, PassRegistry::builtins(), dir.str());
+  const CachedShaderCheck r = checkPipelineCached(again, l.pipeline, l.plan, processRegistry(), dir.str());
   done = true;
   rescue.join();
   EXPECT_FALSE(rescued) << "reading the FIFO entry blocked";
@@ -361,20 +362,20 @@ TEST(ShaderCheckCache, AChangedShaderSourceIsAMiss) {
                  "\"type\": \"fullscreen\", \"params\": {\"shader\": \"cache_probe.frag\"}, \"outputs\": {\"color\": "
                  "\"out\"}}], \"output\": \"out\"}",
                  "probe.json", diags)
-                 .build(PassRegistry::builtins(), diags);
+                 .build(processRegistry(), diags);
   ASSERT_FALSE(hasErrors(diags)) << lines(diags);
   const Plan plan = compile(pipeline.graph);
   std::vector<std::string> dirs = {shaders.string()};
   for (auto& d : defaultShaderSearchDirectories()) dirs.push_back(d);
   const std::string cache = (dir.path() / "cache").string();
   ShaderChecker c(dirs);
-  EXPECT_FALSE(checkPipelineCached(c, pipeline, plan, PassRegistry::builtins(), cache).hit);
-  EXPECT_TRUE(checkPipelineCached(c, pipeline, plan, PassRegistry::builtins(), cache).hit);
+  EXPECT_FALSE(checkPipelineCached(c, pipeline, plan, processRegistry(), cache).hit);
+  EXPECT_TRUE(checkPipelineCached(c, pipeline, plan, processRegistry(), cache).hit);
   // Now a compile error: the cached "no error" must not be reused.
   std::ofstream(shaders / "cache_probe.frag", std::ios::trunc)
       << "#version 450 core\nlayout(location = 0) out vec4 o;\nvoid main() { o = vec4(1.0) }\n";
   ShaderChecker after(dirs);
-  const CachedShaderCheck r = checkPipelineCached(after, pipeline, plan, PassRegistry::builtins(), cache);
+  const CachedShaderCheck r = checkPipelineCached(after, pipeline, plan, processRegistry(), cache);
   EXPECT_FALSE(r.hit);
   EXPECT_TRUE(hasErrors(r.diagnostics)) << lines(r.diagnostics);
 }

@@ -9,6 +9,7 @@
 #include "rgraph/config.h"
 #include "rgraph/registry.h"
 #include "rgraph/shader_check.h"
+#include "rgraph/pipeline_load.h"
 
 using namespace rgraph;
 
@@ -39,12 +40,12 @@ Diagnostics errors(const Diagnostics& diags) {
 Diagnostics checkConfig(const std::string& name) {
   Diagnostics config;
   ConfigDocument doc = ConfigDocument::parseFile(kData + "/configs/" + name, config);
-  PipelineConfig pipe = doc.build(PassRegistry::builtins(), config);
+  PipelineConfig pipe = doc.build(processRegistry(), config);
   Plan plan = compile(pipe.graph);
   EXPECT_FALSE(hasErrors(config)) << all(config);
   EXPECT_TRUE(plan.ok()) << all(plan.diagnostics);
   ShaderChecker checker(dirs());
-  return checker.checkPipeline(pipe, plan, PassRegistry::builtins());
+  return checker.checkPipeline(pipe, plan, processRegistry());
 }
 
 void expectOneError(const Diagnostics& diags, const std::string& config, int line, int column,
@@ -97,7 +98,7 @@ class Shapes : public ::testing::Test {
  protected:
   Diagnostics check(const std::string& shader, uint32_t layers, bool cube, Subresource sub = {},
                     std::optional<SamplerState> sampler = std::nullopt, Format format = Format::rgba8) {
-    const PassTypeDesc& type = *PassRegistry::builtins().find("fullscreen");
+    const PassTypeDesc& type = *processRegistry().find("fullscreen");
     ParamSet params = defaultParams(type.params);
     params.set("shader", shader);
     BoundSlot in;

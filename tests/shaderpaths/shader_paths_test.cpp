@@ -1,6 +1,7 @@
-// Shader files are read only from inside the shader folders: `..`, absolute
-// paths and symbolic links that lead out of every folder are refused (and say
-// where they lead), includes too; folders added for the process come first
+// Shader files named relative to the shader folders are read only from inside
+// them: `..` and symbolic links that lead out of every folder are refused (and
+// say where they lead), includes too; absolute paths (from code, never from a
+// config) are used as is; folders added for the process come first
 // (--shader-path) or last (a plugin's own).
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -65,12 +66,32 @@ TEST(ShaderPaths, DotDotThatLeavesTheFoldersIsRefused) {
   EXPECT_TRUE(contains(thrown([&] { resolveShaderFile("../no-such.frag", dirs); }), "not found"));
 }
 
-TEST(ShaderPaths, AbsolutePathsCountOnlyInsideAFolder) {
+// An absolute name comes from code (a plugin's or an application's pass type;
+// a config cannot name one): used as is, inside the folders or not, as
+// docs/writing-a-pass.md says. A missing one is named, not searched for.
+TEST(ShaderPaths, AbsolutePathsAreUsedAsIs) {
   Folders f;
   EXPECT_EQ(findShaderFile((f.root / "ok.frag").string(), f.dirs()), (f.root / "ok.frag").string());
-  const std::string secret = (f.outside / "secret.frag").string();
-  EXPECT_EQ(findShaderFile(secret, f.dirs()), "");
-  EXPECT_TRUE(contains(thrown([&] { resolveShaderFile(secret, f.dirs()); }), "outside the shader folders"));
+  const std::string elsewhere = (f.outside / "secret.frag").string();
+  EXPECT_EQ(findShaderFile(elsewhere, f.dirs()), elsewhere);
+  EXPECT_EQ(resolveShaderFile(elsewhere, f.dirs()), elsewhere);
+  const std::string missing = (f.outside / "missing.frag").string();
+  EXPECT_EQ(findShaderFile(missing, f.dirs()), "");
+  EXPECT_EQ(thrown([&] { resolveShaderFile(missing, f.dirs()); }),
+            "shader file '" + missing + "' not found (an absolute path: used as is, not searched for)");
+}
+
+// A file named by its absolute path includes files beside it (its folder acts as a shader folder for
+// its includes); rgraph's own include/*.glsl are still found in the search path.
+TEST(ShaderPaths, AnAbsolutelyNamedFileIncludesFilesBesideIt) {
+  Folders f;
+  Folders::write(f.outside / "main.frag", "#version 450 core\n#include \"common.glsl\"\nvoid main() {}\n");
+  const ShaderSource src = loadShaderSource((f.outside / "main.frag").string(), {}, f.dirs());
+  ASSERT_EQ(src.resolvedFiles.size(), 2u);
+  EXPECT_EQ(src.resolvedFiles[1], (f.outside / "common.glsl").string());
+  // A relative name is still confined: the same include from inside the folder leads out and is refused.
+  Folders::write(f.root / "inside.frag", "#version 450 core\n#include \"../outside/common.glsl\"\nvoid main() {}\n");
+  EXPECT_TRUE(contains(thrown([&] { loadShaderSource("inside.frag", {}, f.dirs()); }), "outside the shader folders"));
 }
 
 TEST(ShaderPaths, SymbolicLinksThatLeadOutAreRefused) {

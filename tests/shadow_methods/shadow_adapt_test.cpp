@@ -14,6 +14,7 @@
 #include "rgraph/adapt.h"
 #include "rgraph/config.h"
 #include "rgraph/registry.h"
+#include "rgraph/pipeline_load.h"
 
 namespace {
 using namespace rgraph;
@@ -23,7 +24,7 @@ const std::string kDir = std::string(RGRAPH_SOURCE_DIR) + "/tests/shadow_methods
 PipelineConfig load(const std::string& name) {
   Diagnostics diags;
   ConfigDocument doc = ConfigDocument::parseFile(kDir + name, diags);
-  PipelineConfig cfg = doc.build(PassRegistry::builtins(), diags);
+  PipelineConfig cfg = doc.build(processRegistry(), diags);
   EXPECT_FALSE(hasErrors(diags)) << (diags.empty() ? "" : formatDiagnostic(diags.front()));
   return cfg;
 }
@@ -58,7 +59,7 @@ TEST(ShadowAdapt, ACastingSceneKeepsEveryLightingPassShadowed) {
   for (const char* name : kPipelines) {
     SCOPED_TRACE(name);
     PipelineConfig cfg = load(name);
-    adaptToScene(cfg, PassRegistry::builtins(), castingFeatures());
+    adaptToScene(cfg, processRegistry(), castingFeatures());
     const std::vector<size_t> lit = lightingPasses(cfg);
     ASSERT_FALSE(lit.empty());
     for (size_t i : lit) {
@@ -73,7 +74,7 @@ void expectCompiledOut(const SceneFeatures& f, const std::string& reason) {
   for (const char* name : kPipelines) {
     SCOPED_TRACE(name);
     PipelineConfig cfg = load(name);
-    const AdaptReport r = adaptToScene(cfg, PassRegistry::builtins(), f);
+    const AdaptReport r = adaptToScene(cfg, processRegistry(), f);
     for (size_t i : lightingPasses(cfg)) {
       const std::string& pass = cfg.graph.passes[i].name;
       SCOPED_TRACE(pass);
@@ -106,7 +107,7 @@ TEST(ShadowAdapt, ThePassTypesOwnHookRunsFirst) {
   SceneFeatures f = castingFeatures();
   f.pointLights = false;
   f.shadowLights.pop_back();  // the sun alone
-  const AdaptReport r = adaptToScene(cfg, PassRegistry::builtins(), f);
+  const AdaptReport r = adaptToScene(cfg, processRegistry(), f);
   for (size_t i : lightingPasses(cfg)) {
     const PassDecl& p = cfg.graph.passes[i];
     SCOPED_TRACE(p.name);
@@ -122,7 +123,7 @@ TEST(ShadowAdapt, AForwardPassWithNothingBlendedDropsItsShadowInputs) {
     if (cfg.graph.passes[i].type == "forward") cfg.params[i].set("markers", true);  // still enabled: its markers
   SceneFeatures f = castingFeatures();
   f.blendMaterials = false;
-  const AdaptReport r = adaptToScene(cfg, PassRegistry::builtins(), f);
+  const AdaptReport r = adaptToScene(cfg, processRegistry(), f);
   for (size_t i : lightingPasses(cfg)) {
     SCOPED_TRACE(cfg.graph.passes[i].name);
     const bool forward = cfg.graph.passes[i].type == "forward";
@@ -149,14 +150,14 @@ PipelineConfig loadEvsm() {
   Diagnostics diags;
   ConfigDocument doc =
       ConfigDocument::parseFile(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/deferred-pbr-shadows-evsm.json", diags);
-  PipelineConfig cfg = doc.build(PassRegistry::builtins(), diags);
+  PipelineConfig cfg = doc.build(processRegistry(), diags);
   EXPECT_FALSE(hasErrors(diags)) << (diags.empty() ? "" : formatDiagnostic(diags.front()));
   return cfg;
 }
 
 TEST(ShadowAdapt, EvsmMomentsAreSizedForEveryCastingLight) {
   PipelineConfig cfg = loadEvsm();
-  adaptToScene(cfg, PassRegistry::builtins(), castingFeatures());
+  adaptToScene(cfg, processRegistry(), castingFeatures());
   std::vector<std::string> moments;
   for (const PassDecl& p : cfg.graph.passes)
     if (p.type == "shadow_moments") moments.push_back(p.name);
@@ -176,7 +177,7 @@ TEST(ShadowAdapt, EvsmMomentsAreRemovedWithNoCastingLight) {
   PipelineConfig cfg = loadEvsm();
   SceneFeatures f = castingFeatures();
   f.shadowLights.clear();
-  const AdaptReport r = adaptToScene(cfg, PassRegistry::builtins(), f);
+  const AdaptReport r = adaptToScene(cfg, processRegistry(), f);
   for (const PassDecl& p : cfg.graph.passes) {
     EXPECT_NE(p.type, "shadow_moments");
     EXPECT_FALSE(bindsShadows(p)) << p.name;

@@ -30,6 +30,7 @@
 
 #include "rgraph/adapt.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 #include "support/render_util.h"
 #include "support/test_support.h"
 
@@ -104,7 +105,7 @@ class ShadowMethods : public RenderTest {
   }
   Frame renderFrame(PipelineConfig cfg, const std::string& file, const char* hdr, const Scene& scene,
                     bool expectShadows) {
-    adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
+    adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
     for (size_t i = 0; i < cfg.graph.passes.size(); ++i)
       if (cfg.graph.passes[i].type != "shadow_map" && cfg.params[i].has("shadows"))
         EXPECT_EQ(cfg.params[i].getBool("shadows"), expectShadows)

@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "rgraph/gl/executor.h"
+#include "rgraph/pipeline_load.h"
 #include "shadow_probe.h"
 
 namespace {
@@ -28,9 +29,9 @@ class Frames {
  public:
   Frames(const nlohmann::json& doc, const Scene& scene, Extent size) : scene_(scene), size_(size) {
     cfg_ = testsupport::buildPipelineOrThrow(doc.dump(), "deferred-pbr-shadows.json (test)");
-    adaptToScene(cfg_, PassRegistry::builtins(),
+    adaptToScene(cfg_, processRegistry(),
                  sceneFeatures(scene_, scene_.camera, float(size.width) / float(size.height)));
-    exec_ = std::make_unique<Executor>(cfg_, PassRegistry::builtins(), shaders_, &scene_);
+    exec_ = std::make_unique<Executor>(cfg_, processRegistry(), shaders_, &scene_);
     exec_->resize(size);
   }
   rtest::Image render(const Camera& camera) {

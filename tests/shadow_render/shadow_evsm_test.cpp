@@ -12,6 +12,7 @@
 #include <string>
 
 #include "rgraph/gl/executor.h"
+#include "rgraph/pipeline_load.h"
 #include "shadow_probe.h"
 
 namespace {
@@ -168,9 +169,9 @@ Moments renderMoments(int blur) {
   }
   PipelineConfig cfg = testsupport::buildPipelineOrThrow(doc.dump(), "deferred-pbr-shadows-evsm.json (test)");
   const Extent size{96, 64};
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene, scene.camera, 1.5f));
+  adaptToScene(cfg, processRegistry(), sceneFeatures(scene, scene.camera, 1.5f));
   ShaderLibrary shaders;
-  Executor exec(cfg, PassRegistry::builtins(), shaders, &scene);
+  Executor exec(cfg, processRegistry(), shaders, &scene);
   exec.setStateChecks(true);  // the pass's changedState() answer (0) is read back and checked too
   exec.resize(size);
   exec.renderFrame();

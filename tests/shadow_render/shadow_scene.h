@@ -14,6 +14,7 @@
 #include "rgraph/passes/shadow_views.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 #include "support/render_util.h"
 #include "support/test_support.h"
 
@@ -121,7 +122,7 @@ inline nlohmann::json pipelineDoc(const std::string& filter) {
 inline rtest::Image renderDoc(const nlohmann::json& doc, const Scene& scene, Extent size, ShaderLibrary& shaders) {
   PipelineConfig cfg = testsupport::buildPipelineOrThrow(doc.dump(), "deferred-pbr-shadows.json (test)");
   const Camera& cam = scene.camera;
-  adaptToScene(cfg, PassRegistry::builtins(),
+  adaptToScene(cfg, processRegistry(),
                sceneFeatures(scene, cam, float(size.width) / float(size.height)));
   return rtest::render(cfg, scene, size, shaders);
 }

@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include "rgraph/error.h"
+#include "rgraph/pipeline_load.h"
 #include "stability_util.h"
 #include "support/render_util.h"
 
@@ -136,7 +137,7 @@ int expectFiniteHdr(const std::string& caseName, const Scene& scene, const std::
   int failures = 0;
   for (const auto& file : pipelines) {
     PipelineConfig cfg = repoPipeline(file);
-    Executor exec(cfg, PassRegistry::builtins(), sharedShaders(), &scene);
+    Executor exec(cfg, processRegistry(), sharedShaders(), &scene);
     exec.resize(size);
     std::string why;
     EXPECT_TRUE(liveToTheEnd(exec.plan(), "hdr", &why)) << file << ": " << why;

@@ -11,6 +11,7 @@
 #include <iostream>
 
 #include "rgraph/gl/objects.h"
+#include "rgraph/pipeline_load.h"
 #include "stability_util.h"
 
 using namespace rgraph;
@@ -59,7 +60,7 @@ TEST_F(Stability, ResizeHundredTimesDeferredPipeline) {
   size_t owned = 0, compared = 0, objectChanges = 0;
   {
     ShaderLibrary shaders;  // its programs are counted too: made and freed inside this scope
-    Executor exec(cfg, PassRegistry::builtins(), shaders, &scene);
+    Executor exec(cfg, processRegistry(), shaders, &scene);
     exec.resize(first);
     exec.renderFrame();
     firstImage = exec.readOutputRGBA8();
@@ -88,7 +89,7 @@ TEST_F(Stability, ResizeHundredTimesDeferredPipeline) {
       EXPECT_EQ(gl::liveObjectsTotal(), objectsAtFirst) << "resize " << i << ": " << kindsText(liveByKind());
       if (i % 10 == 9) {
         // The same picture a fresh executor renders at this size.
-        Executor fresh(cfg, PassRegistry::builtins(), shaders, &scene);
+        Executor fresh(cfg, processRegistry(), shaders, &scene);
         fresh.resize(size);
         fresh.renderFrame();
         const Diff d = compare8(fresh.readOutputRGBA8(), img, size);

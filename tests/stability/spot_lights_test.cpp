@@ -21,6 +21,7 @@
 
 #include <GL/glcorearb.h>
 
+#include "rgraph/pipeline_load.h"
 #include "stability_util.h"
 
 using namespace rgraph;
@@ -235,7 +236,7 @@ TEST_F(Stability, ClustersListSpotLightsOnlyWhereTheirConesReach) {
     for (json& pass : doc["passes"])
       if (pass["name"] == "lighting") pass["inputs"]["clusters"] = "clusters";
     const PipelineConfig cfg = pipelineFromJson(doc, "clustered");
-    Executor exec(cfg, PassRegistry::builtins(), sharedShaders(), &s);
+    Executor exec(cfg, processRegistry(), sharedShaders(), &s);
     exec.resize(kSize);
     exec.renderFrame();
     GLint buffer = 0;

@@ -8,6 +8,7 @@
 #include "rgraph/error.h"
 #include "support/test_support.h"
 #include "rgraph/image.h"
+#include "rgraph/pipeline_load.h"
 
 namespace rgraph::stab {
 
@@ -205,7 +206,7 @@ nlohmann::json forwardPipeline(const LightingParams& l, double gamma) {
 // ---------------------------------------------------------------- frames
 
 Frame renderFrame(const PipelineConfig& cfg, const Scene& scene, Extent size, const std::vector<std::string>& targets) {
-  Executor exec(cfg, PassRegistry::builtins(), sharedShaders(), &scene);
+  Executor exec(cfg, processRegistry(), sharedShaders(), &scene);
   exec.resize(size);
   exec.renderFrame();
   Frame f;

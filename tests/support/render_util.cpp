@@ -12,6 +12,7 @@
 #include "rgraph/error.h"
 #include "support/test_support.h"
 #include "rgraph/image.h"
+#include "rgraph/pipeline_load.h"
 
 namespace rgraph::rtest {
 
@@ -54,7 +55,7 @@ void setParam(PipelineConfig& cfg, const std::string& pass, const std::string& k
 
 Image render(const PipelineConfig& cfg, const Scene& scene, Extent size, ShaderLibrary& shaders,
              const std::function<void(Executor&)>& inspect) {
-  Executor exec(cfg, PassRegistry::builtins(), shaders, &scene);
+  Executor exec(cfg, processRegistry(), shaders, &scene);
   exec.resize(size);
   exec.renderFrame();
   Image img;

@@ -28,6 +28,7 @@
 #include "rgraph/passes/invocation_order.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 #include "support/render_util.h"
 #include "support/test_support.h"
 
@@ -134,8 +135,8 @@ class InvocationOrder : public rtest::RenderTest {
   Frame render(PipelineConfig cfg, const std::vector<std::string>& passes, int mode, const Scene& scene,
                const Reader& read) {
     for (const auto& p : passes) rtest::setParam(cfg, p, invocations::kPermuteParam, int64_t{mode});
-    adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
-    Executor exec(cfg, PassRegistry::builtins(), *shaders, &scene);
+    adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
+    Executor exec(cfg, processRegistry(), *shaders, &scene);
     exec.resize(kSize);
     exec.renderFrame();
     Frame f;

@@ -14,6 +14,7 @@
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 #include "support/render_util.h"
 
 namespace {
@@ -24,8 +25,8 @@ using TiledBarriers = rtest::RenderTest;  // fails on GL debug errors
 TEST_F(TiledBarriers, ShippedPipelineGetsBarriersFromDeclaredAccess) {
   const Scene scene = makeManyLightsScene(8);
   PipelineConfig cfg = rtest::loadPipeline(rtest::repoPath("pipelines/deferred-tiled.json"));
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
-  Executor exec(cfg, PassRegistry::builtins(), *shaders, &scene);
+  adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
+  Executor exec(cfg, processRegistry(), *shaders, &scene);
   exec.resize({96, 64});
   const std::vector<uint32_t> bits = exec.memoryBarriers();
   ASSERT_EQ(bits.size(), exec.plan().order.size());

@@ -25,6 +25,7 @@
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "rgraph/pipeline_load.h"
 #include "support/render_util.h"
 #include "support/test_support.h"
 
@@ -115,8 +116,8 @@ size_t overflowedBins() {
 std::vector<float> renderHdr(const Options& o, const Scene& scene, Extent size, size_t* binsOverflowed = nullptr) {
   ShaderLibrary shaders;
   PipelineConfig cfg = pipeline(o);
-  adaptToScene(cfg, PassRegistry::builtins(), sceneFeatures(scene));
-  Executor exec(cfg, PassRegistry::builtins(), shaders, &scene);
+  adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
+  Executor exec(cfg, processRegistry(), shaders, &scene);
   exec.resize(size);
   exec.renderFrame();
   if (binsOverflowed) *binsOverflowed = overflowedBins();

@@ -205,10 +205,11 @@ void Viewer::pollFiles() {
 void Viewer::applyParam(const view::ScriptCommand& c) {
   const std::string where = options_.script + ":" + std::to_string(c.line) + ": error: ";
   std::string error;
-  const std::optional<std::string> text = editor_.withParam(c.words[0], c.words[1], c.words[2], error);
+  const std::optional<std::string> text =
+      editor_.withParam(c.words[0], c.words[1], c.words[2], renderer_->passTypes(), error);
   if (!text) return report("param", false, {where + error});
   Diagnostics diags;
-  if (renderer_->reloadJson(*text, diags)) {
+  if (renderer_->reloadJson(*text, diags, editor_.path())) {
     editor_.accept(*text);
     return report("param", true, {});
   }
@@ -225,7 +226,7 @@ void Viewer::applyParam(const view::ScriptCommand& c) {
 
 void Viewer::applyPanelEdit(const std::string& text) {
   Diagnostics diags;
-  if (renderer_->reloadJson(text, diags)) return editor_.accept(text);
+  if (renderer_->reloadJson(text, diags, editor_.path())) return editor_.accept(text);
   std::string joined;
   for (const auto& l : errorLines(editor_.inFile(diags))) joined += l + "\n";
   editor_.reject(joined);
@@ -423,7 +424,7 @@ int runView(const ViewOptions& options) {
   if (!checkOutputs({{"the pipeline", pipelinePath}, {"--scene", options.scene}, {"--script", options.script}},
                     outputs))
     return kExitFailure;
-  RendererOptions rendererOptions;
+  RendererOptions rendererOptions = cli::rendererOptions();  // the command's pass types and --plugin-path
   rendererOptions.size = Extent{options.size.width, options.size.height};
   rendererOptions.maxTextureSize = options.size.maxTextureSize;
   rendererOptions.maxTextureSizeOrigin = compileOptions(0, 0, options.size.maxTextureSize).maxTextureSizeOrigin;

@@ -60,7 +60,11 @@ class ParamEditor {
   // The script command `param PASS NAME JSON-VALUE`: the new JSON text, or
   // nullopt with `error` set (unknown pass, a parameter the pass type does
   // not declare, value not JSON). Value types and ranges are checked by
-  // Renderer::reloadJson, which locates them in the text.
+  // Renderer::reloadJson, which locates them in the text. `types`: the
+  // renderer's pass types (Renderer::passTypes: its plugins' too).
+  std::optional<std::string> withParam(const std::string& pass, const std::string& name, const std::string& jsonValue,
+                                       const PassRegistry& types, std::string& error);
+  // The same with the built-in pass types only.
   std::optional<std::string> withParam(const std::string& pass, const std::string& name, const std::string& jsonValue,
                                        std::string& error);
   // Takes an edit that the renderer accepted as the current text.

@@ -200,14 +200,15 @@ std::string ParamEditor::edited(size_t passIndex, const std::string& name, const
 }
 
 std::optional<std::string> ParamEditor::withParam(const std::string& pass, const std::string& name,
-                                                  const std::string& jsonValue, std::string& error) {
+                                                  const std::string& jsonValue, const PassRegistry& types,
+                                                  std::string& error) {
   const long index = findPass(doc_, pass);
   if (index < 0) {
     error = path_ + ": no pass named '" + pass + "' (passes: " + passNames(doc_) + ")";
     return std::nullopt;
   }
   const std::string type = stringField(doc_["passes"][size_t(index)], "type");
-  if (const PassTypeDesc* desc = PassRegistry::builtins().find(type); desc && !desc->findParam(name)) {
+  if (const PassTypeDesc* desc = types.find(type); desc && !desc->findParam(name)) {
     std::string names;
     for (const ParamDecl& d : desc->params) names += (names.empty() ? "" : ", ") + d.name;
     error = path_ + ": pass '" + pass + "' (type " + type + ") has no parameter '" + name +
@@ -224,8 +225,12 @@ std::optional<std::string> ParamEditor::withParam(const std::string& pass, const
   return edited(size_t(index), name, value);
 }
 
+std::optional<std::string> ParamEditor::withParam(const std::string& pass, const std::string& name,
+                                                  const std::string& jsonValue, std::string& error) {
+  return withParam(pass, name, jsonValue, PassRegistry::builtins(), error);
+}
+
 std::optional<std::string> ParamEditor::draw(const Renderer& renderer) {
-  (void)renderer;  // the pass types come from the registry the renderer loaded its plugins into
   std::optional<std::string> result;
   ImGui::TextUnformatted(path_.c_str());
   if (modified_) ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "%s", modifiedNote().c_str());
@@ -254,7 +259,7 @@ std::optional<std::string> ParamEditor::draw(const Renderer& renderer) {
   for (size_t i = 0; i < passes.size(); ++i) {
     const Json& pass = passes[i];
     const std::string name = stringField(pass, "name", "?"), type = stringField(pass, "type", "?");
-    const PassTypeDesc* desc = PassRegistry::builtins().find(type);
+    const PassTypeDesc* desc = renderer.passTypes().find(type);  // its own: built-ins and its plugins
     ImGui::PushID(int(i));
     if (ImGui::TreeNodeEx("pass", ImGuiTreeNodeFlags_DefaultOpen, "%s (%s)", name.c_str(), type.c_str())) {
       if (!desc)

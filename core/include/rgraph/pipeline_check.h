@@ -30,7 +30,7 @@ struct PipelineCheckOptions {
   ShaderCheckMode shaders = ShaderCheckMode::run;
   // Whether the pipeline runs with a scene; nullopt: unknown (see PassCheckOptions).
   std::optional<bool> scenePresent;
-  // The pass types; nullptr: PassRegistry::builtins().
+  // The pass types; nullptr: processRegistry() (rgraph/pipeline_load.h).
   const PassRegistry* registry = nullptr;
   // Shader folders searched before defaultShaderSearchDirectories() (which
   // already holds the process's --shader-path folders and loaded plugins' folders).

@@ -29,8 +29,11 @@ struct PipelineLoadOptions {
   // Folders searched for plugin names before $RGRAPH_PLUGIN_PATH and
   // rgraph's own plugin folder (rgraph/plugin.h).
   std::vector<std::string> pluginDirectories;
-  // Where plugins are registered and loaded. nullptr: PassRegistry::builtins()
-  // and the process-wide processPluginLoader() (plugins stay loaded until exit).
+  // The pass types the pipeline may name, and the loader that loads its
+  // plugins into that registry (bound to it). A registry without a loader:
+  // a loader of its own for the one call. Neither: processRegistry() and
+  // processPluginLoader(), shared by the whole process. Renderer,
+  // rgraph/testing.h and the command line always pass their own.
   PassRegistry* registry = nullptr;
   PluginLoader* loader = nullptr;
 };
@@ -51,8 +54,13 @@ PipelineConfig loadPipelineFileOrThrow(const std::string& path, const PipelineLo
 PipelineConfig loadPipelineTextOrThrow(std::string_view json, const std::string& nameForMessages,
                                        const PipelineLoadOptions& options = {});
 
-// The loader bound to PassRegistry::builtins() that the functions above use
-// by default (one per process, so that a plugin is opened once).
+// The registry and loader the functions above use when the options name none:
+// a copy of PassRegistry::builtins() made at first use, and every plugin
+// loaded through them since (one per process: what one caller loads, every
+// later one sees). For programs that load known pipelines (rgraph's own
+// benchmarks and tests); an application or a test suite of its own gives
+// each Renderer or compile its own registry instead (rgraph/registry.h).
+PassRegistry& processRegistry();
 PluginLoader& processPluginLoader();
 
 }  // namespace rgraph

@@ -1,6 +1,19 @@
 // The pass registry: every pass type the config may name. Built-in passes
 // register themselves at static-initialisation time with RGRAPH_REGISTER_PASS;
 // plugins register through the entry point the plugin loader calls.
+//
+// One registry per user, never a shared one: a Renderer, each
+// rgraph::testing::compileFile/compileText call and the command line work on
+// their own copy of builtins(), with the types the application adds
+// (RendererOptions::registry, testing::Options::registry) and the plugins
+// their pipelines load on top. builtins() itself holds the built-in types
+// only and cannot be changed, so nothing one renderer or one test loads or
+// adds is seen by another (docs/writing-a-pass.md, "Pass types of your own").
+//
+//   PassRegistry types = PassRegistry::builtins();   // a copy
+//   types.add(makeOutlinePassType());                // your own, in-process
+//   RendererOptions options;
+//   options.registry = &types;                       // copied by the renderer
 #pragma once
 
 #include <map>
@@ -22,13 +35,16 @@ class PassRegistry {
   // Closest registered name within a small edit distance, or "".
   std::string suggest(std::string_view name) const;
 
-  // The process-wide registry holding the built-in pass types.
-  static PassRegistry& builtins();
+  // The built-in pass types, complete once librgraph is loaded and never
+  // changed afterwards (read-only: copy it to add types of your own).
+  static const PassRegistry& builtins();
   // Built-in types that failed to register (a bug in rgraph itself); the CLI
   // prints these instead of aborting during static initialisation.
   static std::vector<std::string>& builtinErrors();
 
  private:
+  friend struct PassRegistrar;
+  static PassRegistry& mutableBuiltins();  // RGRAPH_REGISTER_PASS only
   std::map<std::string, PassTypeDesc, std::less<>> types_;
 };
 

@@ -34,7 +34,7 @@
 //
 // Re-entry. While render() runs, its setAfterPass callback may use the
 // read-backs (readResourceRGBA32F, readOutputRGBA8) and the const queries;
-// any other Renderer call from inside it (reload, reloadJson, setSize,
+// any other Renderer call from inside it (reload, reloadJson, load, setSize,
 // setScene, setCamera, importTexture, render itself, ...) throws RuntimeError
 // naming the call ("called from inside a render() callback") and changes
 // nothing: nothing is deferred to the end of the frame.
@@ -93,6 +93,7 @@ namespace rgraph {
 
 class Executor;
 class GpuScene;
+class PassRegistry;
 
 // A scene object's handle (RenderScene::addInstance, instances()): stays
 // valid until that object is removed, whatever else is added or removed;
@@ -123,6 +124,14 @@ class RenderScene {
   // Throws RuntimeError naming the file and the problem.
   static std::shared_ptr<RenderScene> load(const std::string& spec);
   // A scene built in code. Throws RuntimeError when it breaks Scene::validate().
+  // After validating it derives what loaders fill in and code may leave out
+  // (what is given is kept): a MeshData::bounds left empty from the mesh's
+  // positions (MeshData::updateBounds), a Primitive::bounds left empty from
+  // its mesh's bounds, transform and instances (Primitive::worldBounds), and
+  // a point or spot light's radius left 0 from its attenuation (lightRadius
+  // at kLightThreshold; 0 again for a light too dim to reach it). The camera,
+  // materials and everything else are taken as given. load() goes through
+  // here too (its loaders fill these in already).
   static std::shared_ptr<RenderScene> fromScene(Scene scene);
   ~RenderScene();
   RenderScene(const RenderScene&) = delete;
@@ -232,6 +241,13 @@ class RenderScene {
 };
 
 struct RendererOptions {
+  // The pass types pipelines may name; nullptr: PassRegistry::builtins().
+  // Pass types of the application's own code: a copy of the built-ins with
+  // yours added (rgraph/registry.h, docs/embedding.md). The renderer copies
+  // it when it is made (later changes to yours are not seen) and loads the
+  // plugins its pipelines name into its copy: each renderer has its own
+  // types, and nothing it loads reaches another renderer or the built-ins.
+  const PassRegistry* registry = nullptr;
   // Folders searched for the plugins the config names, before
   // $RGRAPH_PLUGIN_PATH and rgraph's own plugin folder (rgraph/plugin.h).
   std::vector<std::string> pluginDirectories;
@@ -260,6 +276,16 @@ struct RendererOptions {
   bool adaptToScene = true;
   // The GL state contract (top of this file).
   bool restoreGlState = true;
+  // Keep the scene's depth of every frame for the caller's own drawing over
+  // the output with a depth test (Renderer::outputDepthTexture): one depth
+  // blit per frame, right after the pass that last writes it (later passes
+  // may reuse its memory). Off: no copy, and outputDepthTexture() is 0.
+  bool keepDepth = false;
+  // The resource keepDepth copies; empty: found in the plan, the last depth
+  // attachment at the output's size (one layer) of a pass that draws the
+  // scene (forwardDepth in default.json, depth in forward.json). A name no
+  // pass that runs attaches as depth makes render() throw RuntimeError.
+  std::string depthResource;
   // Time passes with GL_TIME_ELAPSED queries on a software renderer too
   // (Executor::setGpuTimerQueries; a GPU always uses them). For tests of the
   // query path: llvmpipe's query values are poor.
@@ -341,11 +367,12 @@ class Renderer {
   // the last good frame stays on screen. Does nothing before the first frame.
   void present(uint32_t framebuffer, const Viewport& viewport = {});
 
-  // Re-reads the pipeline file (or takes new JSON text: its messages name the
-  // file the renderer came from, and plugin paths stay relative to its
-  // folder) and the shader files that changed on disk, checks it as the
-  // factories do and, when nothing is wrong, replaces the pipeline. Once a
-  // frame was drawn the new pipeline is built at once, so that even what only
+  // Re-reads the pipeline file (or takes new JSON text: its messages name
+  // `nameForMessages`, "<json>" when empty, and plugin paths stay relative to
+  // the folder of the renderer's file, or fromJson's baseDir) and the shader
+  // files that changed on disk, checks it as the factories do and, when
+  // nothing is wrong, replaces the pipeline. Once a frame was drawn the new
+  // pipeline is built at once, so that even what only
   // the device refuses (a device_error diagnostic) leaves the last good
   // pipeline running. Programs whose shader files did not change are reused.
   // On errors returns false, diags says why, and nothing changed.
@@ -355,7 +382,19 @@ class Renderer {
   // next change). A renderer made from text: reload() takes the last text
   // (fromJson's, or the last reloadJson accepted) again.
   bool reload(Diagnostics& diags);
-  bool reloadJson(std::string_view json, Diagnostics& diags);
+  bool reloadJson(std::string_view json, Diagnostics& diags, const std::string& nameForMessages = "<json>");
+  // Another pipeline file, taken as reload() takes one (checked first, built
+  // at once when a frame was drawn; on errors false, diags naming
+  // `pipelinePath`, and the old pipeline keeps running, still bound to its
+  // file). On success the renderer is bound to the new file: reload() reads
+  // it, watchedFiles() lists it instead of the old one, plugin paths in it
+  // are relative to its folder, and imports are kept as reload() keeps them.
+  bool load(const std::string& pipelinePath, Diagnostics& diags);
+  // This renderer's pass types: RendererOptions::registry's (or the
+  // built-ins), plus those of the plugins its pipelines loaded.
+  const PassRegistry& passTypes() const;
+  // The plugin libraries its pipelines loaded (absolute paths), in load order.
+  std::vector<std::string> loadedPlugins() const;
   // The files whose changes reload() picks up: the pipeline file (when the
   // renderer came from one) and every shader file its programs were compiled
   // from, includes too (known once a frame was drawn), and, for a shader
@@ -407,6 +446,23 @@ class Renderer {
 
   uint32_t outputTexture() const;
   Extent outputExtent() const;
+  // The scene's depth of the last frame, for drawing over the output with a
+  // depth test (RendererOptions::keepDepth; docs/embedding.md, "Drawing over
+  // the frame"): a GL_TEXTURE_2D the renderer owns, one sample (a
+  // multisampled depth is resolved by the blit), of the depth resource's
+  // format (outputDepthFormat: GL_DEPTH24_STENCIL8 or GL_DEPTH_COMPONENT32F
+  // in the shipped pipelines) and size (outputDepthExtent: the output's
+  // unless depthResource names another), holding window-space depth (0 near,
+  // 1 far) of camera().projection(aspect) * camera().view(), jittered when
+  // the pipeline jitters. Sample it, or blit it into a depth buffer of the
+  // same format. 0 when keepDepth is off, before the first frame, and for a
+  // pipeline with no scene depth. Rewritten by every render(); a new texture
+  // when its size or format changes.
+  uint32_t outputDepthTexture() const;
+  uint32_t outputDepthFormat() const;  // its GL internal format, 0 without one
+  Extent outputDepthExtent() const;
+  // The resource it is copied from ("" without one).
+  std::string outputDepthResource() const;
   // The output as RGBA8, rows top-down (stored bytes of an sRGB output; a
   // one-channel output is grey).
   std::vector<uint8_t> readOutputRGBA8() const;

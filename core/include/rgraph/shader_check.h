@@ -97,10 +97,12 @@ std::vector<std::string> defaultShaderSearchDirectories();
 void addShaderSearchDirectory(const std::string& dir);
 void addPluginShaderDirectory(const std::string& dir);
 
-// Full path of a shader file: absolute paths as they are, relative ones in
-// the first directory that has them. Only files inside one of `dirs` count
-// (symbolic links resolved: `..`, absolute paths and links that lead out of
-// every folder are not found). "" when not found.
+// Full path of a shader file: absolute paths as they are (they come from
+// code: a plugin's or an application's pass type; a config cannot name one),
+// relative ones in the first directory that has them. A relative name counts
+// only inside one of `dirs` (symbolic links resolved: `..` and links that
+// lead out of every folder are not found). "" when not found. A file named
+// by its absolute path may include files beside it.
 std::string findShaderFile(const std::string& file, const std::vector<std::string>& dirs);
 // Like findShaderFile but throws RuntimeError listing the directories searched,
 // or saying where a name that leads outside them resolves to.

@@ -19,9 +19,11 @@
 //   }
 //
 // Pass types: the built-in ones (PassRegistry::builtins(), filled in by
-// librgraph: link rgraph::rgraph) plus the plugins the config's "plugins"
-// array names, found in Options::pluginDirectories first. A program linked
-// only to the GL-free libraries passes its own registry.
+// librgraph: link rgraph::rgraph), or Options::registry, plus the plugins the
+// config's "plugins" array names, found in Options::pluginDirectories first.
+// Every compile has its own copy of those types, with its own plugins: no
+// compile sees what an earlier one loaded. A program linked only to the
+// GL-free libraries passes its own registry.
 //
 // Nothing here throws for a bad config, and no query crashes on a name the
 // pipeline does not have: each says what it returns then (false, an empty
@@ -45,7 +47,6 @@
 namespace rgraph {
 
 class PassRegistry;
-class PluginLoader;
 
 namespace testing {
 
@@ -75,12 +76,13 @@ struct Options {
   bool alias = true;
   // Largest texture side allowed (0: no limit); 16384 is the OpenGL 4.5 minimum.
   uint32_t maxTextureSize = 16384;
-  // The pass types and where plugins are loaded into. nullptr: the built-in
-  // registry and the process's plugin loader. With a registry of your own,
-  // give a loader bound to it too if the config names plugins (otherwise
-  // they load into the built-in registry and their types stay unknown).
-  PassRegistry* registry = nullptr;
-  PluginLoader* loader = nullptr;
+  // The pass types the pipeline may name (nullptr: PassRegistry::builtins()):
+  // your own, registered in-process, beside or instead of the built-in ones.
+  // Each compile copies it and loads the config's plugins into the copy, then
+  // drops the copy: nothing a compile loads stays registered for the next, so
+  // tests pass in any order (a type of yours and a plugin's of the same name
+  // clash only within one compile).
+  const PassRegistry* registry = nullptr;
 };
 
 // A texture the plan allocates, and the resources that live in it.

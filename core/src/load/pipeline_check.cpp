@@ -2,6 +2,7 @@
 
 #include "rgraph/config.h"
 #include "rgraph/pass_check.h"
+#include "rgraph/pipeline_load.h"
 #include "rgraph/registry.h"
 #include "rgraph/shader_check.h"
 #include "rgraph/shader_check_cache.h"
@@ -10,7 +11,7 @@ namespace rgraph {
 
 Plan checkPipeline(const PipelineConfig& pipeline, const CompileOptions& compileOptions,
                    const PipelineCheckOptions& options, Diagnostics& diags) {
-  const PassRegistry& registry = options.registry ? *options.registry : PassRegistry::builtins();
+  const PassRegistry& registry = options.registry ? *options.registry : processRegistry();
   Plan plan = compile(pipeline.graph, compileOptions);
   diags.insert(diags.end(), plan.diagnostics.begin(), plan.diagnostics.end());
   if (options.passChecks) {

@@ -1,6 +1,7 @@
 #include "rgraph/pipeline_load.h"
 
 #include <filesystem>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "rgraph/error.h"
@@ -9,8 +10,13 @@
 
 namespace rgraph {
 
+PassRegistry& processRegistry() {
+  static PassRegistry registry = PassRegistry::builtins();
+  return registry;
+}
+
 PluginLoader& processPluginLoader() {
-  static PluginLoader loader(PassRegistry::builtins());
+  static PluginLoader loader(processRegistry());
   return loader;
 }
 
@@ -39,8 +45,12 @@ void suggestPlugins(const ConfigDocument& doc, const PluginLoader& loader, Diagn
 std::optional<PipelineConfig> finishLoad(const ConfigDocument& doc, const std::string& baseDir,
                                          const PipelineLoadOptions& options, Diagnostics& diags) {
   if (!doc.ok() || hasErrors(diags)) return std::nullopt;
-  PassRegistry& registry = options.registry ? *options.registry : PassRegistry::builtins();
-  PluginLoader& loader = options.loader ? *options.loader : processPluginLoader();
+  PassRegistry& registry = options.registry ? *options.registry : processRegistry();
+  // A registry without a loader: one for this load, bound to it (the
+  // process's loader would register the plugins elsewhere).
+  std::optional<PluginLoader> own;
+  if (!options.loader && options.registry) own.emplace(registry);
+  PluginLoader& loader = options.loader ? *options.loader : own ? *own : processPluginLoader();
   for (const auto& dir : options.pluginDirectories) loader.addSearchDirectory(dir);
   // Plugins before the pass types are checked.
   const std::vector<std::string> plugins = doc.plugins();

@@ -7,6 +7,7 @@
 #include "rgraph/pass_check.h"
 #include "rgraph/pipeline_check.h"
 #include "rgraph/pipeline_load.h"
+#include "rgraph/plugin.h"
 #include "rgraph/registry.h"
 
 namespace rgraph::testing {
@@ -14,14 +15,13 @@ namespace rgraph::testing {
 // Loads, adapts and checks; the one place that fills a CompiledPipeline in.
 struct CompiledPipelineBuilder {
   static CompiledPipeline finish(std::string source, std::optional<PipelineConfig> loaded, Diagnostics diags,
-                                 const Options& options) {
+                                 const Options& options, const PassRegistry& registry) {
     CompiledPipeline r;
     r.source_ = std::move(source);
     r.diagnostics_ = std::move(diags);
     if (!loaded) return r;
     r.loaded_ = true;
     r.pipeline_ = std::move(*loaded);
-    const PassRegistry& registry = options.registry ? *options.registry : PassRegistry::builtins();
     if (options.scene) r.adaptNotes_ = adaptToScene(r.pipeline_, registry, *options.scene).notes;
     CompileOptions compile;
     compile.output = options.size;
@@ -42,13 +42,25 @@ struct CompiledPipelineBuilder {
 
 namespace {
 
-PipelineLoadOptions loadOptions(const Options& options) {
-  PipelineLoadOptions lo;
-  lo.pluginDirectories = options.pluginDirectories;
-  lo.registry = options.registry;
-  lo.loader = options.loader;
-  return lo;
-}
+// The pass types of one compile: a copy of the caller's registry (or of the
+// built-in types) with the config's plugins loaded into it and dropped with
+// it, so that no compile sees what another loaded or added (each test its own).
+struct CompileTypes {
+  PassRegistry registry;
+  PluginLoader loader{registry};
+  explicit CompileTypes(const Options& options)
+      : registry(options.registry ? *options.registry : PassRegistry::builtins()) {}
+  CompileTypes(const CompileTypes&) = delete;
+  CompileTypes& operator=(const CompileTypes&) = delete;
+
+  PipelineLoadOptions loadOptions(const Options& options) {
+    PipelineLoadOptions lo;
+    lo.pluginDirectories = options.pluginDirectories;
+    lo.registry = &registry;
+    lo.loader = &loader;
+    return lo;
+  }
+};
 
 std::string q(std::string_view s) { return "'" + std::string(s) + "'"; }
 
@@ -71,15 +83,17 @@ std::string bytesText(uint64_t bytes) {
 
 CompiledPipeline compileFile(const std::string& path, const Options& options) {
   Diagnostics diags;
-  std::optional<PipelineConfig> p = loadPipelineFile(path, loadOptions(options), diags);
-  return CompiledPipelineBuilder::finish(path, std::move(p), std::move(diags), options);
+  CompileTypes types(options);
+  std::optional<PipelineConfig> p = loadPipelineFile(path, types.loadOptions(options), diags);
+  return CompiledPipelineBuilder::finish(path, std::move(p), std::move(diags), options, types.registry);
 }
 
 CompiledPipeline compileText(std::string_view json, const Options& options, const std::string& nameForMessages,
                              const std::string& baseDir) {
   Diagnostics diags;
-  std::optional<PipelineConfig> p = loadPipelineText(json, nameForMessages, baseDir, loadOptions(options), diags);
-  return CompiledPipelineBuilder::finish(nameForMessages, std::move(p), std::move(diags), options);
+  CompileTypes types(options);
+  std::optional<PipelineConfig> p = loadPipelineText(json, nameForMessages, baseDir, types.loadOptions(options), diags);
+  return CompiledPipelineBuilder::finish(nameForMessages, std::move(p), std::move(diags), options, types.registry);
 }
 
 // ---------------------------------------------------------------- diagnostics

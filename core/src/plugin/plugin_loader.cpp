@@ -109,6 +109,13 @@ class Host final : public PluginHost {
   bool addPassType(PassTypeDesc desc) override {
     desc.origin = path_;
     if (const PassTypeDesc* existing = target_.find(desc.name)) {
+      // This very library registered it there already (through another
+      // loader: a registry copied after a load, like a renderer's copy of the
+      // application's types): the same code, nothing to add or refuse.
+      if (existing->origin == path_) {
+        present_.push_back(desc.name);
+        return true;
+      }
       fail("pass type '" + desc.name + "' is already registered (from " + existing->origin + ")");
       return false;
     }
@@ -125,6 +132,8 @@ class Host final : public PluginHost {
   bool failed() const override { return !errors_.empty(); }
 
   std::vector<PassTypeDesc>& types() { return types_; }
+  // The types the registry had from this library already (addPassType).
+  const std::vector<std::string>& present() const { return present_; }
   const std::vector<std::string>& errors() const { return errors_; }
 
  private:
@@ -132,6 +141,7 @@ class Host final : public PluginHost {
   PassRegistry scratch_;  // checks the plugin's own declarations (and duplicates among them)
   std::string path_, name_;
   std::vector<PassTypeDesc> types_;
+  std::vector<std::string> present_;
   std::vector<std::string> errors_;
 };
 
@@ -349,6 +359,7 @@ const LoadedPlugin* PluginLoader::loadFile(const std::string& pathIn, std::strin
     }
     loaded.passTypes.push_back(std::move(name));
   }
+  for (const auto& name : host.present()) loaded.passTypes.push_back(name);
   spdlog::debug("loaded plugin '{}' from {} ({} pass types)", loaded.name, path, loaded.passTypes.size());
   // Its shaders are read from its own folder: make that a shader folder.
   addPluginShaderDirectory(host.shaderDirectory());

@@ -102,10 +102,12 @@ std::string PassRegistry::suggest(std::string_view name) const {
   return closestMatch(name, names);
 }
 
-PassRegistry& PassRegistry::builtins() {
+PassRegistry& PassRegistry::mutableBuiltins() {
   static PassRegistry registry;
   return registry;
 }
+
+const PassRegistry& PassRegistry::builtins() { return mutableBuiltins(); }
 
 std::vector<std::string>& PassRegistry::builtinErrors() {
   static std::vector<std::string> errors;
@@ -114,7 +116,7 @@ std::vector<std::string>& PassRegistry::builtinErrors() {
 
 PassRegistrar::PassRegistrar(PassTypeDesc (*make)()) {
   std::string error;
-  if (!PassRegistry::builtins().add(make(), &error)) PassRegistry::builtinErrors().push_back(error);
+  if (!PassRegistry::mutableBuiltins().add(make(), &error)) PassRegistry::builtinErrors().push_back(error);
 }
 
 }  // namespace rgraph

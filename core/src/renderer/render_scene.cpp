@@ -8,6 +8,20 @@
 
 namespace rgraph {
 
+namespace {
+// What a scene built in code may leave out and loaders fill in (renderer.h,
+// fromScene): bounds from the geometry, light radii from the attenuation.
+// What is there already (a loader's, the caller's) is kept.
+void deriveSceneFacts(Scene& scene) {
+  for (MeshData& mesh : scene.meshes)
+    if (mesh.bounds.empty()) mesh.updateBounds();
+  for (Primitive& p : scene.primitives)
+    if (p.bounds.empty()) p.bounds = p.worldBounds(scene.meshes[size_t(p.mesh)].bounds);
+  for (PointLight& l : scene.pointLights)
+    if (l.radius == 0.0f) l.radius = lightRadius(l);
+}
+}  // namespace
+
 RenderScene::RenderScene() : impl_(std::make_unique<Impl>()) {}
 RenderScene::~RenderScene() = default;
 
@@ -19,6 +33,7 @@ std::shared_ptr<RenderScene> RenderScene::fromScene(Scene scene) {
     throw RuntimeError((scene.source.empty() ? std::string("scene") : scene.source) + ": " +
                        std::to_string(scene.pointLights.size() + scene.directionalLights.size()) +
                        " lights, more than the " + std::to_string(kMaxSceneLights) + " a scene may have");
+  deriveSceneFacts(scene);
   std::shared_ptr<RenderScene> s(new RenderScene());
   s->impl_->scene = std::move(scene);
   s->impl_->numberPrimitives();  // each primitive an object the API can move

@@ -14,6 +14,7 @@
 
 #include "../gl/device_memory.h"
 #include "../gl/imported_texture.h"
+#include "scene_depth.h"
 #include "rgraph/adapt.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/executor.h"
@@ -24,6 +25,7 @@
 #include "rgraph/pass.h"
 #include "rgraph/pipeline_check.h"
 #include "rgraph/pipeline_load.h"
+#include "rgraph/plugin.h"
 #include "rgraph/registry.h"
 #include "rgraph/shader_check.h"
 
@@ -60,10 +62,22 @@ bool sameFeatures(const SceneFeatures& a, const SceneFeatures& b) {
 
 struct Renderer::Impl {
   RendererOptions options;
+  // This renderer's pass types: a copy of options.registry (or of the
+  // built-ins) with the plugins its pipelines load; never shared, so that
+  // nothing another renderer or a test loads is seen here. Executors keep a
+  // reference: the address stays (unique_ptr) and types are only added.
+  std::unique_ptr<PassRegistry> registry;
+  std::unique_ptr<PluginLoader> loader;
+
+  // A pipeline's origin: a file (`path`), or JSON text with the name its
+  // messages use; plugin paths relative to `baseDir`.
+  struct Source {
+    std::string path;  // empty: JSON text
+    std::string json, name, baseDir;
+  };
   // Where the pipeline came from: reload() re-reads the file (reloadJson does not forget it), or takes
   // `json` again (a renderer made from text, or the last text reloadJson took).
-  std::string path;  // empty: JSON text
-  std::string json, nameForMessages, baseDir;
+  Source bound;
 
   PipelineConfig source;   // as loaded
   PipelineConfig adapted;  // as adapted to the scene (what runs)
@@ -80,6 +94,7 @@ struct Renderer::Impl {
   std::function<void(size_t)> afterPass;
   bool cpuPassTiming = true;
 
+  SceneDepthCopy depth;                        // options.keepDepth: the scene's depth of the last frame
   ShaderLibrary shaders;                       // kept across rebuilds: unchanged programs are reused
   std::shared_ptr<RenderScene> executorScene;  // what `executor` draws: alive as long as it is
   std::unique_ptr<Executor> executor;
@@ -98,13 +113,22 @@ struct Renderer::Impl {
   void refuseInFrame(const char* call) const;
 
   class CallerState;
-  // Loads and checks a pipeline (the file, or `text`): nullopt with diags
+  void makeRegistry();
+  static Source fileSource(const std::string& path) {
+    std::error_code ec;
+    return {path, {}, path, std::filesystem::absolute(path, ec).parent_path().string()};
+  }
+  static Source textSource(std::string_view json, const std::string& name, const std::string& baseDir) {
+    return {{}, std::string(json), name.empty() ? std::string("<json>") : name, baseDir};
+  }
+  // Loads and checks a pipeline (the file, or the text): nullopt with diags
   // when validate would refuse it.
-  std::optional<PipelineConfig> load(const std::optional<std::string>& text, Diagnostics& diags) const;
+  std::optional<PipelineConfig> load(const Source& from, Diagnostics& diags) const;
   // Makes `next` the pipeline: at once when a frame was drawn (building its
   // GL objects now, so that a failure leaves the last good pipeline running),
-  // else at the first frame. false, with a device_error in diags, on failure.
-  bool replace(PipelineConfig next, Diagnostics& diags);
+  // else at the first frame. false, with a device_error naming `from` in
+  // diags, on failure.
+  bool replace(PipelineConfig next, const Source& from, Diagnostics& diags);
   void adapt();
   // The scene's features seen with this renderer's camera at its output's aspect.
   SceneFeatures features() const;
@@ -115,6 +139,10 @@ struct Renderer::Impl {
   // A new executor for the current pipeline, scene, size and imports; the old
   // one is kept until the new one is built.
   void buildExecutor();
+  // The executor's after-pass callback: the depth copy and the caller's
+  // callback, or none at all when neither is wanted (a callback costs state
+  // resets after every pass).
+  void installAfterPass(Executor& e);
   void prepareFrame();
   void blitOutput(uint32_t framebuffer, const Viewport& viewport);
 };
@@ -143,11 +171,19 @@ class Renderer::Impl::FrameScope {
   Impl& im_;
 };
 
-std::optional<PipelineConfig> Renderer::Impl::load(const std::optional<std::string>& text, Diagnostics& diags) const {
+void Renderer::Impl::makeRegistry() {
+  registry = std::make_unique<PassRegistry>(options.registry ? *options.registry : PassRegistry::builtins());
+  loader = std::make_unique<PluginLoader>(*registry);
+  for (const auto& dir : options.pluginDirectories) loader->addSearchDirectory(dir);
+}
+
+std::optional<PipelineConfig> Renderer::Impl::load(const Source& from, Diagnostics& diags) const {
   PipelineLoadOptions loadOptions;
-  loadOptions.pluginDirectories = options.pluginDirectories;
-  std::optional<PipelineConfig> loaded = text ? loadPipelineText(*text, nameForMessages, baseDir, loadOptions, diags)
-                                              : loadPipelineFile(path, loadOptions, diags);
+  loadOptions.registry = registry.get();
+  loadOptions.loader = loader.get();
+  std::optional<PipelineConfig> loaded = from.path.empty()
+                                             ? loadPipelineText(from.json, from.name, from.baseDir, loadOptions, diags)
+                                             : loadPipelineFile(from.path, loadOptions, diags);
   if (!loaded) return std::nullopt;
   // What validate checks, before any GL work: a config it refuses never runs.
   CompileOptions compile;
@@ -157,6 +193,7 @@ std::optional<PipelineConfig> Renderer::Impl::load(const std::optional<std::stri
     compile.maxTextureSizeOrigin = options.maxTextureSizeOrigin.empty() ? std::string("RendererOptions::maxTextureSize")
                                                                         : options.maxTextureSizeOrigin;
   PipelineCheckOptions checks;
+  checks.registry = registry.get();
   checks.passChecks = options.runChecks;
   checks.shaders = options.runChecks ? ShaderCheckMode::cached : ShaderCheckMode::skip;
   checks.shaderDirectories = options.shaderDirectories;
@@ -167,7 +204,7 @@ std::optional<PipelineConfig> Renderer::Impl::load(const std::optional<std::stri
   return loaded;
 }
 
-bool Renderer::Impl::replace(PipelineConfig next, Diagnostics& diags) {
+bool Renderer::Impl::replace(PipelineConfig next, const Source& from, Diagnostics& diags) {
   // Programs whose shader files changed are compiled again; the others are reused.
   if (const size_t retired = shaders.retireChanged())
     spdlog::info("{} program(s) built from changed shader files will be compiled again", retired);
@@ -194,7 +231,7 @@ bool Renderer::Impl::replace(PipelineConfig next, Diagnostics& diags) {
     Diagnostic d;
     d.code = DiagCode::device_error;
     d.message = e.what();
-    d.where.file = path.empty() ? nameForMessages : path;
+    d.where.file = from.path.empty() ? from.name : from.path;
     diags.push_back(std::move(d));
     return false;
   }
@@ -206,7 +243,7 @@ void Renderer::Impl::adapt() {
   report = {};
   if (scene && options.adaptToScene) {
     const SceneFeatures now = features();
-    report = adaptToScene(adapted, PassRegistry::builtins(), now);
+    report = adaptToScene(adapted, *registry, now);
     adaptedFor = now;
   } else {
     adaptedFor.reset();
@@ -292,20 +329,38 @@ void Renderer::Impl::buildExecutor() {
   const std::string overBudget = plan.ok() ? memoryRefusal(plan) : std::string();
   sizeRefused = !plan.ok() || !overBudget.empty();  // a graph with errors: the executor throws, with its messages
   if (!overBudget.empty()) throw RuntimeError(overBudget);
-  auto next = scene ? std::make_unique<Executor>(adapted, PassRegistry::builtins(), shaders, scene->gpu())
-                    : std::make_unique<Executor>(adapted, PassRegistry::builtins(), shaders);
+  auto next = scene ? std::make_unique<Executor>(adapted, *registry, shaders, scene->gpu())
+                    : std::make_unique<Executor>(adapted, *registry, shaders);
   for (const auto& [name, texture] : imports) next->importTexture(name, texture);
-  next->setAfterPass(afterPass);
   next->setCpuPassTiming(cpuPassTiming);
   next->setGpuTimerQueries(options.gpuTimerQueries);
   if (executor) next->reuseTextures(*executor);  // what did not change is kept
   next->resize(size);
+  std::optional<SceneDepthSource> depthSource;
+  if (options.keepDepth) {
+    depthSource = findSceneDepth(next->plan(), *registry, options.depthResource);
+    if (!depthSource && !options.depthResource.empty())
+      throw RuntimeError("RendererOptions::depthResource '" + options.depthResource +
+                         "': no pass that runs attaches it as depth");
+    if (!depthSource) spdlog::warn("RendererOptions::keepDepth: the pipeline has no scene depth to keep");
+  }
+  // Nothing below throws: the new executor and its depth source replace the old ones together.
+  depth.setSource(depthSource);
+  installAfterPass(*next);
   if (executor) framesBefore += executor->frameIndex();
   executor = std::move(next);
   executorScene = scene;
   rebuild = false;
   planBeforeFrame.reset();
   ++builds;
+}
+
+void Renderer::Impl::installAfterPass(Executor& e) {
+  if (!depth.active() && !afterPass) return e.setAfterPass({});
+  e.setAfterPass([this, &e](size_t step) {
+    depth.afterPass(step, e);
+    if (afterPass) afterPass(step);
+  });
 }
 
 void Renderer::Impl::blitOutput(uint32_t framebuffer, const Viewport& viewport) {
@@ -338,13 +393,11 @@ std::unique_ptr<Renderer> Renderer::fromFile(const std::string& pipelinePath, co
                                              Diagnostics& diags) {
   std::unique_ptr<Renderer> r(new Renderer());
   r->impl_->options = options;
-  r->impl_->path = pipelinePath;
+  r->impl_->makeRegistry();
+  r->impl_->bound = Impl::fileSource(pipelinePath);
   r->impl_->size = options.size;
-  r->impl_->nameForMessages = pipelinePath;
-  std::error_code ec;
-  r->impl_->baseDir = std::filesystem::absolute(pipelinePath, ec).parent_path().string();
   for (const auto& dir : options.shaderDirectories) addShaderSearchDirectory(dir);
-  std::optional<PipelineConfig> loaded = r->impl_->load(std::nullopt, diags);
+  std::optional<PipelineConfig> loaded = r->impl_->load(r->impl_->bound, diags);
   if (!loaded) return nullptr;
   r->impl_->source = std::move(*loaded);
   return r;
@@ -355,12 +408,11 @@ std::unique_ptr<Renderer> Renderer::fromJson(std::string_view json, const std::s
                                              const std::string& baseDir) {
   std::unique_ptr<Renderer> r(new Renderer());
   r->impl_->options = options;
-  r->impl_->json = std::string(json);
-  r->impl_->nameForMessages = nameForMessages.empty() ? std::string("<json>") : nameForMessages;
-  r->impl_->baseDir = baseDir;
+  r->impl_->makeRegistry();
+  r->impl_->bound = Impl::textSource(json, nameForMessages, baseDir);
   r->impl_->size = options.size;
   for (const auto& dir : options.shaderDirectories) addShaderSearchDirectory(dir);
-  std::optional<PipelineConfig> loaded = r->impl_->load(r->impl_->json, diags);
+  std::optional<PipelineConfig> loaded = r->impl_->load(r->impl_->bound, diags);
   if (!loaded) return nullptr;
   r->impl_->source = std::move(*loaded);
   return r;
@@ -480,23 +532,42 @@ void Renderer::present(uint32_t framebuffer, const Viewport& viewport) {
 
 bool Renderer::reload(Diagnostics& diags) {
   impl_->refuseInFrame("reload");
-  std::optional<PipelineConfig> loaded =
-      impl_->path.empty() ? impl_->load(impl_->json, diags) : impl_->load(std::nullopt, diags);
-  return loaded && impl_->replace(std::move(*loaded), diags);
+  std::optional<PipelineConfig> loaded = impl_->load(impl_->bound, diags);
+  return loaded && impl_->replace(std::move(*loaded), impl_->bound, diags);
 }
 
-bool Renderer::reloadJson(std::string_view json, Diagnostics& diags) {
+bool Renderer::reloadJson(std::string_view json, Diagnostics& diags, const std::string& nameForMessages) {
   impl_->refuseInFrame("reloadJson");
-  const std::string text(json);
+  // Plugin paths stay relative to the folder of what the renderer is bound to.
+  const Impl::Source text = Impl::textSource(json, nameForMessages, impl_->bound.baseDir);
   std::optional<PipelineConfig> loaded = impl_->load(text, diags);
-  if (!loaded || !impl_->replace(std::move(*loaded), diags)) return false;
-  impl_->json = text;  // a renderer made from a file keeps its path: watched, named in messages, re-read by reload()
+  if (!loaded || !impl_->replace(std::move(*loaded), text, diags)) return false;
+  // A renderer made from a file keeps its path (watched, re-read by reload()).
+  impl_->bound.json = text.json;
+  impl_->bound.name = text.name;
   return true;
+}
+
+bool Renderer::load(const std::string& pipelinePath, Diagnostics& diags) {
+  impl_->refuseInFrame("load");
+  const Impl::Source file = Impl::fileSource(pipelinePath);
+  std::optional<PipelineConfig> loaded = impl_->load(file, diags);
+  if (!loaded || !impl_->replace(std::move(*loaded), file, diags)) return false;
+  impl_->bound = file;  // reload() and watchedFiles() follow the new file
+  return true;
+}
+
+const PassRegistry& Renderer::passTypes() const { return *impl_->registry; }
+
+std::vector<std::string> Renderer::loadedPlugins() const {
+  std::vector<std::string> paths;
+  for (const auto& plugin : impl_->loader->loaded()) paths.push_back(plugin.path);
+  return paths;
 }
 
 std::vector<std::string> Renderer::watchedFiles() const {
   std::vector<std::string> files;
-  if (!impl_->path.empty()) files.push_back(impl_->path);
+  if (!impl_->bound.path.empty()) files.push_back(impl_->bound.path);
   for (auto& f : impl_->shaders.files())
     if (std::find(files.begin(), files.end(), f) == files.end()) files.push_back(std::move(f));
   return files;
@@ -568,7 +639,14 @@ bool Renderer::cpuPassTiming() const { return impl_->cpuPassTiming; }
 void Renderer::setAfterPass(std::function<void(size_t)> callback) {
   impl_->refuseInFrame("setAfterPass");
   impl_->afterPass = std::move(callback);
-  if (impl_->executor) impl_->executor->setAfterPass(impl_->afterPass);
+  if (impl_->executor) impl_->installAfterPass(*impl_->executor);
+}
+
+uint32_t Renderer::outputDepthTexture() const { return impl_->executor ? impl_->depth.texture() : 0; }
+uint32_t Renderer::outputDepthFormat() const { return outputDepthTexture() ? impl_->depth.internalFormat() : 0; }
+Extent Renderer::outputDepthExtent() const { return outputDepthTexture() ? impl_->depth.extent() : Extent{}; }
+std::string Renderer::outputDepthResource() const {
+  return impl_->executor && impl_->depth.source() ? impl_->depth.source()->resource : std::string();
 }
 
 uint64_t Renderer::builds() const { return impl_->builds; }

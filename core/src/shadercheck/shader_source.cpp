@@ -127,17 +127,14 @@ std::string folderList(const std::vector<std::string>& dirs) {
   return list;
 }
 
-// A file found where a name points, but outside every shader folder (a `..`,
-// an absolute path or a symbolic link leading out): the reason, or "".
+// A file found where a relative name points, but outside every shader folder
+// (a `..` or a symbolic link leading out): the reason, or "".
 std::string escapeOf(const std::string& file, const std::vector<std::string>& dirs) {
   std::error_code ec;
   const fs::path p(file);
-  std::vector<fs::path> candidates;
-  if (p.is_absolute())
-    candidates.push_back(p);
-  else
-    for (const auto& dir : dirs) candidates.push_back(fs::path(dir) / p);
-  for (const auto& c : candidates) {
+  if (p.is_absolute()) return {};  // used as is (findShaderFile)
+  for (const auto& dir : dirs) {
+    const fs::path c = fs::path(dir) / p;
     if (!fs::exists(c, ec) || insideAny(c, dirs)) continue;
     return "shader file '" + file + "' resolves to " + fs::weakly_canonical(c, ec).string() +
            ", outside the shader folders (" + folderList(dirs) +
@@ -190,7 +187,9 @@ std::string findShaderFile(const std::string& file, const std::vector<std::strin
   std::error_code ec;
   fs::path p(file);
   if (file.find('\0') != std::string::npos) return {};
-  if (p.is_absolute()) return fs::is_regular_file(p, ec) && insideAny(p, dirs) ? p.string() : std::string();
+  // An absolute name comes from code, never from a config (the loader refuses
+  // absolute shader parameters): a plugin's or an application's own file, used as is.
+  if (p.is_absolute()) return fs::is_regular_file(p, ec) ? p.lexically_normal().string() : std::string();
   for (const auto& dir : dirs) {
     fs::path candidate = fs::path(dir) / p;
     if (fs::is_regular_file(candidate, ec) && insideAny(candidate, dirs)) return candidate.lexically_normal().string();
@@ -201,6 +200,8 @@ std::string findShaderFile(const std::string& file, const std::vector<std::strin
 std::string resolveShaderFile(const std::string& file, const std::vector<std::string>& dirs) {
   std::string path = findShaderFile(file, dirs);
   if (!path.empty()) return path;
+  if (fs::path(file).is_absolute())
+    throw RuntimeError("shader file '" + file + "' not found (an absolute path: used as is, not searched for)");
   if (std::string why = escapeOf(file, dirs); !why.empty()) throw RuntimeError(why);
   throw RuntimeError("shader file '" + file + "' not found (searched: " + folderList(dirs) + ")");
 }
@@ -270,6 +271,10 @@ ShaderSource loadShaderSource(const std::string& file, const std::vector<std::st
       src.shadowPaths.push_back(std::move(candidate));
     }
   std::vector<std::string> lines = splitLines(mainText);
+  // A file named by its absolute path (a plugin's, an application's) includes
+  // files beside it as a shader folder's would.
+  std::vector<std::string> includeDirs = dirs;
+  if (fs::path(file).is_absolute()) includeDirs.push_back(fs::path(path).parent_path().string());
 
   std::string out;
   auto emit = [&](const std::string& line, int fileIndex, int lineNo) {
@@ -306,9 +311,10 @@ ShaderSource loadShaderSource(const std::string& file, const std::vector<std::st
     if (parseInclude(line, inc)) {
       fs::path local = fs::path(path).parent_path() / inc;
       std::error_code ec;
-      std::string incPath = fs::is_regular_file(local, ec) && insideAny(local, dirs) ? local.lexically_normal().string()
-                                                                                     : findShaderFile(inc, dirs);
-      if (incPath.empty() && fs::exists(local, ec) && !insideAny(local, dirs))
+      std::string incPath = fs::is_regular_file(local, ec) && insideAny(local, includeDirs)
+                                ? local.lexically_normal().string()
+                                : findShaderFile(inc, dirs);
+      if (incPath.empty() && fs::exists(local, ec) && !insideAny(local, includeDirs))
         throw ShaderSourceError(src.files[0], lineNo,
                                 "included file '" + inc + "' resolves to " + fs::weakly_canonical(local, ec).string() +
                                     ", outside the shader folders; shaders are read only from inside them");
