@@ -33,7 +33,7 @@ struct GltfBuilder {
     while (bin.size() % 4) bin.push_back(0);
     const size_t at = bin.size();
     bin.resize(at + values.size() * sizeof(T));
-    std::memcpy(bin.data() + at, values.data(), values.size() * sizeof(T));
+    if (!values.empty()) std::memcpy(bin.data() + at, values.data(), values.size() * sizeof(T));
     doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", values.size() * sizeof(T)}});
     nlohmann::json a = {{"bufferView", doc["bufferViews"].size() - 1},
                         {"componentType", componentType},
