@@ -68,8 +68,9 @@ const float kMaxAge = 15.0;
 float packCounters(float stillFrames, float age) { return stillFrames * (kMaxAge + 1.0) + age; }
 void unpackCounters(float stored, out float stillFrames, out float age) {
   if (isnan(stored) || isinf(stored) || stored < 0.0) stored = 0.0;
-  stillFrames = min(floor(stored / (kMaxAge + 1.0)), kStillFrames);
-  age = clamp(stored - floor(stored / (kMaxAge + 1.0)) * (kMaxAge + 1.0), 0.0, kMaxAge);
+  float still = floor(stored / (kMaxAge + 1.0));
+  age = clamp(stored - still * (kMaxAge + 1.0), 0.0, kMaxAge);
+  stillFrames = min(still, kStillFrames);
 }
 
 vec3 finite(vec3 c) {
