@@ -31,12 +31,14 @@ class TaaPass final : public gl::FullscreenPass {
     clipGamma_.set(static_cast<float>(p.getNumber("clip_gamma")));
     reject_.set(static_cast<float>(p.getNumber("reject_distance")));
     sharpen_.set(static_cast<float>(p.getNumber("sharpen")));
+    currentFilter_.set(static_cast<float>(p.getNumber("current_filter")));
     hasVelocityDepth_.set(ctx.bound("velocity_depth") ? 1 : 0);
     ctx.gpuScene()->bindFrame();  // the cameras, for motion not in the velocity input
   }
   ProgramUniform historyValid_{this, "u_historyValid"}, historyWeight_{this, "u_historyWeight"};
   ProgramUniform clipGamma_{this, "u_clipGamma"}, reject_{this, "u_rejectDistance"}, sharpen_{this, "u_sharpen"};
   ProgramUniform hasVelocityDepth_{this, "u_hasVelocityDepth"}, motionWeight_{this, "u_motionHistoryWeight"};
+  ProgramUniform currentFilter_{this, "u_currentFilter"};
 };
 
 // Every image the resolve reads per pixel has the output's size, and the
@@ -92,6 +94,9 @@ void registerTaa(PluginHost& host) {
              "history this many box sizes outside the 3x3's box is disoccluded: dropped, not clipped"),
       ranged("sharpen", ParamType::number, 0.0, 0.0, 1.0,
              "unsharp mask on the current frame against the blur of accumulation (0 off)"),
+      ranged("current_filter", ParamType::number, 0.4, 0.0, 2.0,
+             "sigma in pixels of the current frame's reconstruction at the unjittered pixel centre from its "
+             "jittered 3x3 (0: the pixel alone)"),
   };
   d.programs = gl::fullscreenPrograms(
       host.shaderPath("taa.frag"),

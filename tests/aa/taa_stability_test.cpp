@@ -258,11 +258,13 @@ TEST_F(TaaStability, TaaOrbitKeepsForwardDrawnLightBoxesInPlace) {
     sumGain += ea.psnr - eb.psnr;
     ++measured;
   }
-  // Measured +2.8 .. +4.6 dB (mean +3.8); +0.6 .. +1.6 before the light
-  // boxes' own depth test (velocity_depth), the young-history running mean,
-  // the shorter history in motion and the linear blend below luma 1.
-  EXPECT_GE(worstGain, 2.0) << "TAA during the orbit gains too little over the plain frame on edges";
-  EXPECT_GE(sumGain / measured, 3.0);
+  // Measured +4.2 .. +5.3 dB (mean +4.8); +2.8 .. +4.5 (mean +3.8) with
+  // current_filter 0 (moving pixels take the raw jittered sample), +0.6 ..
+  // +1.6 before the light boxes' own depth test (velocity_depth), the
+  // young-history running mean, the shorter history in motion and the linear
+  // blend below luma 1.
+  EXPECT_GE(worstGain, 3.5) << "TAA during the orbit gains too little over the plain frame on edges";
+  EXPECT_GE(sumGain / measured, 4.3);
 }
 
 TEST_F(TaaStability, TaaForwardDrawnBoxInFrontOfGeometryMovesWithTheCamera) {

@@ -9,6 +9,10 @@
 //    light boxes: depth nearer than velocity_depth, when that is bound), the
 //    camera's motion reprojected from depth (an object moving exactly with
 //    the camera would be taken for static there);
+//  - the current frame at the unjittered pixel centre where the pixel moves
+//    (a Gaussian over the 3x3, each sample at its jittered position): in
+//    motion the current frame carries ~40% of the result, and its jitter
+//    would show as a sub-pixel wobble (docs/performance.md);
 //  - reprojection: the history at uv - velocity (Catmull-Rom, so that the
 //    image does not soften a little more every frame it moves);
 //  - rejection: history from outside the screen is dropped; history outside
@@ -51,6 +55,7 @@ uniform float u_motionHistoryWeight;  // the same where the pixel moves (each re
 uniform float u_clipGamma;       // width of the variance box in standard deviations
 uniform float u_rejectDistance;  // history farther than this many box sizes outside: disoccluded, dropped
 uniform float u_sharpen;         // unsharp mask on the current frame before the blend (0 off)
+uniform float u_currentFilter;   // sigma (pixels) of the unjittered reconstruction of the current frame (0 off)
 layout(location = 0) out vec4 outColor;
 
 // Frames a pixel must stay still before its history is trusted unclipped:
@@ -130,6 +135,25 @@ vec3 currentAt(ivec2 p) {
   return max(finite(texelFetch(u_color, clamp(p, ivec2(0), size - 1), 0).rgb), vec3(0.0));
 }
 
+// This frame's colour at the unjittered centre of pixel p: pixel q sampled
+// the scene at q + 0.5 - jitter, so each of the 3x3 is weighed by its
+// sample's distance to p + 0.5 (a Gaussian of sigma u_currentFilter).
+// Without jitter (u_frame.y == 0) or with the filter off: the centre sample.
+vec3 currentUnjittered(ivec2 p, vec3 center) {
+  if (u_currentFilter <= 0.0 || u_frame.y == 0) return center;
+  vec3 acc = vec3(0.0);
+  float wsum = 0.0;
+  float k = -0.5 / (u_currentFilter * u_currentFilter);
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x) {
+      vec2 d = vec2(x, y) - u_jitter.xy;
+      float w = exp(k * dot(d, d));
+      acc += currentAt(p + ivec2(x, y)) * w;
+      wsum += w;
+    }
+  return acc / wsum;
+}
+
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   ivec2 size = textureSize(u_color, 0);
@@ -156,8 +180,6 @@ void main() {
       }
     }
   }
-  vec3 current = center;
-  if (u_sharpen > 0.0) current = max(center + u_sharpen * (center - 0.25 * cross), vec3(0.0));
 
   vec2 velocity = texelFetch(u_velocity, nearestP, 0).rg;
   if (any(isnan(velocity)) || any(isinf(velocity))) velocity = vec2(0.0);
@@ -170,13 +192,22 @@ void main() {
   vec2 uv = (vec2(p) + 0.5) / vec2(size);
   vec2 prevUv = uv - velocity;
   bool onScreen = all(greaterThanEqual(prevUv, vec2(0.0))) && all(lessThanEqual(prevUv, vec2(1.0)));
-  if (u_historyValid == 0 || !onScreen) {
-    outColor = vec4(current, packCounters(0.0, 1.0));
-    return;
-  }
   // Still: no motion at all (the motion vectors are unjittered, so a jittered
   // still camera gives exactly 0).
   bool still = all(lessThan(abs(velocity * vec2(size)), vec2(1e-3)));
+  // Where the pixel moves the history weighs less (u_motionHistoryWeight)
+  // and is clipped, so the current frame's jitter would show as a sub-pixel
+  // wobble: it is taken at the unjittered centre. A still pixel keeps its raw
+  // sample, which its history averages over every jitter phase (filtered, a
+  // sub-pixel wire would be smeared into its neighbours every frame its
+  // young history is rejected), and so does a first frame (still: no motion).
+  bool noHistory = u_historyValid == 0 || !onScreen;
+  vec3 current = still ? center : currentUnjittered(p, center);
+  if (u_sharpen > 0.0) current = max(current + u_sharpen * (current - 0.25 * cross), vec3(0.0));
+  if (noHistory) {
+    outColor = vec4(current, packCounters(0.0, 1.0));
+    return;
+  }
   float stillFrames, age;
   ivec2 historyTexel = clamp(ivec2(floor(prevUv * vec2(size))), ivec2(0), size - 1);
   unpackCounters(texelFetch(u_history, historyTexel, 0).a, stillFrames, age);
@@ -205,7 +236,7 @@ void main() {
   // Far outside the box: a surface the history never saw (disocclusion).
   if ((t > 1.0 + u_rejectDistance && !trusted) || !historyFinite) weight = 0.0;
   if (weight <= 0.0) {
-    outColor = vec4(current, packCounters(nextStill, 1.0));  // exactly the frame without history
+    outColor = vec4(current, packCounters(nextStill, 1.0));  // the current frame alone
     return;
   }
   vec3 cur = current;
