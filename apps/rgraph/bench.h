@@ -197,22 +197,23 @@ struct AaPlan {
   int warm = 2;            // untimed frames first (non-temporal methods)
   int timedFrames = 5;     // non-temporal methods
   int taaFrames = 32;      // static camera: frames before the image is read (all timed)
-  int orbitWarm = 8;       // orbit: frames before the first scored one
-  int orbitFrames = 16;    // orbit: scored frames (each against its own reference)
-  float orbitDegrees = 1;  // orbit: camera turn per frame about the target's vertical axis
+  int orbitWarm = 8;       // orbit and moving: frames before the first scored one
+  int orbitFrames = 16;    // orbit and moving: scored frames (each against its own reference)
+  float orbitDegrees = 1;  // orbit: camera turn per frame about the target's vertical axis (moving: the
+                           // objects' turn, the other way)
 };
 AaPlan aaPlan(bool quick);
 
 struct AaRow {
   std::string scene;     // loadSceneAny spec
-  std::string aa;        // none, fxaa, taa, taa_orbit, msaa4
+  std::string aa;        // none, fxaa, taa, taa_orbit, msaa4, none_moving, taa_moving
   std::string pipeline;  // file under pipelines/
   Extent size;
   int frames = 0;  // rendered before (the last) image was read
   std::vector<double> frameMs;
-  double psnr = 0.0, edgePsnr = 0.0;  // dB (taa_orbit: mean over scored frames)
-  size_t edgePixels = 0;              // of the reference (taa_orbit: mean)
-  int maxAbs = 0;                     // 8-bit (taa_orbit: over scored frames)
+  double psnr = 0.0, edgePsnr = 0.0;  // dB (orbit and moving rows: mean over scored frames)
+  size_t edgePixels = 0;              // of the reference (orbit and moving rows: mean)
+  int maxAbs = 0;                     // 8-bit (orbit and moving rows: over scored frames)
   std::string error;                  // non-empty: the row failed (message)
   bool ok() const { return error.empty(); }
 };

@@ -1,5 +1,6 @@
 // `rgraph bench`, the aa axis: anti-aliasing methods (none, FXAA, TAA
-// converged on a still camera and during an orbit, 4x MSAA forward) on scenes
+// converged on a still camera, during an orbit and with moving objects, 4x
+// MSAA forward) on scenes
 // whose edges alias, each against a 16-sample reference of its own pipeline
 // (bench.h: AaPlan, AaRow; the maths in bench_aa_metrics.h). Rows carry the
 // axis name "aa" in the CSV's axes column.
@@ -9,6 +10,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "bench.h"
 #include "bench_aa_metrics.h"
@@ -26,7 +29,11 @@ const std::vector<std::string> kAaScenes = {"learnopengl:overview", "thin"};
 
 namespace {
 
-enum class AaKind { still, converged, orbit };
+// still: a still camera; converged: TAA's history filled on a still camera;
+// orbit: the camera turns about its target; moving: the camera and lights
+// stay, every object turns about the target's vertical axis (a turntable):
+// motion vectors from the objects' previous transforms, not the camera's.
+enum class AaKind { still, converged, orbit, moving };
 struct AaMethod {
   const char* aa;
   const char* file;  // under pipelines/
@@ -35,7 +42,8 @@ struct AaMethod {
 const AaMethod kAaMethods[] = {
     {"none", "default.json", AaKind::still},           {"none_orbit", "default.json", AaKind::orbit},
     {"fxaa", "deferred-fxaa.json", AaKind::still},     {"taa", "deferred-taa.json", AaKind::converged},
-    {"taa_orbit", "deferred-taa.json", AaKind::orbit}, {"msaa4", "forward-msaa.json", AaKind::still}};
+    {"taa_orbit", "deferred-taa.json", AaKind::orbit}, {"msaa4", "forward-msaa.json", AaKind::still},
+    {"none_moving", "default.json", AaKind::moving},   {"taa_moving", "deferred-taa.json", AaKind::moving}};
 constexpr int kReferenceFactor = 4;  // 4x4 = 16 samples per pixel
 
 const AaMethod& methodOf(const AaRow& r) {
@@ -80,9 +88,25 @@ void dumpImages(const AaRow& row, const std::vector<uint8_t>& image, const std::
            reference);
 }
 
-void runRow(AaRow& row, const AaPlan& plan, const Scene& scene, const std::string& pipelineDir,
+// `rest` with every object turned by `degrees` about the vertical axis
+// through `pivot` (bounds follow: culling and sorting read them).
+void turnObjects(Scene& moved, const Scene& rest, const glm::vec3& pivot, float degrees) {
+  const glm::mat4 one(1.0f);
+  const glm::mat4 turn = glm::translate(one, pivot) * glm::rotate(one, glm::radians(degrees), {0.0f, 1.0f, 0.0f}) *
+                         glm::translate(one, -pivot);
+  for (size_t k = 0; k < moved.primitives.size(); ++k) {
+    Primitive& p = moved.primitives[k];
+    p.transform = turn * rest.primitives[k].transform;
+    p.bounds = p.worldBounds(rest.meshes[static_cast<size_t>(p.mesh)].bounds);
+  }
+}
+
+void runRow(AaRow& row, const AaPlan& plan, const Scene& rest, const std::string& pipelineDir,
             ShaderLibrary& shaders) {
   const AaMethod& method = methodOf(row);
+  // Both executors draw `scene`: a moving row's objects are edited in this
+  // copy between frames (executors read transforms from the scene each frame).
+  Scene scene = rest;
   const PipelineConfig loaded = loadPipelineFileOrThrow((std::filesystem::path(pipelineDir) / row.pipeline).string());
   PipelineConfig cfg = loaded, refCfg = loaded;
   refCfg.jitterPhases = 0;  // the reference: no jitter error
@@ -97,9 +121,13 @@ void runRow(AaRow& row, const AaPlan& plan, const Scene& scene, const std::strin
   };
   ErrorSum sum;
   exec->setCamera(scene.camera);
-  if (method.kind == AaKind::orbit) {
+  if (method.kind == AaKind::orbit || method.kind == AaKind::moving) {
     for (int i = 0; i < plan.orbitWarm + plan.orbitFrames; ++i) {
-      const Camera camera = rgraph::orbitCamera(scene.camera, plan.orbitDegrees * float(i));  // as render --orbit
+      Camera camera = scene.camera;
+      if (method.kind == AaKind::orbit)
+        camera = rgraph::orbitCamera(scene.camera, plan.orbitDegrees * float(i));  // as render --orbit
+      else
+        turnObjects(scene, rest, scene.camera.target, -plan.orbitDegrees * float(i));
       exec->setCamera(camera);
       const double ms = timedFrame(*exec);
       if (i >= plan.warm) row.frameMs.push_back(ms);
