@@ -122,14 +122,15 @@ std::unique_ptr<rgraph::Renderer> makeRenderer(const Args& args, const rgraph::P
   std::unique_ptr<rgraph::Renderer> renderer;
   if (args.tint) {
     // A pipeline that is not JSON goes to rgraph unchanged: its message names the line and column.
-    std::string text = readFile(args.pipeline);
+    std::string text = readFile(args.pipeline), name = args.pipeline;
     try {
       text = editor::withTint(text, kTint);
+      name += " + editor_tint";  // line numbers are the rewritten text's now
     } catch (const std::runtime_error& e) {
       if (std::string(e.what()).find("not JSON") == std::string::npos) fail(args.pipeline + ": " + e.what());
     }
     const std::string folder = args.pipeline.substr(0, args.pipeline.find_last_of('/') + 1);
-    renderer = rgraph::Renderer::fromJson(text, args.pipeline + " + editor_tint", options, diags, folder);
+    renderer = rgraph::Renderer::fromJson(text, name, options, diags, folder);
   } else {
     renderer = rgraph::Renderer::fromFile(args.pipeline, options, diags);
   }
