@@ -1,5 +1,7 @@
 #include "level.h"
 
+#include <charconv>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -33,7 +35,14 @@ namespace {
 // loader has checked the level already, so the shapes are right here.
 glm::vec3 vec3(const json& j) { return {float(j[0].get<double>()), float(j[1].get<double>()), float(j[2].get<double>())}; }
 glm::vec3 vec3OrScalar(const json& j) { return j.is_number() ? glm::vec3(float(j.get<double>())) : vec3(j); }
-json array(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
+// A float as the shortest decimal that reads back as the same float (0.9, not
+// 0.8999999761581421): the state file stays readable and loads exactly.
+double shortest(float f) {
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text, f).ptr;
+  return std::strtod(std::string(text, end).c_str(), nullptr);
+}
+json array(const glm::vec3& v) { return json::array({shortest(v.x), shortest(v.y), shortest(v.z)}); }
 
 Placement placementOf(const json& model) {
   Placement p;
@@ -179,7 +188,8 @@ json Level::state(const rgraph::Camera& camera) const {
                           {"scale", array(m.placement.scale)}};
     if (m.baseColor) {
       if (!entry.contains("material")) entry["material"] = json::object();
-      entry["material"]["baseColor"] = {m.baseColor->r, m.baseColor->g, m.baseColor->b, m.baseColor->a};
+      const glm::vec4& c = *m.baseColor;
+      entry["material"]["baseColor"] = {shortest(c.r), shortest(c.g), shortest(c.b), shortest(c.a)};
     }
     models.push_back(std::move(entry));
   }
@@ -187,8 +197,8 @@ json Level::state(const rgraph::Camera& camera) const {
   if (out.contains("environment") && out["environment"].contains("hdr"))
     out["environment"]["hdr"] = absolute(folder_, out["environment"]["hdr"].get<std::string>());
   out["camera"] = {{"position", array(camera.position)}, {"target", array(camera.target)},
-                   {"up", array(camera.up)},             {"fov", camera.fovY},
-                   {"near", camera.near},                {"far", camera.far}};
+                   {"up", array(camera.up)},             {"fov", shortest(camera.fovY)},
+                   {"near", shortest(camera.near)},      {"far", shortest(camera.far)}};
   return out;
 }
 
