@@ -192,6 +192,7 @@ void onClick(GLFWwindow* window, int button, int action, int) {
 }
 
 int run(const Args& args) {
+  editor::Level level(args.level);  // read before a window opens: a mistake in it costs none
   glfwSetErrorCallback([](int, const char* what) { std::cerr << "GLFW: " << what << "\n"; });
   if (!glfwInit()) fail("cannot start GLFW (no display? run it under xvfb-run -a)");
   struct Terminate {
@@ -210,7 +211,6 @@ int run(const Args& args) {
 
   const rgraph::PassRegistry types = editor::editorPassTypes(EDITOR_SHADER_DIR);
   auto renderer = makeRenderer(args, types, w, h);
-  editor::Level level(args.level);
   renderer->setScene(level.scene());
   editor::Session session{level, *renderer, std::nullopt};
   glfwSetWindowUserPointer(window.get(), &session);
