@@ -6,7 +6,8 @@
 #   matches_render  with the pipeline as is (--no-tint), rgraph's frame after the
 #                   edits equals the installed `rgraph render --scene` of the scene
 #                   file the editor wrote (same pipeline, size; its camera) within
-#                   1/255; and differs from the unedited level's (the edits show)
+#                   1/255; and differs from the unedited level's (the edits show);
+#                   with --no-overlay the window is that frame exactly
 #   own_pass        with its own pass type (registered in-process), rgraph's frame
 #                   equals that same render times the tint 1,0.9,0.8 within 1/255,
 #                   and differs from it untinted: the pass ran
@@ -49,7 +50,10 @@ render() {  # render SCENE OUT: the installed rgraph, default pipeline, same siz
 
 case "$case_" in
 matches_render)
-  edit plain --no-tint
+  edit plain --no-tint --no-overlay
+  # Without the overlay the window shows rgraph's frame as it is (Renderer::render(0)).
+  "$compare" "$out/plain-window.png" "$out/plain-rgraph.png" 0 ||
+    fail "with --no-overlay the window differs from rgraph's frame"
   render "$out/plain-state.json" "$out/reference.png"
   "$compare" "$out/plain-rgraph.png" "$out/reference.png" 1 ||
     fail "the editor's frame differs from rgraph render of its state by more than 1/255"
