@@ -211,13 +211,18 @@ void advanceClock(rgraph::RenderScene& scene, double seconds) {
                            std::to_string(seconds));
 }
 
-std::optional<size_t> selectAt(rgraph::Renderer& renderer, const Level& level, int x, int y) {
-  (void)renderer, (void)level;
-  // With Renderer::pick (issue 30): the object under (x, y), then
-  //   if (auto object = renderer.pick(x, y)) return level.modelOf(object->instance);
-  //   return std::nullopt;
-  throw std::runtime_error("this rgraph cannot pick objects yet (Renderer::pick), asked for pixel " +
+void selectAt(rgraph::Renderer& renderer, int x, int y) {
+  (void)renderer;
+  // With Renderer::requestPick (issue 30): renderer.requestPick(uint32_t(x), uint32_t(y));
+  throw std::runtime_error("this rgraph cannot pick objects yet (Renderer::requestPick), asked for pixel " +
                            std::to_string(x) + "," + std::to_string(y));
+}
+
+std::optional<std::optional<size_t>> pickedModel(rgraph::Renderer& renderer, const Level& level) {
+  (void)renderer, (void)level;
+  // With Renderer::pickResult (issue 30):
+  //   if (const auto result = renderer.pickResult()) return level.modelOf(result->instance);
+  return std::nullopt;
 }
 
 }  // namespace editor

@@ -81,10 +81,16 @@ class Level {
 // std::runtime_error saying this rgraph cannot play animations.
 void advanceClock(rgraph::RenderScene& scene, double seconds);
 
-// The model under window pixel (x, y) (from the top left), if any. Will call
-// renderer.pick(x, y) (Renderer::pick) and map the object it returns with
-// level.modelOf; until then throws std::runtime_error saying this rgraph
-// cannot pick.
-std::optional<size_t> selectAt(rgraph::Renderer& renderer, const Level& level, int x, int y);
+// Picking, answered a frame late (the GPU is not waited for). selectAt asks
+// which model is under window pixel (x, y), counted from the top left. Will
+// call renderer.requestPick(uint32_t(x), uint32_t(y)) (Renderer::requestPick,
+// with RendererOptions::picking on in main.cpp's makeRenderer); until then
+// throws std::runtime_error saying this rgraph cannot pick.
+void selectAt(rgraph::Renderer& renderer, int x, int y);
+// After each frame: the answer to the last selectAt once it is in (a model,
+// or nullopt inside: the background), nullopt while there is none. Will
+// return level.modelOf(result->instance) for renderer.pickResult()'s result
+// when there is one; until then there never is.
+std::optional<std::optional<size_t>> pickedModel(rgraph::Renderer& renderer, const Level& level);
 
 }  // namespace editor

@@ -185,7 +185,7 @@ void onClick(GLFWwindow* window, int button, int action, int) {
   double x = 0, y = 0;
   glfwGetCursorPos(window, &x, &y);
   try {
-    s.selected = editor::selectAt(s.renderer, s.level, int(x), int(y));
+    editor::selectAt(s.renderer, int(x), int(y));  // window coordinates: pixels unless the screen scales them
   } catch (const std::exception& e) {
     std::cerr << "note: " << e.what() << "\n";
   }
@@ -223,6 +223,7 @@ int run(const Args& args) {
     for (const editor::Step& step : args.steps)
       if (step.frame == frame) editor::apply(step, session);
     renderer->render(0);  // rgraph's frame into the window; our GL state comes back as we left it
+    if (const auto picked = editor::pickedModel(*renderer, level)) session.selected = *picked;  // a click's answer
     if (overlay) {
       const rgraph::Camera& camera = renderer->camera();
       const glm::mat4 viewProjection = camera.projection(float(w) / float(h)) * camera.view();

@@ -86,7 +86,7 @@ void apply(const Step& step, Session& s) {
       return;
     }
     if (step.command == "click") {
-      s.selected = selectAt(s.renderer, s.level, int(n[0]), int(n[1]));
+      selectAt(s.renderer, int(n[0]), int(n[1]));  // the selection follows a frame or so later
       return;
     }
     if (step.command == "select" && n.empty()) {

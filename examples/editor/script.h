@@ -12,7 +12,8 @@
 //   duplicate N         a copy, numbered after the last model
 //   select N | none     the gizmo's model
 //   time SECONDS        the animation clock (advanceClock, level.h)
-//   click X Y           select the model under window pixel X,Y (selectAt, level.h)
+//   click X Y           select the model under window pixel X,Y, from the top
+//                       left (selectAt, level.h: answered a frame or so later)
 #pragma once
 
 #include <optional>
