@@ -76,7 +76,8 @@ Level::Level(const std::string& path) {
   // rgraph's loader appends each model's primitives in models order. Loading
   // each model alone without its transform gives how many it has and their
   // matrices under the model's transform (a glTF's node hierarchy), which
-  // moves multiply as the loader does. (A glTF model is read twice: simple.)
+  // moves multiply as the loader does. (A glTF model is read twice, and its
+  // warnings are logged twice: simple, for an example.)
   const std::vector<rgraph::InstanceId> objects = scene_->instances();
   size_t next = 0;
   for (const json& entry : level_.value("models", json::array())) {
@@ -94,6 +95,7 @@ Level::Level(const std::string& path) {
     }
     models_.push_back(std::move(m));
   }
+  if (next != objects.size()) throw std::runtime_error(path + ": its models and its objects do not line up");
 }
 
 Level::Model& Level::live(size_t model) {
