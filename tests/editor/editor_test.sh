@@ -14,7 +14,8 @@
 #   overlay_depth   the grid and gizmo are depth-tested against rgraph's depth: over
 #                   the crate, the lines behind it show the crate and the gizmo's arm
 #                   in front of it shows (runs with the crate shown and hidden)
-#   errors          script, level and argument mistakes: "error: ..." naming the
+#   errors          argument, script and level mistakes (no window needed) and
+#   edit_errors     pipeline and edit mistakes (under X): "error: ..." naming the
 #                   place, exit 1, never a signal
 set -uo pipefail
 case_=$1; prefix=$2; build=$3; source=$4; compare=$5; overlay_check=$6; xvfb=$7
@@ -29,6 +30,14 @@ fail() {
 [[ -x "$editor" ]] || fail "the example did not build: no $editor"
 # Our own auth file: without one, xvfb-run's clean-up can fail (exit 5) and hide the command's status.
 run_x() { "$xvfb" -a -f "$out/Xauthority" -e "$out/xvfb-errors.log" -s '-screen 0 1024x768x24' "$@"; }
+
+expect() {  # expect REGEX COMMAND...: exit 1, REGEX in the output, no signal
+  local regex=$1; shift
+  local msg; msg=$("$@" 2>&1); local rc=$?
+  echo "$ $*"; echo "$msg"
+  [[ $rc -eq 1 ]] || fail "exit $rc, expected 1: $*"
+  grep -Eq -- "$regex" <<<"$msg" || fail "output does not match /$regex/: $*"
+}
 
 W=160; H=90
 script="$source/levels/workshop-edits.txt"
@@ -78,18 +87,7 @@ overlay_depth)
   "$overlay_check" "$out/shown-window.png" "$out/shown-rgraph.png" "$out/hidden-window.png" "$out/hidden-rgraph.png" ||
     fail "the overlay is not depth-tested against rgraph's depth (see the counts above)"
   echo "ok: the overlay hides behind the crate and shows in front of it" ;;
-errors)  # under one X server for all its runs (an xvfb-run each would cost seconds each)
-  run_x bash "$0" errors_under_x "${@:2}"
-  rc=$?; [[ $rc -eq 0 ]] || fail "errors_under_x exited $rc"
-  echo "ok: every failure prints error: and exits 1" ;;
-errors_under_x)
-  expect() {  # expect REGEX COMMAND...: exit 1, REGEX in the output, no signal
-    local regex=$1; shift
-    local msg; msg=$("$@" 2>&1); local rc=$?
-    echo "$ $*"; echo "$msg"
-    [[ $rc -eq 1 ]] || fail "exit $rc, expected 1: $*"
-    grep -Eq -- "$regex" <<<"$msg" || fail "output does not match /$regex/: $*"
-  }
+errors)  # mistakes found before a window opens (arguments, scripts, levels)
   printf '0 select 1\n\n# a comment\n2 mvoe 1 0 0 0\n' >"$out/typo.txt"
   expect "^error: $out/typo.txt:4: unknown command 'mvoe'" "$editor" --script "$out/typo.txt"
   expect "^error: --do '1 move 1 0 0': 'move' takes 4 numbers, got 3" "$editor" --do "1 move 1 0 0"
@@ -99,22 +97,26 @@ errors_under_x)
   expect "^error: unknown argument '--bogus'" "$editor" --bogus
   expect "^error: --size must be WxH" "$editor" --size 160
   expect "^error: cannot read $out/no-such-script.txt" "$editor" --script "$out/no-such-script.txt"
+  expect "^error: .*no-such-level.json" "$editor" --level "$out/no-such-level.json" --frames 1
+  printf '{\n  "models": [\n    {"shape": "cube",}\n  ]\n}\n' >"$out/broken.json"
+  expect "^error: .*broken.json:3:[0-9]+" "$editor" --level "$out/broken.json" --frames 1
+  expect "^error: the editor edits scene files \(.json\)" "$editor" --level "$out/model.gltf" --frames 1
+  expect "^error: cannot start GLFW" env -u DISPLAY -u WAYLAND_DISPLAY "$editor" --frames 1
+  echo "ok: every failure prints error: and exits 1" ;;
+edit_errors)  # mistakes found with the pipeline built or at a step: all under one X server
+  run_x bash "$0" edit_errors_under_x "${@:2}" || fail "a case above failed"
+  echo "ok: every failure prints error: and exits 1" ;;
+edit_errors_under_x)
   expect "^error: cannot read $out/no-such-pipeline.json" "$editor" --pipeline "$out/no-such-pipeline.json" --frames 1
   printf '{\n  "version": 1,\n  "resources": {\n    "a": { "format": "rgba8" }\n' >"$out/broken-pipeline.json"
   expect "broken-pipeline.json:[0-9]+:[0-9]+" "$editor" --pipeline "$out/broken-pipeline.json" --frames 1
   printf '{"version": 1, "resources": {"output": {"format": "rgba8"}}, "passes": [], "output": "output"}\n' >"$out/unwritten.json"
   expect "^error: .*unwritten.json: no pass of the pipeline writes its output 'output'" "$editor" --pipeline "$out/unwritten.json" --frames 1
-  expect "^error: .*no-such-level.json" "$editor" --level "$out/no-such-level.json" --frames 1
-  printf '{\n  "models": [\n    {"shape": "cube",}\n  ]\n}\n' >"$out/broken.json"
-  expect "^error: .*broken.json:3:[0-9]+" "$editor" --level "$out/broken.json" --frames 1
-  expect "^error: the editor edits scene files \(.json\)" "$editor" --level "$out/model.gltf" --frames 1
   expect "^error: --do '0 move 7 0 0 0': no model 7 \(the level has 5\)" "$editor" --frames 1 --do "0 move 7 0 0 0"
   expect "^error: --do '0 hide 3': model 3 was removed" "$editor" --frames 1 --do "0 remove 3" --do "0 hide 3"
   expect "^error: --do '0 scale 1 0': .*instance" "$editor" --frames 1 --do "0 scale 1 0"
-  # Until RenderScene::setTime and Renderer::pick are wired in (level.h): a clear refusal.
+  # Until RenderScene::setTime and Renderer::requestPick are wired in (level.h): a clear refusal.
   expect "^error: --do '0 time 1.5': this rgraph cannot play animations yet" "$editor" --frames 1 --do "0 time 1.5"
-  expect "^error: --do '0 click 80 45': this rgraph cannot pick objects yet" "$editor" --frames 1 --do "0 click 80 45"
-  expect "^error: cannot start GLFW" env -u DISPLAY -u WAYLAND_DISPLAY "$editor" --frames 1
-  echo "ok: each of them" ;;
+  expect "^error: --do '0 click 80 45': this rgraph cannot pick objects yet" "$editor" --frames 1 --do "0 click 80 45" ;;
 *) fail "unknown case $case_" ;;
 esac
