@@ -1,13 +1,16 @@
-// rgraph_png_compare A.png B.png TOLERANCE [--region X,Y,W,H] [--exclude X,Y,W,H]...
+// rgraph_png_compare A.png B.png TOLERANCE [--region X,Y,W,H] [--exclude X,Y,W,H]... [--scale R,G,B]
 // Compares the RGB of two PNGs of the same size (rgraph::compareRGBA8) over
 // the pixels inside --region (default: all) and outside every --exclude
-// rectangle (x from the left, y from the top). Prints the largest channel
+// rectangle (x from the left, y from the top); --scale multiplies B's channels
+// by R, G, B first, rounding to the nearest byte (B as a pass that multiplies
+// its input would make it: the editor example's tint). Prints the largest channel
 // difference and where it is. Exit 0: within TOLERANCE; 2: over it; 1: the
 // files or arguments are unusable.
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb_image.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -22,6 +25,11 @@ struct Rect {
   int x = 0, y = 0, w = 0, h = 0;
   bool contains(int px, int py) const { return px >= x && py >= y && px < x + w && py < y + h; }
 };
+
+bool parseScale(const char* text, float s[3]) {
+  char tail = 0;
+  return std::sscanf(text, "%f,%f,%f%c", &s[0], &s[1], &s[2], &tail) == 3 && s[0] >= 0 && s[1] >= 0 && s[2] >= 0;
+}
 
 bool parseRect(const char* text, Rect& r) {
   char tail = 0;
@@ -54,16 +62,20 @@ int main(int argc, char** argv) {
                                  std::to_string(wb) + "x" + std::to_string(hb));
     Rect region{0, 0, w, h};
     std::vector<Rect> excluded;
+    float scale[3] = {1, 1, 1};
     for (int i = 4; i < argc; i += 2) {
       const std::string flag = argv[i];
       Rect r;
+      if (flag == "--scale" && i + 1 < argc && parseScale(argv[i + 1], scale)) continue;
       if (i + 1 >= argc || (flag != "--region" && flag != "--exclude") || !parseRect(argv[i + 1], r))
-        throw rgraph::RuntimeError("bad argument '" + flag + "' (--region X,Y,W,H or --exclude X,Y,W,H)");
+        throw rgraph::RuntimeError("bad argument '" + flag + "' (--region X,Y,W,H, --exclude X,Y,W,H or --scale R,G,B)");
       if (flag == "--region")
         region = r;
       else
         excluded.push_back(r);
     }
+    for (size_t i = 0; i < b.size(); ++i)
+      if (i % 4 != 3) b[i] = uint8_t(std::min(255.0f, std::round(float(b[i]) * scale[i % 4])));
     // Pixels not compared take A's value in B: they add no difference.
     size_t compared = 0;
     for (int y = 0; y < h; ++y)
