@@ -4,8 +4,8 @@
 
 namespace rgraph {
 namespace {
-// name, bytes per pixel, components, depth, stencil, float, colour-renderable
-const std::array<FormatInfo, 16> kFormats = {{
+// name, bytes per pixel, components, depth, stencil, float, colour-renderable, integer
+const std::array<FormatInfo, 17> kFormats = {{
     {Format::rgba8, "rgba8", 4, 4, false, false, false, true},
     {Format::srgb8_alpha8, "srgb8_alpha8", 4, 4, false, false, false, true},
     {Format::rgba16f, "rgba16f", 8, 4, false, false, true, true},
@@ -22,6 +22,7 @@ const std::array<FormatInfo, 16> kFormats = {{
     {Format::depth32f, "depth32f", 4, 1, true, false, true, true},
     {Format::depth24_stencil8, "depth24_stencil8", 4, 1, true, true, false, true},
     {Format::depth32f_stencil8, "depth32f_stencil8", 8, 1, true, true, true, true},
+    {Format::rg32ui, "rg32ui", 8, 2, false, false, false, true, true},
 }};
 }  // namespace
 
