@@ -288,7 +288,7 @@ pick)
   grep -Eq "^rgraph view: translation [-0-9.e]+ [-0-9.e]+ [-0-9.e]+$" "$out/view.log" || fail "no transform line"
   grep -Eq "^rgraph view: picked \(2, 2\) in frame [0-9]+: nothing$" "$out/view.log" ||
     fail "the background at (2, 2) should select nothing"
-  grep -q '"event":"pick".*"result":"error".*script.txt:5: error: Renderer::requestPick: pixel (500, 10) is outside' \
+  grep -q '"diagnostics":\[".*script.txt:5: error: Renderer::requestPick: pixel (500, 10) is outside.*"event":"pick".*"result":"error"' \
     "$out/status.jsonl" || fail "no error line for the pick outside the window"
   echo "ok: pick selects object4 at the centre, nothing in the corner, an error outside" ;;
 script_errors)
