@@ -84,9 +84,10 @@ void PickReader::afterPass(size_t step, const Executor& executor, uint64_t frame
   }
   const GLuint texture = executor.textureOf(source_->resource);
   if (!texture) return;
+  // Its size from the plan, not a glGet (a round trip on drivers that run GL on a thread of their own).
   GLint w = 0, h = 0;
-  glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_WIDTH, &w);
-  glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_HEIGHT, &h);
+  for (const PlannedResource& res : executor.plan().resources)
+    if (res.name == source_->resource) w = GLint(res.extent.width), h = GLint(res.extent.height);
   if (w <= 0 || h <= 0) return;
   const Request& r = *requested_;
   // The ids may be at another size than the output (a scaled resource):
