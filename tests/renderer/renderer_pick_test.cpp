@@ -248,6 +248,17 @@ TEST_F(RendererPick, MisuseAndPipelinesWithoutIdsAnswerClearly) {
   p = fwd->pickResult();
   ASSERT_TRUE(p);
   EXPECT_NE(p->problem.find("RendererOptions::picking"), std::string::npos) << p->problem;
+  // A new scene forgets a pick in flight and an answer: their ids were the old scene's.
+  fwd->requestPick(48, 32);
+  fwd->setScene(RenderScene::fromScene(cubes({0.0f})));
+  fwd->render();
+  EXPECT_FALSE(fwd->pickResult(/*wait=*/true));
+  auto ids = makeRenderer(kDefault, true, scene);
+  ASSERT_TRUE(ids);
+  ids->requestPick(48, 32);
+  ids->render();
+  ids->setScene(RenderScene::fromScene(cubes({0.0f})));
+  EXPECT_FALSE(ids->pickResult(/*wait=*/true));
 }
 
 }  // namespace

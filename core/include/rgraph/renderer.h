@@ -508,7 +508,8 @@ class Renderer {
   // copy not done). wait: waits for the GPU (glClientWaitSync) when the read
   // is queued: for tests and tools, never per frame. The objects are those
   // of the frame that was read: an object moved since is found where it was
-  // drawn then; one removed since is reported as nothing.
+  // drawn then; one removed since is reported as nothing. setScene forgets
+  // the request and its answer (InstanceIds are per scene).
   void requestPick(uint32_t x, uint32_t y);
   std::optional<PickResult> pickResult(bool wait = false);
 

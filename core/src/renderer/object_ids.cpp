@@ -115,6 +115,15 @@ void PickReader::afterPass(size_t step, const Executor& executor, uint64_t frame
   requested_.reset();
 }
 
+void PickReader::cancel() {
+  if (fence_) glDeleteSync(fence_);
+  fence_ = nullptr;
+  requested_.reset();
+  inFlight_.reset();
+  inFlightObjects_.clear();
+  answer_.reset();
+}
+
 void PickReader::endFrame(uint64_t frame) {
   if (!requested_ || source_) return;
   PickResult none;

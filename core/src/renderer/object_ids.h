@@ -60,6 +60,8 @@ class PickReader {
   // waits for a later frame while it is.
   void afterPass(size_t step, const Executor& executor, uint64_t frame,
                  const std::function<std::vector<InstanceId>()>& objects);
+  // Forgets the request, the copy in flight and the answer (a new scene).
+  void cancel();
   // At the end of a frame: a request the frame could not read (no ids in the
   // pipeline) is answered with the problem.
   void endFrame(uint64_t frame);

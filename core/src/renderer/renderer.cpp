@@ -449,6 +449,7 @@ void Renderer::setScene(std::shared_ptr<RenderScene> scene) {
   impl_->camera = impl_->scene ? impl_->scene->scene().camera : Camera{};
   impl_->rebuild = true;
   impl_->planBeforeFrame.reset();
+  impl_->pick.cancel();  // its ids would be the old scene's: InstanceIds are per scene
 }
 
 const std::shared_ptr<RenderScene>& Renderer::scene() const { return impl_->scene; }
