@@ -66,6 +66,17 @@ layout(location = REFLECTANCE_LOCATION) out vec4 outReflectance;  // rgb dielect
 layout(location = VELOCITY_LOCATION) out vec2 outVelocity;
 in vec4 vs_clipNow;
 in vec4 vs_clipPrev;
+#define OBJECT_ID_LOCATION (VELOCITY_LOCATION + 1)
+#else
+#define OBJECT_ID_LOCATION VELOCITY_LOCATION
+#endif
+
+#if defined(HAS_OBJECT_ID)
+// Picking (gbuffer::objectIdTarget, rg32ui): the draw's entry in the Objects
+// buffer + 1 (scene.vert's u_object, the same uniform here; 0 is the
+// geometry pass's clear: nothing) and the triangle within the draw.
+layout(location = OBJECT_ID_LOCATION) out uvec2 outObjectId;
+uniform int u_object;
 #endif
 
 void main() {
@@ -81,6 +92,9 @@ void main() {
 #endif
 #if defined(HAS_VELOCITY)
   outVelocity = screenVelocity(vs_clipNow, vs_clipPrev);
+#endif
+#if defined(HAS_OBJECT_ID)
+  outObjectId = uvec2(uint(u_object) + 1u, uint(gl_PrimitiveID));
 #endif
 #if defined(GBUFFER_COMPACT)
   outNormal = encodeOctahedral(s.normal);

@@ -54,6 +54,15 @@ const std::vector<Layout>& layouts() {
 }
 // clang-format on
 
+const Target& objectIdTarget() {
+  static const Target target{
+      "object_id", Format::rg32ui,
+      "r: the drawn object's entry in the scene's Objects buffer + 1 (its index in Scene::primitives at that "
+      "frame; 0 where nothing was drawn), g: the triangle within its draw (gl_PrimitiveID); only when asked "
+      "(picking)"};
+  return target;
+}
+
 const Target* Layout::target(std::string_view slot) const {
   for (const auto& t : targets)
     if (t.slot == slot) return &t;

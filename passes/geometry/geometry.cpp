@@ -17,6 +17,9 @@
 namespace {
 using namespace rgraph;
 
+// The slot and the parameter that asks for it share the target's name.
+const std::string kObjectId = gbuffer::objectIdTarget().slot;
+
 class GeometryPass final : public PassInstance {
  public:
   // Model no more than the scene needs: without normal maps no tangent is
@@ -24,6 +27,7 @@ class GeometryPass final : public PassInstance {
   void setup(PassContext& ctx) override {
     program_ = ctx.program(lighting::normalMapVariant(ctx));
     velocity_ = ctx.bound("velocity");  // checkGeometry: bound exactly when the "velocity" param is on
+    objectIds_ = ctx.bound(kObjectId);   // objectIdRule: bound exactly when the "object_id" param is on
   }
 
   void execute(PassContext& ctx) override {
@@ -37,6 +41,9 @@ class GeometryPass final : public PassInstance {
       if (ctx.bound(slot)) glClearNamedFramebufferfv(fbo, GL_COLOR, drawBuffers++, zero);
     // Background pixels keep velocity 0 (no camera-only motion for them yet).
     if (velocity_) glClearNamedFramebufferfv(fbo, GL_COLOR, drawBuffers++, zero);
+    // Integer ids are cleared as integers (a float clear of one is undefined): 0, no object.
+    const GLuint noObject[4] = {0, 0, 0, 0};
+    if (objectIds_) glClearNamedFramebufferuiv(fbo, GL_COLOR, drawBuffers++, noObject);
     // Depth function GL_LESS, writes on, no blending: what every pass starts with (rgraph/pass.h).
     glEnable(GL_DEPTH_TEST);
     glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
@@ -51,7 +58,21 @@ class GeometryPass final : public PassInstance {
  private:
   uint32_t program_ = 0;
   bool velocity_ = false;
+  bool objectIds_ = false;
 };
+
+// Picking's ids (gbuffer::objectIdTarget): bound exactly when the param is on.
+PassRule objectIdRule() {
+  PassRule rule;
+  rule.text = "bind the object_id output exactly when \"object_id\" is true";
+  rule.check = [](const PassCheckContext& ctx, PassChecks& checks) {
+    const bool wanted = ctx.params().getBool(kObjectId);
+    if (ctx.bound(kObjectId) == wanted) return;
+    checks.slotError(kObjectId, wanted ? "\"object_id\": true writes object ids: bind the 'object_id' output"
+                                       : "an 'object_id' output needs the pass parameter \"object_id\": true");
+  };
+  return rule;
+}
 
 // The targets the layout writes are exactly the bound ones (gbuffer_layout.h),
 // each sentence listing what every layout of the table asks.
@@ -114,7 +135,10 @@ PassTypeDesc makeGeometryPass() {
            color),
       slot("depth", Access::depth_attachment, true, SlotDecl::Load::never, "scene depth",
            depthFormats()),
-      velocity::slot(),  // last, so the layouts' colour targets keep their attachment indices
+      velocity::slot(),  // after the layouts' colour targets, so that they keep their attachment indices
+      // Last: picking's ids, only when asked (gbuffer::objectIdTarget).
+      slot(kObjectId, Access::color_attachment, false, SlotDecl::Load::never,
+           gbuffer::objectIdTarget().stores + "; needs the object_id parameter", {gbuffer::objectIdTarget().format}),
   };
   for (auto& s : d.slots) s.gbufferTarget = true;  // what `rgraph plan --scene` counts as G-buffer bytes
   d.params = {param("layout", ParamType::enumeration, std::string(gbuffer::kDefaultLayout),
@@ -122,15 +146,19 @@ PassTypeDesc makeGeometryPass() {
   for (auto& p : lighting::constantMaterialParams()) d.params.push_back(std::move(p));
   d.adapt = lighting::adaptGBuffer;
   d.params.push_back(velocity::param());
+  d.params.push_back(param(kObjectId, ParamType::boolean, false,
+                           "write object ids for picking to the 'object_id' output (bind it too; "
+                           "RendererOptions::picking adds both)"));
   // HAS_NORMAL_MAPS follows the scene (both variants), HAS_VELOCITY the param.
   d.programs = [](const ParamSet& p) {
     std::vector<std::string> defines = lighting::gbufferDefines(p);
     velocity::addDefine(p, defines);
+    if (p.getBool(kObjectId)) defines.push_back("HAS_OBJECT_ID");
     ShaderProgramSpec s = programSpec("scene.vert", "gbuffer.frag", std::move(defines));
     s.ownSamplers = lighting::materialSamplers();
     return lighting::normalMapVariants(s);
   };
-  d.rules = {targetsRule(), velocity::rule(), normalRule()};
+  d.rules = {targetsRule(), velocity::rule(), normalRule(), objectIdRule()};
   d.needsScene = true;
   d.create = [] { return std::make_unique<GeometryPass>(); };
   return d;

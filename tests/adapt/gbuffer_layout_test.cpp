@@ -91,10 +91,16 @@ TEST(GBufferLayoutTable, TheGeometryPassDeclaresWhatTheTableWrites) {
     EXPECT_TRUE(s.gbufferTarget) << s.name;
     if (s.access == Access::color_attachment) color.push_back(s.name);
   }
-  // The layouts' targets, then the optional motion vectors (rgraph/passes/velocity.h), last.
+  // The layouts' targets, then the optional motion vectors (rgraph/passes/velocity.h), then the ids
+  // picking asks for (gbuffer::objectIdTarget), last, optional and of the table's format only.
   std::vector<std::string> expected = gbuffer::colorSlots();
   expected.push_back("velocity");
+  expected.push_back(gbuffer::objectIdTarget().slot);
   EXPECT_EQ(color, expected);
+  const SlotDecl* ids = geometry->findSlot(gbuffer::objectIdTarget().slot);
+  ASSERT_NE(ids, nullptr);
+  EXPECT_FALSE(ids->required);
+  EXPECT_EQ(ids->formats, std::vector<Format>{gbuffer::objectIdTarget().format});
   for (const auto& layout : gbuffer::layouts()) {
     for (const auto& slot : gbuffer::colorSlots()) {
       const SlotDecl* decl = geometry->findSlot(slot);

@@ -11,7 +11,8 @@
 // where NAME is one of:
 //   gbuffer-layouts  every G-buffer layout of rgraph::gbuffer::layouts()
 //                    (passes/common/gbuffer_layout.cpp): its targets in slot
-//                    order with format and contents, then its depth;
+//                    order with format and contents, then its depth; then
+//                    the target any layout adds when asked (objectIdTarget);
 //   frame-block      the members of the Frame uniform block in
 //                    shaders/include/frame.glsl with their comments.
 #include <cstdio>
@@ -53,6 +54,12 @@ std::string gbufferLayouts() {
              " | " + t.stores + " |\n";
     out += "| " + code("depth") + " | " + code(rgraph::formatName(l.depth)) + " | " + l.depthStores + " |\n";
   }
+  const auto& ids = rgraph::gbuffer::objectIdTarget();
+  out += "\nEvery layout, when asked (picking: the geometry pass's `" + ids.slot +
+         "` parameter, or `RendererOptions::picking`), after its targets and `velocity` (" +
+         std::to_string(rgraph::formatInfo(ids.format).bytesPerPixel) + " bytes per pixel):\n\n";
+  out += "| slot | format | holds |\n|---|---|---|\n";
+  out += "| " + code(ids.slot) + " (asked) | " + code(rgraph::formatName(ids.format)) + " | " + ids.stores + " |\n";
   return out + "\n";
 }
 

@@ -20,6 +20,7 @@
 #include "rgraph/gl/executor.h"
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/registry.h"
+#include "rgraph/renderer.h"
 #include "rgraph/scene.h"
 #include "rgraph/pipeline_load.h"
 #include "support/test_support.h"
@@ -149,6 +150,65 @@ TEST_F(GlCalls, InstancesCostNoDrawCallMoreThanOne) {
               many, manyInstanced, one);
   EXPECT_EQ(many, one);
   EXPECT_GE(manyInstanced, 1);  // the scene's mesh, instanced
+}
+
+// The calls one Renderer::render() makes, per GL function.
+Calls renderCalls(Renderer& r) {
+  const auto before = GlCallCounter::perFunction();
+  r.render();
+  Calls d;
+  for (const auto& [name, n] : GlCallCounter::perFunction()) d[name] += static_cast<long long>(n);
+  for (const auto& [name, n] : before) d[name] -= static_cast<long long>(n);
+  for (auto it = d.begin(); it != d.end();) it = it->second == 0 ? d.erase(it) : std::next(it);
+  return d;
+}
+
+Calls minus(Calls a, const Calls& b) {
+  for (const auto& [name, k] : b) a[name] -= k;
+  for (auto it = a.begin(); it != a.end();) it = it->second == 0 ? a.erase(it) : std::next(it);
+  return a;
+}
+
+// Picking (Renderer::requestPick) on the default pipeline at 32x32: with
+// RendererOptions::picking a frame without a request costs one call more (the
+// ids' clear); a frame with one adds the copy of one pixel into a pixel pack
+// buffer and a fence, no glFinish and no read-back into memory.
+TEST_F(GlCalls, APickCostsACopyAndAFenceNoWait) {
+  auto make = [&](bool picking) {
+    RendererOptions options;
+    options.size = {32, 32};
+    options.picking = picking;
+    Diagnostics diags;
+    auto r = Renderer::fromFile(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/default.json", options, diags);
+    EXPECT_TRUE(r);
+    r->setScene(RenderScene::load("learnopengl:overview"));
+    r->setCpuPassTiming(false);
+    r->requestPick(16, 16);  // the pixel buffer is made by the first pick, not counted below
+    for (int i = 0; i < 3; ++i) r->render();
+    return r;
+  };
+  auto plain = make(false), picking = make(true);
+  ASSERT_TRUE(plain && picking);
+  const Calls off = renderCalls(*plain), idle = renderCalls(*picking);
+  picking->requestPick(16, 16);
+  const Calls asked = renderCalls(*picking);
+  const Calls ids = minus(idle, off), pick = minus(asked, idle);
+  std::printf("[ measure  ] default pipeline 32x32, Renderer::render: %lld calls, %lld with picking on, %lld with a "
+              "pick requested\n",
+              total(off), total(idle), total(asked));
+  EXPECT_EQ(ids, (Calls{{"glClearNamedFramebufferuiv", 1}})) << listing(ids);
+  for (const char* wait : {"glFinish", "glReadPixels", "glGetTextureImage", "glClientWaitSync", "glMapNamedBufferRange",
+                           "glGetNamedBufferSubData"})
+    EXPECT_EQ(pick.count(wait), 0u) << wait << " in a frame with a pick:\n" << listing(pick);
+  EXPECT_EQ(pick.count("glGetTextureSubImage") ? pick.at("glGetTextureSubImage") : 0, 1) << listing(pick);
+  EXPECT_EQ(pick.count("glFenceSync") ? pick.at("glFenceSync") : 0, 1) << listing(pick);
+  // The pick's own calls: the pack buffer bound and unbound, the pack alignment, the copy, the fence and a
+  // flush (6); the rest is the state the executor puts back after each pass while an after-pass callback is
+  // installed (only in frames with a request): 60 at 21:25 UTC on 2026-12-06. No glGet: nothing asked.
+  for (const auto& [name, k] : pick)
+    EXPECT_FALSE(name.rfind("glGet", 0) == 0 && name != "glGetTextureSubImage") << name << " in a frame with a pick";
+  EXPECT_EQ(pick.at("glBindBuffer"), 2) << listing(pick);
+  EXPECT_LE(total(pick), 70) << listing(pick);
 }
 
 }  // namespace

@@ -425,6 +425,20 @@ TEST(ShaderCheck, IntegerOutputIntoANormalizedFormatIsAnError) {
   EXPECT_NE(d[0].message.find("ivec4 'o_int'"), std::string::npos) << all(d);
 }
 
+// Ids (rg32ui, the geometry pass's object_id): unsigned outputs only.
+TEST(ShaderCheck, OnlyUnsignedOutputsGoIntoAnUnsignedIntegerFormat) {
+  ShaderChecker checker(testDirs());
+  const std::vector<BoundSlot> ids = {slot("color", Access::color_attachment, "ids", Format::rg32ui)};
+  for (const char* shader : {"vec4_out.frag", "ivec4_out.frag"}) {
+    Diagnostics d = checker.checkPass("p", type("fullscreen"), fullscreenParams(shader), ids);
+    ASSERT_EQ(count(d, Severity::error), 1u) << shader << ": " << all(d);
+    EXPECT_NE(d[0].message.find("only unsigned integer outputs (uint, uvec2...) are defined in an unsigned integer "
+                                "format"),
+              std::string::npos)
+        << all(d);
+  }
+}
+
 TEST(ShaderCheck, ColourAttachmentsFollowSlotOrderNotConfigOrder) {
   ShaderChecker checker(testDirs());
   // color and color2 bound (color1 not): the executor puts color2 at location 1.

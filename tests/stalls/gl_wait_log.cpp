@@ -37,6 +37,14 @@ Fn real(const char* name) {
 }
 
 void blocked(const char* name) { ++log().blocking[name]; }
+// A read-back into a pixel pack buffer queues a copy on the GPU: it waits
+// only for a client-memory destination.
+void readBack(const char* name) {
+  GLint packBuffer = 0;
+  glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &packBuffer);
+  if (packBuffer == 0) blocked(name);
+  else ++log().packBufferReads;
+}
 
 void resultRead(GLuint id, GLenum pname, const char* getter) {
   if (pname != GL_QUERY_RESULT) return;
@@ -61,6 +69,7 @@ GlWaits waits() { return log(); }
 
 using rgraph::stalltest::availability;
 using rgraph::stalltest::blocked;
+using rgraph::stalltest::readBack;
 using rgraph::stalltest::real;
 using rgraph::stalltest::resultRead;
 
@@ -74,17 +83,17 @@ using rgraph::stalltest::resultRead;
 
 RGRAPH_FORWARD(void, glFinish, (void), (), blocked("glFinish"))
 RGRAPH_FORWARD(void, glReadPixels, (GLint x, GLint y, GLsizei w, GLsizei h, GLenum f, GLenum t, void* p),
-               (x, y, w, h, f, t, p), blocked("glReadPixels"))
+               (x, y, w, h, f, t, p), readBack("glReadPixels"))
 RGRAPH_FORWARD(void, glReadnPixels, (GLint x, GLint y, GLsizei w, GLsizei h, GLenum f, GLenum t, GLsizei n, void* p),
-               (x, y, w, h, f, t, n, p), blocked("glReadnPixels"))
+               (x, y, w, h, f, t, n, p), readBack("glReadnPixels"))
 RGRAPH_FORWARD(void, glGetTextureImage, (GLuint tex, GLint l, GLenum f, GLenum t, GLsizei n, void* p),
-               (tex, l, f, t, n, p), blocked("glGetTextureImage"))
+               (tex, l, f, t, n, p), readBack("glGetTextureImage"))
 RGRAPH_FORWARD(void, glGetTexImage, (GLenum target, GLint l, GLenum f, GLenum t, void* p), (target, l, f, t, p),
-               blocked("glGetTexImage"))
+               readBack("glGetTexImage"))
 RGRAPH_FORWARD(void, glGetTextureSubImage,
                (GLuint tex, GLint l, GLint x, GLint y, GLint z, GLsizei w, GLsizei h, GLsizei d, GLenum f, GLenum t,
                 GLsizei n, void* p),
-               (tex, l, x, y, z, w, h, d, f, t, n, p), blocked("glGetTextureSubImage"))
+               (tex, l, x, y, z, w, h, d, f, t, n, p), readBack("glGetTextureSubImage"))
 RGRAPH_FORWARD(void, glGetNamedBufferSubData, (GLuint b, GLintptr o, GLsizeiptr s, void* p), (b, o, s, p),
                blocked("glGetNamedBufferSubData"))
 RGRAPH_FORWARD(void, glGetBufferSubData, (GLenum target, GLintptr o, GLsizeiptr s, void* p), (target, o, s, p),

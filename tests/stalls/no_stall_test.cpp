@@ -127,6 +127,42 @@ TEST(NoStall, SteadyFramesWithTimerQueriesNeverWaitForTheGpu) {
   EXPECT_GT(sumMs(*r), 0.0);
 }
 
+// Picking (Renderer::requestPick): a pick every frame copies one pixel into a
+// pixel pack buffer with a fence, and the answers come in frames later from a
+// persistently mapped buffer: no glFinish, no read-back into client memory,
+// no map, no fence wait on the frame path; the buffer is made (and mapped,
+// once) by the first pick.
+TEST(NoStall, PicksEveryFrameNeverWaitForTheGpu) {
+  testsupport::sharedGlContext();
+  RendererOptions options;
+  options.size = {96, 64};
+  options.picking = true;
+  Diagnostics diags;
+  auto r = Renderer::fromFile(kDefault, options, diags);
+  ASSERT_TRUE(r) << (diags.empty() ? std::string("no diagnostics") : formatDiagnostic(diags.front()));
+  r->setScene(RenderScene::load("learnopengl:overview"));
+  r->setCpuPassTiming(false);  // CPU pass timing waits with glFinish by design
+  r->requestPick(48, 40);
+  r->render();
+  r->render();
+  stalltest::resetWaits();
+  for (uint32_t i = 0; i < 12; ++i) {
+    r->requestPick(40 + i, 40);
+    r->render();
+    (void)r->pickResult();  // nullopt here: each request replaces the one before
+  }
+  r->render();
+  (void)r->pickResult();
+  const GlWaits w = stalltest::waits();
+  EXPECT_TRUE(w.blocking.empty()) << "a frame with a pick waited for the GPU:" << listed(w);
+  EXPECT_GE(w.packBufferReads, 6u) << "fewer picks copied than half the frames";
+  // The last request was copied by its frame; its answer comes in (waited for here, off the frame path).
+  const std::optional<PickResult> last = r->pickResult(/*wait=*/true);
+  ASSERT_TRUE(last);
+  EXPECT_EQ(last->x, 51u);
+  EXPECT_TRUE(last->problem.empty()) << last->problem;
+}
+
 // A rebuild (here a new size) drops the queries in flight: no frame's times
 // are reported until one rendered since is in, and none names an earlier frame.
 TEST(NoStall, ARebuildAttributesNoTimesAcrossIt) {

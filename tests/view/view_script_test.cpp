@@ -48,6 +48,14 @@ TEST(ViewScript, InspectTakesAResourceALayerAndAMip) {
   EXPECT_EQ(cmds[3].words, std::vector<std::string>{"shadows"});
 }
 
+TEST(ViewScript, PickTakesAWindowPixel) {
+  std::string error;
+  const auto cmds = parseScript("pick 80 60\n", "s.txt", error);
+  ASSERT_EQ(cmds.size(), 1u) << error;
+  EXPECT_EQ(cmds[0].kind, K::Pick);
+  EXPECT_EQ(cmds[0].numbers, (std::vector<float>{80, 60}));
+}
+
 TEST(ViewScript, JsonValuesMayContainSpaces) {
   std::string error;
   const auto cmds = parseScript("param ambient color [0.1, 0.2, 0.3]\n", "s.txt", error);
@@ -75,6 +83,9 @@ TEST(ViewScript, ErrorsNameFileAndLine) {
            Case{"inspect atlas 1.5\n", "s.txt:1: error: 'inspect' needs whole numbers from 0 to 65535"},
            Case{"inspect atlas -1\n", "s.txt:1: error: 'inspect' needs whole numbers from 0 to 65535"},
            Case{"panel camera\n", "s.txt:1: error: 'panel' expects plan, parameters or shadows"},
+           Case{"pick 1\n", "s.txt:1: error: 'pick' expects X Y, got 1 argument(s)"},
+           Case{"pick 1 -2\n", "s.txt:1: error: 'pick' needs whole numbers from 0 to 65535"},
+           Case{"pick 1 y\n", "s.txt:1: error: 'pick': 'y' is not a number (expected X Y)"},
        }) {
     std::string error;
     EXPECT_TRUE(parseScript(c.text, "s.txt", error).empty()) << c.text;

@@ -24,6 +24,8 @@
 #                   scene): the inspector's image (right half, below its pickers) differs between layers 0
 #                   and 6, the whole screenshot of layer 0 twice does not (the image is on screen and shows
 #                   the layer asked for); the Shadows tab is in front (the plan tab's times change each frame)
+#   pick            `pick 80 60` selects the object at the centre (printed with material and transform),
+#                   `pick 2 2` the background (nothing), `pick 500 10` is an error naming the script line
 #   script_errors   an unknown command, a bad number, a missing script, a folder: FILE:LINE error, exit 1, no window
 set -uo pipefail
 case_=$1; rgraph=$2; compare=$3; xvfb=$4; src=$5; out=$6/view-$1
@@ -272,6 +274,23 @@ inspect_layers)
   "$compare" "$out/layer0.png" "$out/layer6.png" 1 --region 480,175,480,185; rc=$?
   [[ $rc -eq 2 ]] || fail "layers 0 and 6 look the same in the inspector's image (compare exit $rc)"
   echo "ok: two atlas layers shown differ, one layer twice does not" ;;
+pick)
+  # `pick X Y` (as a click) selects the object under window pixel X Y (top-left origin), printed a frame or
+  # two later with its material and transform; the background selects nothing; a pixel outside the window
+  # is an error line naming the script line, and the script goes on.
+  printf 'pick 80 60\nwait 4\npick 2 2\nwait 4\npick 500 10\nwait 2\nquit\n' >"$out/script.txt"
+  run_x "$rgraph" view --width 160 --height 120 --script "$out/script.txt" --status "$out/status.jsonl" \
+    >"$out/view.log" 2>&1 || fail "rgraph view exited $?"
+  grep -Eq "^rgraph view: picked \(80, 60\) in frame [0-9]+: instance [0-9]+ 'object4', triangle [0-9]+$" \
+    "$out/view.log" || fail "no selection of object4 (the overview's middle cube) at (80, 60)"
+  grep -Eq "^rgraph view: material [0-9]+ '[^']*': base colour [-0-9.e ]+, metallic [-0-9.e]+, roughness" \
+    "$out/view.log" || fail "no material line"
+  grep -Eq "^rgraph view: translation [-0-9.e]+ [-0-9.e]+ [-0-9.e]+$" "$out/view.log" || fail "no transform line"
+  grep -Eq "^rgraph view: picked \(2, 2\) in frame [0-9]+: nothing$" "$out/view.log" ||
+    fail "the background at (2, 2) should select nothing"
+  grep -q '"diagnostics":\[".*script.txt:5: error: Renderer::requestPick: pixel (500, 10) is outside.*"event":"pick".*"result":"error"' \
+    "$out/status.jsonl" || fail "no error line for the pick outside the window"
+  echo "ok: pick selects object4 at the centre, nothing in the corner, an error outside" ;;
 script_errors)
   check() {  # SCRIPT-TEXT EXPECTED-REGEX
     printf '%b' "$1" >"$out/bad.txt"

@@ -121,6 +121,26 @@ TEST_F(ViewInspector, GBufferTargetsAndDepthOfTheDefaultPipelineAreCopiedOncePer
   EXPECT_EQ(inspector.textureCreations(), creations + 1) << "another format: one new copy texture";
 }
 
+// Picking's ids (rg32ui, RendererOptions::picking as rgraph view sets it) are not copied: a float view
+// of an integer texture is undefined. The inspector says so.
+TEST_F(ViewInspector, ObjectIdsAreNotShownAndSaySo) {
+  RendererOptions options;
+  options.size = kSize;
+  options.picking = true;
+  Diagnostics diags;
+  auto r = Renderer::fromFile(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/default.json", options, diags);
+  ASSERT_TRUE(r) << (diags.empty() ? "" : formatDiagnostic(diags.front()));
+  r->setScene(RenderScene::load("learnopengl:overview"));
+  r->render();
+  ResourceInspector inspector;
+  inspector.attach(*r);
+  inspector.select("object_id");
+  r->render();
+  EXPECT_EQ(inspector.capturedTexture(), 0u);
+  EXPECT_EQ(inspector.problem(), "'object_id' holds integer ids (rg32ui): the inspector shows colour and depth only "
+                                 "(Renderer::requestPick reads ids)");
+}
+
 TEST_F(ViewInspector, OnlyTheAttachedRendererCopiesAndAnUnwrittenNameCopiesNothing) {
   auto first = make(kAliasing), second = make(kAliasing);
   ASSERT_TRUE(first && second);

@@ -19,10 +19,18 @@ struct InputState {
   float wheel = 0;         // accumulated by the scroll callback
   bool resetHeld = false;  // R, for edge detection
   bool uiToggleHeld = false;
+  // A click: the left button pressed and released within a few pixels, not
+  // over a panel. `clicked` holds where (window coordinates, top-left) until
+  // the viewer takes it.
+  bool leftHeld = false, pressOverUi = false;
+  double pressX = 0, pressY = 0;
+  bool clicked = false;
+  double clickX = 0, clickY = 0;
 };
 
 // Applies mouse and keys to the camera (orbit: left drag, look: right drag
-// with WASD/QE flying, wheel: zoom, R: reset) unless ImGui wants them; F1 toggles `ui`.
+// with WASD/QE flying, wheel: zoom, R: reset) unless ImGui wants them; F1 toggles `ui`;
+// a left click (no drag) is left in `clicked` for picking.
 void handleInput(GLFWwindow* window, InputState& input, CameraController& camera, bool imguiWantsMouse,
                  bool imguiWantsKeyboard, float seconds, bool& ui);
 

@@ -2,6 +2,8 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <cmath>
+
 #include "view_app.h"
 
 namespace rgraph::view {
@@ -20,6 +22,16 @@ void handleInput(GLFWwindow* window, InputState& in, CameraController& camera, b
     in.dragging = false;
   else if (!in.dragging && !imguiWantsMouse)
     in.dragging = true;
+  // A click selects (picking): released within 3 pixels of where it was pressed.
+  if (left && !in.leftHeld) {
+    in.pressX = x, in.pressY = y;
+    in.pressOverUi = imguiWantsMouse;
+  }
+  if (!left && in.leftHeld && !in.pressOverUi && std::abs(x - in.pressX) <= 3 && std::abs(y - in.pressY) <= 3) {
+    in.clicked = true;
+    in.clickX = x, in.clickY = y;
+  }
+  in.leftHeld = left;
   if (in.dragging && left) camera.orbit(dx, dy);
   if (in.dragging && right) camera.look(dx, dy);
   if (!imguiWantsMouse && in.wheel != 0) camera.zoom(in.wheel);

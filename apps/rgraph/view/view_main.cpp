@@ -29,6 +29,7 @@
 #include "view_panels.h"
 #include "view_reload.h"
 #include "view_script.h"
+#include "view_selection.h"
 
 namespace rgraph::cli {
 namespace {
@@ -134,6 +135,10 @@ class Viewer {
   void drawUi();
   void report(const std::string& event, bool ok, const std::vector<std::string>& errors);
   void writeStats() const;
+  // Picking: asks about window pixel (x, y) (framebuffer pixels, from the top-left); takeAnswer prints
+  // and selects what the renderer answers, a frame or two later.
+  void requestPick(uint32_t x, uint32_t y, int line);
+  void takeAnswer();
 
   const ViewOptions& options_;
   std::vector<view::ScriptCommand> script_;
@@ -157,7 +162,29 @@ class Viewer {
   std::vector<double> uiOnMs_, uiOffMs_;
   bool ui_ = true;
   std::string showTab_;  // a script's `panel`: the tab drawPanels brings to the front
+  bool pickPending_ = false;
+  std::optional<PickResult> selected_;  // the Selection panel's object (the last answer)
 };
+
+void Viewer::requestPick(uint32_t x, uint32_t y, int line) {
+  try {
+    renderer_->requestPick(x, y);
+    pickPending_ = true;
+  } catch (const RuntimeError& e) {  // outside the window: said, the script goes on
+    const std::string where = line > 0 ? options_.script + ":" + std::to_string(line) + ": error: " : "error: ";
+    report("pick", false, {where + e.what()});
+  }
+}
+
+void Viewer::takeAnswer() {
+  if (!pickPending_) return;
+  std::optional<PickResult> answer = renderer_->pickResult();
+  if (!answer) return;
+  pickPending_ = false;
+  selected_ = std::move(answer);
+  for (const std::string& line : view::describePick(*scene_, *selected_)) std::cout << "rgraph view: " << line << "\n";
+  std::cout.flush();
+}
 
 void Viewer::report(const std::string& event, bool ok, const std::vector<std::string>& errors) {
   if (ok)
@@ -185,6 +212,8 @@ void Viewer::reloadScene() {
     renderer_->setScene(scene);
     renderer_->setCamera(camera);
     scene_ = scene;
+    selected_.reset();  // its ids were the old scene's
+    pickPending_ = false;
     report("reload", true, {});
   } catch (const std::exception& e) {  // the old scene keeps rendering
     report("reload", false, {cli::errorLine(e.what())});
@@ -305,6 +334,9 @@ bool Viewer::runScript(std::string& shot) {
       case K::Panel:
         showTab_ = c.words[0];
         break;
+      case K::Pick:
+        requestPick(uint32_t(n[0]), uint32_t(n[1]), c.line);
+        break;
       case K::Resize:
         glfwSetWindowSize(window_.handle, int(n[0]), int(n[1]));
         renderer_->setSize(Extent{uint32_t(n[0]), uint32_t(n[1])});
@@ -339,6 +371,7 @@ void Viewer::drawUi() {
   }
   if (std::optional<std::string> text = view::drawPanels(*renderer_, editor_, inspector_, &showTab_))
     applyPanelEdit(*text);
+  view::drawSelection(scene_.get(), selected_);
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
@@ -380,8 +413,16 @@ void Viewer::run() {
     if (fb != refusedSize_) refusedSize_ = {};  // the window left the refused size: another size may be tried
     if (fb != renderer_->size() && fb != refusedSize_) renderer_->setSize(fb);
     renderer_->setCamera(camera_.camera());
+    if (input_.clicked) {  // window coordinates to framebuffer pixels (they differ on high-DPI screens)
+      input_.clicked = false;
+      int ww = 0, wh = 0;
+      glfwGetWindowSize(win, &ww, &wh);
+      if (ww > 0 && wh > 0 && input_.clickX >= 0 && input_.clickY >= 0)
+        requestPick(uint32_t(input_.clickX * fw / ww), uint32_t(input_.clickY * fh / wh), 0);
+    }
     const auto t0 = Clock::now();
     renderFrame(fb);
+    takeAnswer();
     if (first) {  // the baseline before anyone reads the load line (and may then edit a file)
       pipelineWatch_.watch(renderer_->watchedFiles());
       if (!sceneFile_.empty()) sceneWatch_.watch({sceneFile_});
@@ -429,6 +470,7 @@ int runView(const ViewOptions& options) {
   rendererOptions.maxTextureSize = options.size.maxTextureSize;
   rendererOptions.maxTextureSizeOrigin = compileOptions(0, 0, options.size.maxTextureSize).maxTextureSizeOrigin;
   rendererOptions.maxMemoryBytes = options.size.maxMemoryBytes;
+  rendererOptions.picking = true;  // a click selects: the object ids, 8 bytes a pixel (docs/viewer.md)
   rendererOptions.maxMemoryOrigin = "--max-memory";
   Window window;  // first: destroyed last, after everything that holds GL objects
   Diagnostics diags;

@@ -162,6 +162,11 @@ void ResourceInspector::Impl::afterPass(size_t step) {
     return;
   }
   const TextureDesc& t = decl.texture;
+  if (formatInfo(t.format).isInteger) {  // sampled as floats they would be undefined
+    problem = "'" + selected + "' holds integer ids (" + std::string(formatName(t.format)) +
+              "): the inspector shows colour and depth only (Renderer::requestPick reads ids)";
+    return;
+  }
   const Extent base = plan.resource(r).extent;
   const uint32_t layers = arrayLayers(t), levels = mipLevels(t, base);
   if (layer >= layers || mip >= levels) {

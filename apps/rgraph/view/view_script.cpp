@@ -108,12 +108,17 @@ std::string parseLine(const std::vector<std::string>& w, ScriptCommand& c) {
     c.words = {w[1]};
     return "";
   }
+  if (op == "pick") {  // selects the object under window pixel X Y (from the top-left), as a click does
+    c.kind = K::Pick;
+    std::string e = numbers(2, 2, "X Y");
+    return e.empty() ? whole(0, 65535) : e;
+  }
   if (op == "quit") {
     c.kind = K::Quit;
     return args ? "'quit' takes no arguments" : "";
   }
   return "unknown command '" + op +
-         "' (commands: camera, wait, waitfile, screenshot, ui, param, resize, inspect, panel, quit)";
+         "' (commands: camera, wait, waitfile, screenshot, ui, param, resize, inspect, panel, pick, quit)";
 }
 
 }  // namespace

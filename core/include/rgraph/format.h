@@ -30,6 +30,10 @@ enum class Format : uint8_t {
   depth32f,
   depth24_stencil8,
   depth32f_stencil8,
+  // Unsigned integers: ids, not colours (never filtered or blended; the
+  // object_id G-buffer target, gbuffer_layout.h). Last, so the formats above
+  // keep their values.
+  rg32ui,
 };
 
 struct FormatInfo {
@@ -41,6 +45,7 @@ struct FormatInfo {
   bool hasStencil;
   bool isFloat;
   bool colorRenderable;   // false for rgb16f / rgb32f
+  bool isInteger = false; // unsigned integer components (rg32ui): read and cleared as integers
 };
 
 const FormatInfo& formatInfo(Format f);

@@ -286,6 +286,13 @@ struct RendererOptions {
   // scene (forwardDepth in default.json, depth in forward.json). A name no
   // pass that runs attaches as depth makes render() throw RuntimeError.
   std::string depthResource;
+  // Picking (Renderer::requestPick): every pass of the pipeline that can
+  // write object ids and is not asked to (the geometry pass: an "object_id"
+  // output slot and a boolean "object_id" parameter) is asked to, into a
+  // resource "object_id" (rg32ui, the output's size) the renderer declares:
+  // 8 bytes per pixel and one more G-buffer attachment. Off (the default):
+  // none of it, unless the pipeline file asks itself (docs/pipeline-format.md).
+  bool picking = false;
   // Time passes with GL_TIME_ELAPSED queries on a software renderer too
   // (Executor::setGpuTimerQueries; a GPU always uses them). For tests of the
   // query path: llvmpipe's query values are poor.
@@ -296,6 +303,24 @@ struct RendererOptions {
 struct Viewport {
   int32_t x = 0, y = 0;
   uint32_t width = 0, height = 0;  // 0: the renderer's size
+};
+
+// The answer to a Renderer::requestPick.
+struct PickResult {
+  uint32_t x = 0, y = 0;  // the pixel asked about, from the output's top-left corner
+  uint64_t frame = 0;     // the frame it was read from (frameIndex() counting; 0 when none was read)
+  // The object drawn there by a pass that writes object ids (the geometry
+  // pass: opaque and alpha-masked surfaces; blended surfaces drawn by forward
+  // passes are not in the ids, the surface behind them is); 0: nothing there
+  // (the background), an object removed since that frame, or no answer
+  // (`problem`).
+  InstanceId instance;
+  // The triangle of the object's mesh under the pixel (gl_PrimitiveID: its
+  // first index is 3 x triangle in the mesh's indices); 0 without an instance.
+  uint32_t triangle = 0;
+  // Why there is no answer: the pipeline writes no object ids. Empty when
+  // the ids were read.
+  std::string problem;
 };
 
 class Renderer {
@@ -468,6 +493,25 @@ class Renderer {
   std::vector<uint8_t> readOutputRGBA8() const;
   // Any resource or version as RGBA32F, rows top-down (see Executor).
   std::vector<float> readResourceRGBA32F(const std::string& name) const;
+
+  // Picking: which object is under a pixel, answered a frame late without
+  // waiting for the GPU. requestPick(x, y) asks about pixel (x, y) of the
+  // output, counted from its top-left corner as window coordinates are
+  // (0 <= x < size().width, 0 <= y < size().height; outside: RuntimeError,
+  // nothing asked). The next render() copies that pixel of the object ids
+  // (RendererOptions::picking, or a pipeline whose geometry pass writes
+  // "object_id") into a pixel buffer right after the pass that writes them,
+  // with a fence; a later render() or pickResult() takes it once the fence
+  // says it is in (usually the next frame). A newer request replaces one not
+  // yet read. pickResult(): the answer to the last request once it is in;
+  // nullopt before any request and while it is pending (no frame yet, the
+  // copy not done). wait: waits for the GPU (glClientWaitSync) when the read
+  // is queued: for tests and tools, never per frame. The objects are those
+  // of the frame that was read: an object moved since is found where it was
+  // drawn then; one removed since is reported as nothing. setScene forgets
+  // the request and its answer (InstanceIds are per scene).
+  void requestPick(uint32_t x, uint32_t y);
+  std::optional<PickResult> pickResult(bool wait = false);
 
   // Called after each pass of every frame with its step in plan().order
   // (GL work recorded, before the next pass): copy a resource out as it was

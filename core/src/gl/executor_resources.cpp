@@ -122,6 +122,19 @@ std::vector<float> Executor::readTextureRGBA32F(const std::string& name) const {
       data[i * 4 + 2] = 0.0f;
       data[i * 4 + 3] = 1.0f;
     }
+  } else if (formatInfo(obj.format).isInteger) {
+    // Ids (rg32ui): read as integers (a float read of an integer texture is
+    // a GL error), each converted to float, blue 0 and alpha 1.
+    std::vector<uint32_t> ids(w * h * 2);
+    glGetTextureSubImage(obj.texture, 0, 0, 0, 0, static_cast<GLsizei>(w), static_cast<GLsizei>(h), 1,
+                         GL_RG_INTEGER, GL_UNSIGNED_INT, static_cast<GLsizei>(ids.size() * sizeof(uint32_t)),
+                         ids.data());
+    for (size_t i = 0; i < w * h; ++i) {
+      data[i * 4 + 0] = static_cast<float>(ids[i * 2]);
+      data[i * 4 + 1] = static_cast<float>(ids[i * 2 + 1]);
+      data[i * 4 + 2] = 0.0f;
+      data[i * 4 + 3] = 1.0f;
+    }
   } else {
     // Level 0 of layer 0 (a cube's +x face) of any shape.
     glGetTextureSubImage(obj.texture, 0, 0, 0, 0, static_cast<GLsizei>(w), static_cast<GLsizei>(h), 1, GL_RGBA,

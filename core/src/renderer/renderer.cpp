@@ -14,6 +14,7 @@
 
 #include "../gl/device_memory.h"
 #include "../gl/imported_texture.h"
+#include "object_ids.h"
 #include "scene_depth.h"
 #include "rgraph/adapt.h"
 #include "rgraph/error.h"
@@ -95,6 +96,8 @@ struct Renderer::Impl {
   bool cpuPassTiming = true;
 
   SceneDepthCopy depth;                        // options.keepDepth: the scene's depth of the last frame
+  PickReader pick;                             // requestPick: one pixel of the object ids, a frame late
+  bool pickHooked = false;                     // the executor's after-pass callback serves `pick`
   ShaderLibrary shaders;                       // kept across rebuilds: unchanged programs are reused
   std::shared_ptr<RenderScene> executorScene;  // what `executor` draws: alive as long as it is
   std::unique_ptr<Executor> executor;
@@ -144,6 +147,8 @@ struct Renderer::Impl {
   // resets after every pass).
   void installAfterPass(Executor& e);
   void prepareFrame();
+  // One frame of the executor, with the pick reader's before and after.
+  void renderFrame();
   void blitOutput(uint32_t framebuffer, const Viewport& viewport);
 };
 
@@ -248,6 +253,9 @@ void Renderer::Impl::adapt() {
   } else {
     adaptedFor.reset();
   }
+  if (options.picking)
+    for (const std::string& pass : addObjectIds(adapted, *registry))
+      report.notes.push_back("pass '" + pass + "': writes object ids into an 'object_id' output (RendererOptions::picking)");
 }
 
 SceneFeatures Renderer::Impl::features() const {
@@ -346,6 +354,7 @@ void Renderer::Impl::buildExecutor() {
   }
   // Nothing below throws: the new executor and its depth source replace the old ones together.
   depth.setSource(depthSource);
+  pick.setSource(findObjectIds(next->plan()));
   installAfterPass(*next);
   if (executor) framesBefore += executor->frameIndex();
   executor = std::move(next);
@@ -356,11 +365,24 @@ void Renderer::Impl::buildExecutor() {
 }
 
 void Renderer::Impl::installAfterPass(Executor& e) {
-  if (!depth.active() && !afterPass) return e.setAfterPass({});
+  // Picking hooks in only for frames with a request: other frames pay nothing.
+  pickHooked = pick.wantsFrame();
+  if (!depth.active() && !afterPass && !pickHooked) return e.setAfterPass({});
   e.setAfterPass([this, &e](size_t step) {
     depth.afterPass(step, e);
+    if (pickHooked)
+      pick.afterPass(step, e, framesBefore + e.frameIndex(), [this] {
+        return executorScene ? executorScene->instances() : std::vector<InstanceId>{};
+      });
     if (afterPass) afterPass(step);
   });
+}
+
+void Renderer::Impl::renderFrame() {
+  pick.poll(false, [this](InstanceId id) { return scene && scene->contains(id); });
+  if (pick.wantsFrame() != pickHooked) installAfterPass(*executor);
+  executor->renderFrame();
+  pick.endFrame(framesBefore + executor->frameIndex() - 1);
 }
 
 void Renderer::Impl::blitOutput(uint32_t framebuffer, const Viewport& viewport) {
@@ -427,6 +449,7 @@ void Renderer::setScene(std::shared_ptr<RenderScene> scene) {
   impl_->camera = impl_->scene ? impl_->scene->scene().camera : Camera{};
   impl_->rebuild = true;
   impl_->planBeforeFrame.reset();
+  impl_->pick.cancel();  // its ids would be the old scene's: InstanceIds are per scene
 }
 
 const std::shared_ptr<RenderScene>& Renderer::scene() const { return impl_->scene; }
@@ -513,14 +536,14 @@ void Renderer::render() {
   Impl::FrameScope frame(*impl_);
   Impl::CallerState state(impl_->options.restoreGlState);
   impl_->prepareFrame();
-  impl_->executor->renderFrame();
+  impl_->renderFrame();
 }
 
 void Renderer::render(uint32_t framebuffer, const Viewport& viewport) {
   Impl::FrameScope frame(*impl_);
   Impl::CallerState state(impl_->options.restoreGlState);
   impl_->prepareFrame();
-  impl_->executor->renderFrame();
+  impl_->renderFrame();
   impl_->blitOutput(framebuffer, viewport);
 }
 
@@ -640,6 +663,22 @@ void Renderer::setAfterPass(std::function<void(size_t)> callback) {
   impl_->refuseInFrame("setAfterPass");
   impl_->afterPass = std::move(callback);
   if (impl_->executor) impl_->installAfterPass(*impl_->executor);
+}
+
+void Renderer::requestPick(uint32_t x, uint32_t y) {
+  impl_->refuseInFrame("requestPick");
+  const Extent size = impl_->size;
+  if (x >= size.width || y >= size.height)
+    throw RuntimeError("Renderer::requestPick: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                       ") is outside the output (" + std::to_string(size.width) + "x" + std::to_string(size.height) +
+                       ", counted from its top-left corner)");
+  impl_->pick.request(x, y, size);
+}
+
+std::optional<PickResult> Renderer::pickResult(bool wait) {
+  impl_->refuseInFrame("pickResult");
+  impl_->pick.poll(wait, [this](InstanceId id) { return impl_->scene && impl_->scene->contains(id); });
+  return impl_->pick.answer();
 }
 
 uint32_t Renderer::outputDepthTexture() const { return impl_->executor ? impl_->depth.texture() : 0; }

@@ -476,10 +476,16 @@ void checkOutputFormats(const ShaderProgramSpec& spec, const std::vector<Fragmen
                                ", " + std::to_string(fi.components) + " component" + (fi.components == 1 ? "" : "s") +
                                ")";
     const SourceLocation& where = a.where.known() ? a.where : f.passWhere;
-    if (it->kind != FragmentOutput::Kind::floating) {
+    // Integer formats (rg32ui) take unsigned outputs, float and normalized ones float outputs: GL
+    // leaves any other pairing undefined.
+    const bool unsignedOut = it->kind == FragmentOutput::Kind::unsigned_int;
+    if (fi.isInteger ? !unsignedOut : it->kind != FragmentOutput::Kind::floating) {
       f.add(Severity::error,
             f.who + ": fragment shader " + shader + " writes " + glslTypeName(*it) + " '" + it->name + "' into " +
-                target + ": integer outputs into a float or normalized format are undefined",
+                target +
+                (fi.isInteger ? ": only unsigned integer outputs (uint, uvec2...) are defined in an unsigned integer "
+                                "format"
+                              : ": integer outputs into a float or normalized format are undefined"),
             where, a.slot, a.resource);
       continue;
     }

@@ -64,6 +64,15 @@ struct Layout {
 // also a boolean parameter of the geometry pass and its readers.
 std::vector<std::string> optionalSlots();
 
+// The target any layout adds when asked, after its own targets and the
+// velocity target: "object_id", what gbuffer.frag writes there for picking
+// (Renderer::requestPick). Unlike the optional targets above, the scene
+// never asks for it: a pipeline does (the geometry pass's boolean parameter
+// "object_id", with the slot bound) or the embedding program does
+// (RendererOptions::picking adds both). Absent otherwise: no texture, no
+// attachment, no shader output.
+const Target& objectIdTarget();
+
 inline constexpr std::string_view kDefaultLayout = "pbr";
 
 // Every layout, in the order the "layout" params list them.
