@@ -4,8 +4,10 @@
 // frame: renderFrame tests one flag per pass.
 #include <GL/glcorearb.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "executor_internal.h"
