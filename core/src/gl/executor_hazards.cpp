@@ -17,6 +17,16 @@ namespace rgraph {
 
 using exec_detail::PassRun;
 
+namespace {
+// Integer formats (ids) take integer clears and uploads: asked of the texture,
+// whatever formats rgraph/format.h lists.
+bool integerTexture(uint32_t texture) {
+  GLint type = 0;
+  glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_RED_TYPE, &type);
+  return type == GL_INT || type == GL_UNSIGNED_INT;
+}
+}  // namespace
+
 void Executor::Impl::hazardCompileOptions(CompileOptions& options) const { applyHazardModes(hazards, options); }
 
 // Transients whose lifetime begins at each step: textures the graph owns,
@@ -54,6 +64,9 @@ void Executor::Impl::poison(const PassRun& run) {
           const float d = 0.0f;
           glClearTexImage(obj.texture, l, GL_DEPTH_COMPONENT, GL_FLOAT, &d);
         }
+      } else if (integerTexture(obj.texture)) {
+        const GLuint v[4] = {0xA5A5A5A5u, 0x5A5A5A5Au, 0xA5A5A5A5u, 0x5A5A5A5Au};
+        glClearTexImage(obj.texture, l, GL_RGBA_INTEGER, GL_UNSIGNED_INT, v);
       } else if (formatInfo(obj.format).isFloat || obj.samples > 1) {
         const float nan = std::numeric_limits<float>::quiet_NaN();
         const float magenta[4] = {1.0f, 0.0f, 1.0f, 0.0f};

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <map>
 #include <optional>
@@ -26,6 +27,7 @@ namespace {
 // One level of a texture as floats: RGBA per texel, or depth alone.
 struct Level {
   uint32_t width = 0, height = 0, layers = 1, channels = 4;
+  bool integer = false;  // texels hold integer bits, compared exactly
   std::vector<float> texels;
 };
 using Snapshot = std::vector<Level>;
@@ -48,7 +50,16 @@ Snapshot readTexture(uint32_t texture, bool depth) {
     level.channels = depth ? 1 : 4;
     level.texels.resize(size_t{level.width} * level.height * level.layers * level.channels);
     const auto bytes = static_cast<GLsizei>(level.texels.size() * sizeof(float));
-    glGetTextureImage(texture, l, depth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, bytes, level.texels.data());
+    GLint type = 0;
+    glGetTextureLevelParameteriv(texture, l, GL_TEXTURE_RED_TYPE, &type);
+    level.integer = !depth && (type == GL_INT || type == GL_UNSIGNED_INT);
+    if (level.integer) {  // the bits, compared as such (sameValue compares bits first)
+      std::vector<uint32_t> ids(level.texels.size());
+      glGetTextureImage(texture, l, GL_RGBA_INTEGER, GL_UNSIGNED_INT, bytes, ids.data());
+      if (!ids.empty()) std::memcpy(level.texels.data(), ids.data(), ids.size() * sizeof(uint32_t));
+    } else {
+      glGetTextureImage(texture, l, depth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, bytes, level.texels.data());
+    }
     s.push_back(std::move(level));
   }
   return s;
@@ -78,7 +89,7 @@ Difference compare(const Snapshot& plain, const Snapshot& other, float tolerance
     }
     for (size_t t = 0; t < texels; ++t)
       for (uint32_t c = 0; c < a.channels; ++c)
-        if (!sameValue(a.texels[t * a.channels + c], b.texels[t * a.channels + c], tolerance)) {
+        if (!sameValue(a.texels[t * a.channels + c], b.texels[t * a.channels + c], a.integer ? 0.0f : tolerance)) {
           if (d.pixels == 0) {
             d.level = l;
             d.layer = static_cast<uint32_t>(t / (size_t{a.width} * a.height));
