@@ -160,6 +160,12 @@ int runRender(const RenderOptions& options) {
     }
   }
 
+  HazardModes hazards;
+  if (const std::string error = parseHazardModes(options.hazards, hazards); !error.empty()) {
+    std::cerr << "error: --hazards: " << error << "\n";
+    return kExitFailure;
+  }
+
   const std::string pipelinePath = options.pipeline.empty() ? defaultPipelinePath() : options.pipeline;
   // Before any work: no output replaces an input or another output, and each can be written.
   std::vector<NamedPath> inputs = {{"the pipeline", pipelinePath}, {"--scene", options.scene}};
@@ -172,6 +178,7 @@ int runRender(const RenderOptions& options) {
   rendererOptions.maxMemoryBytes = options.size.maxMemoryBytes;
   rendererOptions.maxMemoryOrigin = "--max-memory";
   rendererOptions.runChecks = options.checks;
+  rendererOptions.hazards = hazards;
   Diagnostics diags;
   std::unique_ptr<Renderer> renderer = Renderer::fromFile(pipelinePath, rendererOptions, diags);
   // Render refuses what validate refuses, before any GL work: the graph at

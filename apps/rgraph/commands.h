@@ -53,8 +53,21 @@ struct RenderOptions {
   // false (--no-checks): skip the checks validate runs (graph, pass checks,
   // glslang shader checks, cached on disk) before any GL work.
   bool checks = true;
+  // --hazards MODE[,MODE] (rgraph/hazards.h; render checks the list).
+  std::string hazards;
 };
 int runRender(const RenderOptions& options);
+
+// `rgraph check-hazards` (cmd_check_hazards.cpp): the pipeline plain and under
+// each hazard mode, compared (rgraph/hazard_check.h); exit 1 on a finding.
+struct CheckHazardsOptions {
+  std::string pipeline;  // empty: the default pipeline
+  std::string scene;     // as render's --scene
+  uint32_t frames = 3;
+  std::string hazards;   // empty: every mode (reorder:3)
+  SizeOptions size{64, 64};
+};
+int runCheckHazards(const CheckHazardsOptions& options);
 
 // `rgraph view` (view/view_main.cpp, docs/viewer.md): an interactive window with live reload.
 struct ViewOptions {

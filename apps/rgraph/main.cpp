@@ -1,4 +1,4 @@
-// The rgraph command line: validate, plan, dot, passes, render, bench. One
+// The rgraph command line: validate, plan, dot, passes, render, check-hazards, bench. One
 // function per subcommand sets up its options; main() parses and dispatches.
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -26,6 +26,7 @@ struct Options {
   std::string planScene;                 // plan
   PassesOptions passes;
   RenderOptions render;
+  CheckHazardsOptions checkHazards;
   ViewOptions view;
   BenchOptions bench;
 };
@@ -159,9 +160,32 @@ CLI::App* addRender(CLI::App& app, Options& o) {
   cmd->add_flag("!--no-checks", r.checks,
                 "skip what validate checks before rendering (graph, pass checks, glslang shader checks; "
                 "their results are cached under $XDG_CACHE_HOME/rgraph)");
+  cmd->add_option("--hazards", r.hazards,
+                  "hazard modes (docs/testing.md): poison, no-alias, alias-shuffle, reorder[:K], state-scramble, "
+                  "no-cull, comma-separated")
+      ->type_name("MODE[,MODE]")
+      ->check(kNotEmpty);
   addPluginPath(cmd, o);
   addSize(cmd, r.size, "the device's GL_MAX_TEXTURE_SIZE");
   addMaxMemory(cmd, r.size);
+  addShaderPath(cmd, o);
+  return cmd;
+}
+
+CLI::App* addCheckHazards(CLI::App& app, Options& o) {
+  CheckHazardsOptions& c = o.checkHazards;
+  auto* cmd = app.add_subcommand(
+      "check-hazards",
+      "render a pipeline plain and under each hazard mode and compare; exit 1 naming the first pass that differs");
+  cmd->add_option("pipeline", c.pipeline, "pipeline config (default: pipelines/default.json)")->check(kNotEmpty);
+  cmd->add_option("--scene", c.scene, "as render's --scene (default learnopengl:overview)")->check(kNotEmpty);
+  cmd->add_option("--frames", c.frames, "frames per run (history is compared over them; default 3)")
+      ->check(CLI::Range(1u, 1000u));
+  cmd->add_option("--hazards", c.hazards, "the modes to run (default: all of them, reorder:3)")
+      ->type_name("MODE[,MODE]")
+      ->check(kNotEmpty);
+  addPluginPath(cmd, o);
+  addSize(cmd, c.size, "the device's GL_MAX_TEXTURE_SIZE");
   addShaderPath(cmd, o);
   return cmd;
 }
@@ -228,6 +252,7 @@ int main(int argc, char** argv) {
   CLI::App* passes = addPasses(app, o);
   CLI::App* render = addRender(app, o);
   CLI::App* bench = addBench(app, o);
+  CLI::App* checkHazards = addCheckHazards(app, o);
   CLI::App* view = addView(app, o);
 
   try {
@@ -257,6 +282,7 @@ int main(int argc, char** argv) {
     if (*passes) return runPasses(o.passes);
     if (*render) return runRender(o.render);
     if (*bench) return runBench(o.bench);
+    if (*checkHazards) return runCheckHazards(o.checkHazards);
     if (*view) return runView(o.view);
   } catch (const std::exception& e) {
     // Anything a user can cause is reported as a diagnostic or a RuntimeError

@@ -45,6 +45,7 @@ class ForwardPass final : public PassInstance {
       glEnable(GL_DEPTH_TEST);  // function GL_LESS and writes on, as every pass starts (rgraph/pass.h)
       glEnable(GL_CULL_FACE);
       glCullFace(GL_BACK);
+      glFrontFace(GL_CCW);  // not part of what the executor resets: set, not assumed (check-hazards, state-scramble)
       light_volumes::Meshes::of(scene).drawCube(ctx.bindings(), scene.pointLightCount());
       glDisable(GL_CULL_FACE);
       glDisable(GL_DEPTH_TEST);

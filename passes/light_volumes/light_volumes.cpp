@@ -39,6 +39,7 @@ class LightVolumesPass final : public PassInstance {
     const std::string cull = ctx.params().getString("cull");
     glEnable(GL_CULL_FACE);
     glCullFace(cull == "back" ? GL_BACK : GL_FRONT);
+    glFrontFace(GL_CCW);  // not part of what the executor resets: set, not assumed (check-hazards, state-scramble)
     if (ctx.bound("depth_test")) {
       glEnable(GL_DEPTH_TEST);
       // Front culled: the far side of the sphere must lie behind (or at) the

@@ -92,6 +92,15 @@ class ChainBlur final : public PassInstance {
     gl::useProgram(ctx, down_);
     for (int k = 1; k <= levels; ++k) {
       const bool first = k == 1;
+      // The level's texels outside the covered part are never written, but
+      // the next draw's edge taps filter them at weight 0: undefined memory
+      // (NaN under check-hazards' poison, garbage in an aliased texture) would
+      // still reach the result through 0 * NaN. Zero them.
+      const Extent level = levelExtent(temp, k - 1);
+      if (covered[size_t(k)] != level) {
+        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        glClearTexImage(ctx.texture("temp"), k - 1, GL_RGBA, GL_FLOAT, zero);
+      }
       bindCovered(ctx, k - 1, covered[size_t(k)]);
       glBindTextureUnit(0, first ? ctx.texture("src") : ctx.texture("temp", mip(k - 2)));
       downSource_.set(covered[size_t(k - 1)], covered[size_t(k)], first ? ctx.extent("src") : levelExtent(temp, k - 2));

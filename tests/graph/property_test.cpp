@@ -201,3 +201,65 @@ TEST(Property, LargeGraphCompiles) {
 }
 
 }  // namespace
+
+// Hazard modes that change the plan (rgraph/hazards.h) give other valid plans:
+// `reorder` another topological order of the same passes (every generated
+// edge still respected, checkPlan), different from the plain one for most
+// graphs; `alias-shuffle` another aliasing with no lifetime overlap (checkPlan),
+// different for graphs that alias more than a pair; `no-cull` every pass.
+TEST(Property, HazardModePlansAreOtherValidPlans) {
+  size_t reordered = 0, reorderable = 0, reshuffled = 0, shufflable = 0;
+  for (uint64_t seed = 1; seed <= 120; ++seed) {
+    RandomGraphOptions o;
+    o.seed = seed;
+    o.passes = 2 + static_cast<uint32_t>((seed * 7919) % 40);
+    o.resources = 2 * o.passes;
+    RandomGraph g = randomGraph(o);
+    CompileOptions options;
+    options.output = {64, 48};
+    const Plan plain = compile(g.desc, options);
+    ASSERT_TRUE(plain.ok()) << dumpDiagnostics(plain);
+    std::vector<PassIndex> sortedPlain = plain.order;
+    std::sort(sortedPlain.begin(), sortedPlain.end());
+    bool someOrderDiffers = false;
+    for (uint64_t k = 1; k <= 3; ++k) {
+      CompileOptions r = options;
+      r.reorderSeed = k;
+      const Plan reorderedPlan = compile(g.desc, r);
+      checkPlan(g, reorderedPlan, r, "reorder " + std::to_string(k) + ", seed " + std::to_string(seed));
+      if (HasFailure()) return;
+      std::vector<PassIndex> sorted = reorderedPlan.order;
+      std::sort(sorted.begin(), sorted.end());
+      EXPECT_EQ(sorted, sortedPlain) << "the same passes run, seed " << seed;
+      EXPECT_EQ(compile(g.desc, r).order, reorderedPlan.order) << "a seed gives one order";
+      someOrderDiffers = someOrderDiffers || reorderedPlan.order != plain.order;
+    }
+    reorderable += plain.order.size() > 3;
+    reordered += plain.order.size() > 3 && someOrderDiffers;
+
+    CompileOptions s = options;
+    s.reverseAliasing = true;
+    const Plan shuffled = compile(g.desc, s);
+    checkPlan(g, shuffled, s, "alias-shuffle, seed " + std::to_string(seed));
+    if (HasFailure()) return;
+    EXPECT_EQ(shuffled.order, plain.order);
+    bool aliasDiffers = false, aliasesMore = false;
+    for (size_t r = 0; r < plain.resources.size(); ++r)
+      aliasDiffers = aliasDiffers || plain.resources[r].physical != shuffled.resources[r].physical;
+    for (const PhysicalTexture& p : plain.physical) aliasesMore = aliasesMore || p.resources.size() > 2;
+    shufflable += aliasesMore;
+    reshuffled += aliasesMore && aliasDiffers;
+
+    CompileOptions n = options;
+    n.cull = false;
+    const Plan uncut = compile(g.desc, n);
+    checkPlan(g, uncut, n, "no-cull, seed " + std::to_string(seed));
+    if (HasFailure()) return;
+    for (const PlannedPass& p : uncut.passes) EXPECT_FALSE(p.culled) << p.name << ": " << p.reason;
+  }
+  // Most graphs that can show it do.
+  EXPECT_GT(reordered * 10, reorderable * 9) << reordered << " of " << reorderable;
+  EXPECT_GT(reorderable, 60u);
+  EXPECT_GT(reshuffled * 2, shufflable) << reshuffled << " of " << shufflable;
+  EXPECT_GT(shufflable, 20u);
+}

@@ -227,6 +227,17 @@ struct CompileOptions {
   // Where that limit comes from, as messages say it (e.g. "this device's
   // GL_MAX_TEXTURE_SIZE"); empty: the OpenGL 4.5 minimum.
   std::string maxTextureSizeOrigin = {};
+  // Hazard modes (rgraph/hazards.h) that change the plan, each still valid:
+  // nonzero: passes ready at once are taken in an order drawn from this seed
+  // instead of declaration order (`reorder`); every edge is still respected.
+  uint64_t reorderSeed = 0;
+  // Aliasing takes the highest-numbered free texture of a pool instead of the
+  // lowest (`alias-shuffle`); lifetimes still never overlap.
+  bool reverseAliasing = false;
+  // false: every enabled pass runs (`no-cull`), but those that write a later
+  // version of the output's resource than the output (they would overwrite
+  // the image).
+  bool cull = true;
 };
 
 struct PlannedPass {

@@ -87,6 +87,7 @@
 #include "rgraph/config.h"
 #include "rgraph/diagnostics.h"
 #include "rgraph/graph.h"
+#include "rgraph/hazards.h"
 #include "rgraph/scene.h"
 
 namespace rgraph {
@@ -297,6 +298,12 @@ struct RendererOptions {
   // (Executor::setGpuTimerQueries; a GPU always uses them). For tests of the
   // query path: llvmpipe's query values are poor.
   bool gpuTimerQueries = false;
+  // Hazard modes (rgraph/hazards.h; docs/testing.md): run the pipeline with
+  // what its graph does not promise changed (poisoned transients, another
+  // aliasing or order, hostile GL state, culled passes run), to see whether a
+  // pass relies on it. None by default. `rgraph check-hazards` and
+  // testing::expectHazardFree compare such runs with a plain one.
+  HazardModes hazards;
 };
 
 // A rectangle of a framebuffer, in pixels from its lower-left corner.

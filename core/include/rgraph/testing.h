@@ -42,6 +42,7 @@
 #include "rgraph/config.h"
 #include "rgraph/diagnostics.h"
 #include "rgraph/graph.h"
+#include "rgraph/hazard_check.h"
 #include "rgraph/pass.h"
 
 namespace rgraph {
@@ -259,6 +260,17 @@ CompiledPipeline compileFile(const std::string& path, const Options& options = {
 // relative to `baseDir` ("" = the working directory).
 CompiledPipeline compileText(std::string_view json, const Options& options = {},
                              const std::string& nameForMessages = "<inline>", const std::string& baseDir = "");
+
+// The hazard harness (rgraph/hazard_check.h) on a pipeline file, as
+// `rgraph check-hazards` runs it: plain, then under each hazard mode, every
+// kept resource compared. Renders (link rgraph::rgraph): in the GL context
+// current, or in a headless one made for the call when none is.
+//
+//   rgraph::HazardCheckOptions o;
+//   o.renderer.pluginDirectories = {"build/lib/rgraph/plugins"};
+//   const rgraph::HazardReport r = rt::expectHazardFree("my.json", o);
+//   EXPECT_TRUE(r.hazardFree()) << r.describe();
+HazardReport expectHazardFree(const std::string& path, const HazardCheckOptions& options = {});
 
 }  // namespace testing
 }  // namespace rgraph

@@ -225,6 +225,7 @@ void Executor::Impl::build(Extent output) {
     opts.maxTextureSizeOrigin = std::string("this device's GL_MAX_TEXTURE_SIZE") +
                                 (renderer ? std::string(" (") + reinterpret_cast<const char*>(renderer) + ")" : "");
   }
+  hazardCompileOptions(opts);
   plan = compile(pipeline.graph, opts);
   if (!plan.ok()) {
     std::string msg = "the render graph";
@@ -276,6 +277,7 @@ void Executor::Impl::createRuns() {
   queryRing.reset();  // pending results are of the previous runs
   assignMemoryBarriers();
   planHistory();
+  planPoison();
   for (auto& run : runs) {
     try {
       // The programs the type's spec names, before setup, so that a pass
@@ -417,6 +419,13 @@ void Executor::setGpuTimerQueries(bool on) {
   impl_->timingsFrame.reset();
 }
 void Executor::setStateChecks(bool on) { impl_->stateChecks = on; }
+void Executor::setHazards(const HazardModes& modes) {
+  if (impl_->hazards == modes) return;
+  impl_->requireContext("Executor::setHazards");
+  impl_->hazards = modes;
+  impl_->teardown();  // the plan may change: built again at the next resize()
+}
+const HazardModes& Executor::hazards() const { return impl_->hazards; }
 void Executor::setAfterPass(std::function<void(size_t)> callback) { impl_->afterPass = std::move(callback); }
 
 
@@ -484,6 +493,10 @@ void Executor::renderFrame() {
     const Clock::time_point t0 = cpuTiming ? Clock::now() : Clock::time_point{};
     if (ring) ring->beginPass(i);
     if (run.memoryBarrier) glMemoryBarrier(run.memoryBarrier);
+    if (im.hazards.any()) {  // the one test a plain frame pays (rgraph/hazards.h)
+      if (im.hazards.has(HazardMode::stateScramble)) im.scrambleState();
+      im.poison(run);
+    }
     im.resetState(run);
     if (im.gpuScene) im.gpuScene->selectJitter(run.jitter);
     // The pass's framebuffer before its inputs: a pass usually reads what the
@@ -502,7 +515,7 @@ void Executor::renderFrame() {
       run.programs.unbindSamplers();
       run.restoreLevels();
       im.dirtyState |= run.instance->changedState();
-      if (im.stateChecks) im.checkState(run);
+      if (im.stateChecks || im.hazards.has(HazardMode::stateScramble)) im.checkState(run);
     } catch (const RuntimeError& e) {
       run.programs.unbindSamplers();
       run.restoreLevels();

@@ -19,6 +19,7 @@
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/objects.h"
 #include "rgraph/gl/shader_library.h"
+#include "rgraph/hazards.h"
 #include "rgraph/pass.h"
 #include "rgraph/scene.h"
 #include "timer_query_ring.h"
@@ -136,6 +137,7 @@ class PassRun final : public PassContext {
   GlBindings* bindingRecord = nullptr;  // Executor::Impl::bound
   bool jitter = true;     // PassDecl::jitter
   bool persistentOnly = false;  // writes only persistent resources: runs while they are invalid
+  std::vector<ResourceIndex> poisonAtStart;  // hazard mode poison: transients whose lifetime begins here
 
   const SlotBinding* find(std::string_view slot) const {
     for (const auto& s : slots)
@@ -213,6 +215,11 @@ struct Executor::Impl {
   bool cpuPassTiming = true;              // Executor::setCpuPassTiming
   bool gpuTimerQueries = false;           // Executor::setGpuTimerQueries
   bool stateChecks = false;               // Executor::setStateChecks
+  HazardModes hazards;                    // Executor::setHazards (executor_hazards.cpp)
+  // state-scramble's hostile bindings, made at its first pass.
+  std::unique_ptr<gl::Texture> hostileTexture;
+  gl::Framebuffer hostileFramebuffer;
+  gl::VertexArray hostileVao;
   uint32_t dirtyState = kGlStateAll;      // GlStateGroup bits resetState() puts back
   bool depthMaskOff = false;              // the last pass read depth only: its mask alone to put back
   GlBindings bound;                       // PassContext::bindings: forgotten with kGlStateBindings
@@ -271,6 +278,9 @@ struct Executor::Impl {
     builtPrograms.clear();
     frameEndBarrier = 0;
     historyCopies.clear();
+    hostileFramebuffer = {};
+    hostileVao = {};
+    hostileTexture.reset();
     historyHeld = false;
     persistentHeld = false;
     prevViewProj.reset();
@@ -319,6 +329,13 @@ struct Executor::Impl {
   void checkState(const exec_detail::PassRun& run) const;
   void checkBindings(const exec_detail::PassRun& run) const;
   void assignMemoryBarriers();
+  // Hazard modes (executor_hazards.cpp): the plan's options, what each run
+  // poisons (after the runs exist), the poison before a pass and the hostile
+  // state before resetState().
+  void hazardCompileOptions(CompileOptions& options) const;
+  void planPoison();
+  void poison(const exec_detail::PassRun& run);
+  void scrambleState();
   // History (executor_history.cpp): which textures are copied after a frame
   // (after createResources), which physicals must never be shared with
   // another executor, the Frame block's motion, the clear before a frame that

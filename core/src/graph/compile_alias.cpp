@@ -86,11 +86,12 @@ void Compiler::lifetimesAndAliasing() {
       if (inserted) pools.emplace_back();
       pool = &pools[it->second];
       while (!pool->busy.empty() && pool->busy.top().first < rs.first) {
-        pool->free.push(pool->busy.top().second);
+        // Reversed (alias-shuffle): negated, so that the min-heap gives the highest.
+        pool->free.push(o_.reverseAliasing ? -pool->busy.top().second : pool->busy.top().second);
         pool->busy.pop();
       }
       if (!pool->free.empty()) {
-        phys = pool->free.top();
+        phys = o_.reverseAliasing ? -pool->free.top() : pool->free.top();
         pool->free.pop();
       }
     }

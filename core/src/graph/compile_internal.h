@@ -176,6 +176,7 @@ class Compiler {
   void order();
   void reportCycles(const std::vector<uint32_t>& indeg);
   void cull();
+  bool writesAfterOutput(uint32_t pass) const;
   void keepHistorySources(std::vector<uint32_t>& stack);
   // compile_alias.cpp
   void lifetimesAndAliasing();

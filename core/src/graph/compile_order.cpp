@@ -34,6 +34,27 @@ void Compiler::order() {
       if (indeg[p] == 0) ready.push(p);
     }
   topo_.reserve(enabledCount);
+  if (o_.reorderSeed != 0) {
+    // `reorder` (rgraph/hazards.h): any ready pass may go next; a seeded
+    // draw picks it, so that the order is another valid one, the same for a seed.
+    std::vector<uint32_t> pool;
+    while (!ready.empty()) pool.push_back(ready.top()), ready.pop();
+    uint64_t state = o_.reorderSeed;
+    while (!pool.empty()) {
+      state += 0x9E3779B97F4A7C15ull;  // splitmix64
+      uint64_t z = state;
+      z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+      z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+      z ^= z >> 31;
+      const size_t pick = static_cast<size_t>(z % pool.size());
+      const uint32_t p = pool[pick];
+      pool[pick] = pool.back();
+      pool.pop_back();
+      topo_.push_back(p);
+      for (uint32_t i = adjBegin[p]; i < adjBegin[p + 1]; ++i)
+        if (--indeg[adj[i]] == 0) pool.push_back(adj[i]);
+    }
+  }
   while (!ready.empty()) {
     const uint32_t p = ready.top();
     ready.pop();
@@ -109,6 +130,14 @@ void Compiler::keepHistorySources(std::vector<uint32_t>& stack) {
   }
 }
 
+// A pass that writes a later version of the output's resource than the
+// output: it would overwrite the image (CompileOptions::cull false keeps it culled).
+bool Compiler::writesAfterOutput(uint32_t p) const {
+  for (uint32_t f = useBegin_[p]; f < useBegin_[p + 1]; ++f)
+    if (u_[f].write && u_[f].writeVer >= 0 && vers_[u_[f].writeVer].afterOutput) return true;
+  return false;
+}
+
 void Compiler::cull() {
   needed_.assign(nPass_, 0);
   std::vector<uint32_t> stack;
@@ -121,7 +150,7 @@ void Compiler::cull() {
   };
   mark(outputWriter_);
   for (uint32_t p = 0; p < nPass_; ++p)
-    if (passFlags_[p] & kSideEffect) mark(static_cast<int>(p));
+    if ((passFlags_[p] & kSideEffect) || (!o_.cull && !writesAfterOutput(p))) mark(static_cast<int>(p));
   // What a pass writes into a caller's texture (imported, arriving with
   // content; not the output image's resource, whose later versions would
   // overwrite the image) is seen by the caller who owns it: such writers

@@ -267,6 +267,7 @@ CompileOptions Renderer::Impl::compileOptions() const {
   CompileOptions compile;
   compile.output = size;
   compile.maxTextureSize = options.maxTextureSize;
+  applyHazardModes(options.hazards, compile);
   return compile;
 }
 
@@ -342,6 +343,7 @@ void Renderer::Impl::buildExecutor() {
   for (const auto& [name, texture] : imports) next->importTexture(name, texture);
   next->setCpuPassTiming(cpuPassTiming);
   next->setGpuTimerQueries(options.gpuTimerQueries);
+  next->setHazards(options.hazards);
   if (executor) next->reuseTextures(*executor);  // what did not change is kept
   next->resize(size);
   std::optional<SceneDepthSource> depthSource;

@@ -21,6 +21,7 @@
 #include "rgraph/config.h"
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/graph.h"
+#include "rgraph/hazards.h"
 #include "rgraph/pass.h"
 
 namespace rgraph {
@@ -163,6 +164,12 @@ class Executor {
   // and the state when one differs. For tests of pass types; off by default
   // (the reads cost a GL query each).
   void setStateChecks(bool on);
+  // Hazard modes (rgraph/hazards.h, docs/testing.md): poison, no-alias,
+  // alias-shuffle, reorder, state-scramble (which turns the state checks above
+  // on), no-cull. A change drops what was built: call resize() again. None
+  // by default: a plain frame.
+  void setHazards(const HazardModes& modes);
+  const HazardModes& hazards() const;
 
   uint32_t outputTexture() const;
   Extent outputExtent() const;

@@ -1,0 +1,195 @@
+// The hazard harness against planted hazards (issue 31): test-only pass types
+// registered in-process (RendererOptions::registry), each relying on one
+// thing the graph does not promise, each caught by its mode and named; a
+// correct pipeline of the same types yields no finding.
+#include <GL/glcorearb.h>
+#include <gtest/gtest.h>
+
+#include <iostream>
+#include <string>
+
+#include "rgraph/gl/fullscreen.h"
+#include "rgraph/hazard_check.h"
+#include "rgraph/pass_decl.h"
+#include "rgraph/registry.h"
+#include "test_support.h"
+
+namespace {
+
+using namespace rgraph;
+using namespace rgraph::decl;
+
+std::string shader(const char* name) { return std::string(RGRAPH_TEST_DATA_DIR) + "/hazards/shaders/" + name; }
+std::string pipeline(const char* name) { return std::string(RGRAPH_TEST_DATA_DIR) + "/hazards/pipelines/" + name; }
+
+class FillPass : public gl::FullscreenPass {
+ protected:
+  void update(PassContext& ctx) override {
+    const std::vector<double> c = ctx.params().getVector("color");
+    color_.set(float(c[0]), float(c[1]), float(c[2]), float(c[3]));
+  }
+  ProgramUniform color_{this, "u_color"};
+};
+
+// (b): adds 0.25 to what its target holds, with no clear of its own.
+class BlendOntoPass final : public FillPass {
+  void update(PassContext& ctx) override {
+    FillPass::update(ctx);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glBlendEquation(GL_FUNC_ADD);
+  }
+};
+
+// (a): declares an output and writes nothing.
+class UnwrittenPass final : public PassInstance {
+  void setup(PassContext&) override {}
+  void execute(PassContext&) override {}
+  uint32_t changedState() const override { return 0; }
+};
+
+// (d): fills its target, then leaves additive blending on, saying it changes nothing.
+class LeakyPass final : public FillPass {
+  void execute(PassContext& ctx) override {
+    FillPass::execute(ctx);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+  }
+  uint32_t changedState() const override { return 0; }
+};
+
+// (e): draws red into whatever framebuffer is bound; it declares none.
+class StrayPass final : public PassInstance {
+  void setup(PassContext&) override {}
+  void execute(PassContext& ctx) override {
+    const uint32_t program = ctx.program(0);
+    glUseProgram(program);
+    glProgramUniform4f(program, glGetUniformLocation(program, "u_color"), 1.0f, 0.0f, 0.0f, 1.0f);
+    glBindVertexArray(ctx.emptyVertexArray());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  uint32_t changedState() const override { return kGlStateBindings; }
+};
+
+PassTypeDesc type(const char* name, std::vector<SlotDecl> slots, const char* frag, std::vector<SamplerSlot> samplers,
+                  std::function<std::unique_ptr<PassInstance>()> create) {
+  PassTypeDesc t = passType(name, "hazard fixture");
+  t.slots = std::move(slots);
+  t.params = {param("color", ParamType::vec4, std::vector<double>{0.25, 0.25, 0.25, 1.0}, "colour")};
+  if (frag) t.programs = gl::fullscreenPrograms(shader(frag), std::move(samplers));
+  t.create = std::move(create);
+  return t;
+}
+
+SlotDecl out(const char* name) { return slot(name, Access::color_attachment, true, SlotDecl::Load::never, "out"); }
+SlotDecl in(const char* name) { return slot(name, Access::sampled, true, SlotDecl::Load::never, "in"); }
+
+const PassRegistry& fixtures() {
+  static const PassRegistry types = [] {
+    PassRegistry r = PassRegistry::builtins();
+    std::string error;
+    auto add = [&](PassTypeDesc t) { EXPECT_TRUE(r.add(std::move(t), &error)) << error; };
+    add(type("hz_fill", {out("dst")}, "fill.frag", {}, [] { return std::make_unique<FillPass>(); }));
+    add(type("hz_copy", {in("src"), out("dst")}, "copy.frag", {{"src", "u_src", 0}},
+             [] { return std::make_unique<gl::FullscreenPass>(); }));
+    add(type("hz_copy_unit3", {in("src"), out("dst")}, "copy3.frag", {{"src", "u_src", 3}},
+             [] { return std::make_unique<gl::FullscreenPass>(); }));
+    add(type("hz_add", {in("a"), in("b"), out("dst")}, "add.frag", {{"a", "u_a", 0}, {"b", "u_b", 1}},
+             [] { return std::make_unique<gl::FullscreenPass>(); }));
+    add(type("hz_unwritten", {out("dst")}, nullptr, {}, [] { return std::make_unique<UnwrittenPass>(); }));
+    add(type("hz_blend_onto", {out("dst")}, "fill.frag", {}, [] { return std::make_unique<BlendOntoPass>(); }));
+    add(type("hz_sneaky", {out("dst")}, "sneaky.frag", {}, [] { return std::make_unique<gl::FullscreenPass>(); }));
+    add(type("hz_leaky", {out("dst")}, "fill.frag", {}, [] { return std::make_unique<LeakyPass>(); }));
+    add(type("hz_stray", {}, "fill.frag", {}, [] { return std::make_unique<StrayPass>(); }));
+    return r;
+  }();
+  return types;
+}
+
+HazardReport check(const char* file, const char* modes = nullptr) {
+  testsupport::sharedGlContext();
+  HazardCheckOptions o;
+  o.scene = "";  // the fixtures draw no scene
+  o.size = {32, 32};
+  o.frames = 2;
+  if (modes) EXPECT_EQ(parseHazardModes(modes, o.modes), "");
+  o.renderer.registry = &fixtures();
+  o.renderer.runChecks = false;  // the planted passes sample what their shaders do not declare
+  HazardReport r = checkHazards(pipeline(file), o);
+  std::cout << r.describe();  // the findings as a user sees them, in the test log
+  return r;
+}
+
+// The finding of `mode`, or a failure listing the report.
+const HazardFinding* findingOf(const HazardReport& r, const std::string& mode) {
+  for (const HazardModeRun& run : r.runs)
+    if (run.mode == mode && !run.findings.empty()) return &run.findings.front();
+  ADD_FAILURE() << "no finding in mode " << mode << "\n" << r.describe();
+  return nullptr;
+}
+
+TEST(HazardFixtures, CorrectPipelineHasNoFinding) {
+  const HazardReport r = check("correct.json");
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  EXPECT_TRUE(r.hazardFree()) << r.describe();
+  ASSERT_EQ(r.runs.size(), 8u) << r.describe();  // six modes, reorder as three orders
+  for (const HazardModeRun& run : r.runs) EXPECT_GT(run.comparedPixels, 0u) << run.mode;
+}
+
+TEST(HazardFixtures, ReadOfAnUnwrittenTransientIsCaughtByPoison) {
+  const HazardReport r = check("unwritten.json", "poison");
+  const HazardFinding* f = findingOf(r, "poison");
+  ASSERT_TRUE(f);
+  EXPECT_EQ(f->pass, "unwritten");
+  EXPECT_EQ(f->resource, "t");
+  EXPECT_EQ(f->pixels, 32u * 32u);
+  EXPECT_EQ(f->where.line, 9) << f->message;
+  EXPECT_NE(f->message.find("unwritten.json:9:"), std::string::npos) << f->message;
+}
+
+TEST(HazardFixtures, RelyingOnAnAliasedTargetsClearIsCaughtByNoAliasAndPoison) {
+  const HazardReport r = check("aliased-clear.json", "no-alias,poison");
+  for (const char* mode : {"no-alias", "poison"}) {
+    const HazardFinding* f = findingOf(r, mode);
+    ASSERT_TRUE(f) << mode;
+    EXPECT_EQ(f->pass, "blend_onto") << mode;
+    EXPECT_EQ(f->resource, "t2") << mode;
+    EXPECT_EQ(f->pixels, 32u * 32u) << mode;
+  }
+}
+
+TEST(HazardFixtures, ReadWithoutAnEdgeIsCaughtByReorderAndStateScramble) {
+  const HazardReport r = check("no-edge.json", "reorder:3,state-scramble");
+  const HazardFinding* scrambled = findingOf(r, "state-scramble");
+  ASSERT_TRUE(scrambled);
+  EXPECT_EQ(scrambled->pass, "sneaky");
+  EXPECT_EQ(scrambled->resource, "r2");
+  bool reorderFound = false;
+  for (const HazardFinding& f : r.findings())
+    if (f.mode.rfind("reorder", 0) == 0) {
+      reorderFound = true;
+      EXPECT_EQ(f.pass, "sneaky") << f.message;
+      EXPECT_EQ(f.resource, "r2") << f.message;
+    }
+  EXPECT_TRUE(reorderFound) << r.describe();
+}
+
+TEST(HazardFixtures, BlendingLeftOnIsCaughtByStateScramble) {
+  const HazardReport r = check("blend-left-on.json", "state-scramble");
+  const HazardFinding* f = findingOf(r, "state-scramble");
+  ASSERT_TRUE(f);
+  EXPECT_EQ(f->pass, "leaky");
+  EXPECT_NE(f->message.find("GL_BLEND is on"), std::string::npos) << f->message;
+}
+
+TEST(HazardFixtures, AnUndeclaredColourWriteIsCaughtByStateScramble) {
+  const HazardReport r = check("undeclared-write.json", "state-scramble");
+  const HazardFinding* f = findingOf(r, "state-scramble");
+  ASSERT_TRUE(f);
+  EXPECT_EQ(f->pass, "stray");
+  EXPECT_EQ(f->resource, "a");
+  EXPECT_FALSE(f->declared) << f->message;
+  EXPECT_NE(f->message.find("does not declare writing"), std::string::npos) << f->message;
+}
+
+}  // namespace

@@ -1,0 +1,5 @@
+#version 450 core
+// The source texel for texel, from texture unit 3.
+layout(binding = 3) uniform sampler2D u_src;
+layout(location = 0) out vec4 o_color;
+void main() { o_color = texelFetch(u_src, ivec2(gl_FragCoord.xy), 0); }
