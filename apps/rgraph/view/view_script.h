@@ -9,10 +9,10 @@
 namespace rgraph::view {
 
 struct ScriptCommand {
-  enum class Kind { Camera, Wait, WaitFile, Screenshot, Ui, Param, Resize, Inspect, Panel, Quit };
+  enum class Kind { Camera, Wait, WaitFile, Screenshot, Ui, Param, Resize, Inspect, Panel, Time, Play, Pause, Quit };
   Kind kind = Kind::Quit;
   int line = 0;
-  std::vector<float> numbers;  // camera: 6 (or 7 with fov); wait: 1; resize: 2; inspect: layer, mip
+  std::vector<float> numbers;  // camera: 6 (or 7 with fov); wait: 1; resize: 2; inspect: layer, mip; time: seconds
   // screenshot, waitfile: file; ui: on|off; param: pass, name, JSON value; inspect: resource; panel: its tab
   std::vector<std::string> words;
 };
