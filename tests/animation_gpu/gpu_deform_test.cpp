@@ -258,21 +258,25 @@ TEST_F(GpuDeform, AStaticSceneUploadsNothingForAnimation) {
   EXPECT_GT(g.poseBytes(), still);
 }
 
-// The picture: RecursiveSkeletons at 0.75 s through the default pipeline (the
-// geometry pass deforms in scene.vert, shadows too) equals the same scene
-// with every primitive replaced by its CPU-deformed vertices drawn as a static
-// mesh (deformPrimitive, identity transform, no animation): max diff <= 2/255
-// (the GPU's float order; measured below). And it differs from the rest pose
-// (the skins bend: no longer straight bars) by far more.
-TEST_F(GpuDeform, RecursiveSkeletonsImageMatchesCpuDeformedGeometry) {
+// The picture: RecursiveSkeletons at 0.75 s through the default pipeline
+// (geometry pass), forward.json (forward pass) and deferred-pbr-shadows.json
+// (shadow maps), where scene.vert deforms, equals the same scene with every
+// primitive replaced by its CPU-deformed vertices drawn as a static mesh
+// (deformPrimitive, identity transform, no animation; the animated scene's
+// bounds, so that shadow fitting is the same): max diff <= 2/255. And it
+// differs from the rest pose (the skins bend: no longer straight bars) by far more.
+namespace {
+// Renders RecursiveSkeletons posed at 0.75 s and the CPU-baked scene with
+// `pipeline`; with `rest`, the rest pose too (which must differ).
+void imageMatchesBaked(const char* pipeline, bool rest) {
   const std::string file = asset("RecursiveSkeletons/RecursiveSkeletons.glb");
   const double t = 0.75;
-  auto render = [](std::shared_ptr<RenderScene> scene, const Camera& cam) {
+  auto render = [](const std::string& pipeline, std::shared_ptr<RenderScene> scene, const Camera& cam) {
     RendererOptions options;
     options.size = {96, 64};
     Diagnostics diags;
-    auto r = Renderer::fromFile(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/default.json", options, diags);
-    EXPECT_TRUE(r);
+    auto r = Renderer::fromFile(std::string(RGRAPH_SOURCE_DIR) + "/pipelines/" + pipeline, options, diags);
+    EXPECT_TRUE(r) << pipeline;
     r->setScene(std::move(scene));
     r->setCamera(cam);
     r->render();
@@ -286,9 +290,8 @@ TEST_F(GpuDeform, RecursiveSkeletonsImageMatchesCpuDeformedGeometry) {
   };
   std::shared_ptr<RenderScene> animated = RenderScene::load(file);
   const Camera cam = animated->scene().camera;
-  const std::vector<uint8_t> rest = render(animated, cam);
+  std::shared_ptr<RenderScene> atRest = rest ? RenderScene::load(file) : nullptr;
   animated->setTime(t);
-  const std::vector<uint8_t> posed = render(animated, cam);
 
   Scene baked = loadSceneAny(file);
   const Pose pose = evaluatePose(baked.animation, t, kAllAnimations);
@@ -306,14 +309,25 @@ TEST_F(GpuDeform, RecursiveSkeletonsImageMatchesCpuDeformedGeometry) {
     baked.primitives[i].mesh = int(i);
     baked.primitives[i].node = -1;
     baked.primitives[i].transform = glm::mat4(1.0f);
-    baked.primitives[i].bounds = meshes.back().bounds;
+    baked.primitives[i].bounds = animated->scene().primitives[i].bounds;
   }
   baked.meshes = std::move(meshes);
   baked.animation = SceneAnimation{};
-  const std::vector<uint8_t> reference = render(RenderScene::fromScene(std::move(baked)), cam);
-  const int diff = maxDiff(posed, reference), fromRest = maxDiff(rest, reference);
-  std::printf("[ measure  ] RecursiveSkeletons at %.2f s vs CPU-deformed static mesh: max diff %d/255; rest pose vs it: %d/255\n",
-              t, diff, fromRest);
-  EXPECT_LE(diff, 2);
-  EXPECT_GE(fromRest, 64);
+  std::shared_ptr<RenderScene> reference = RenderScene::fromScene(std::move(baked));
+  const std::vector<uint8_t> posed = render(pipeline, animated, cam), want = render(pipeline, reference, cam);
+  const int diff = maxDiff(posed, want);
+  std::printf("[ measure  ] RecursiveSkeletons at %.2f s, %s, vs CPU-deformed static mesh: max diff %d/255\n", t,
+              pipeline, diff);
+  EXPECT_LE(diff, 2) << pipeline;
+  if (!rest) return;
+  const int fromRest = maxDiff(render(pipeline, atRest, cam), want);
+  std::printf("[ measure  ] the rest pose vs it: %d/255\n", fromRest);
+  EXPECT_GE(fromRest, 64) << pipeline;
+}
+}  // namespace
+
+TEST_F(GpuDeform, RecursiveSkeletonsImageMatchesCpuDeformedGeometry) { imageMatchesBaked("default.json", true); }
+TEST_F(GpuDeform, RecursiveSkeletonsForwardImageMatchesCpuDeformedGeometry) { imageMatchesBaked("forward.json", false); }
+TEST_F(GpuDeform, RecursiveSkeletonsShadowedImageMatchesCpuDeformedGeometry) {
+  imageMatchesBaked("deferred-pbr-shadows.json", false);
 }
