@@ -26,10 +26,12 @@ struct GpuInfluence {
 };
 static_assert(sizeof(GpuInfluence) == 32, "GpuInfluence must match the std430 layout");
 
-gl::Buffer immutable(const void* data, size_t bytes) {
+// A storage buffer of `bytes` (at least 16: an empty binding is an error),
+// holding `data` when given (the pose buffers are written per frame).
+gl::Buffer storageBuffer(const void* data, size_t bytes) {
   gl::Buffer b = gl::createBuffer();
   glNamedBufferStorage(b.id(), static_cast<GLsizeiptr>(std::max<size_t>(bytes, 16)), nullptr, GL_DYNAMIC_STORAGE_BIT);
-  if (bytes) glNamedBufferSubData(b.id(), 0, static_cast<GLsizeiptr>(bytes), data);
+  if (bytes && data) glNamedBufferSubData(b.id(), 0, static_cast<GLsizeiptr>(bytes), data);
   return b;
 }
 
@@ -109,14 +111,14 @@ void GpuScene::uploadDeformation() {
         }
     }
   }
-  influences_ = immutable(influences.data(), influences.size() * sizeof(GpuInfluence));
-  morphDeltas_ = immutable(deltas.data(), deltas.size() * sizeof(glm::vec4));
+  influences_ = storageBuffer(influences.data(), influences.size() * sizeof(GpuInfluence));
+  morphDeltas_ = storageBuffer(deltas.data(), deltas.size() * sizeof(glm::vec4));
   deformationBytes_ = influences.size() * sizeof(GpuInfluence) + deltas.size() * sizeof(glm::vec4);
   geometryBytes_ += deformationBytes_;
   jointCount_ = a.jointCount;
   weightCount_ = a.weightCount;
-  joints_ = immutable(nullptr, 2 * size_t(jointCount_) * sizeof(glm::mat4));
-  morphWeights_ = immutable(nullptr, 2 * size_t(weightCount_) * sizeof(float));
+  joints_ = storageBuffer(nullptr, 2 * size_t(jointCount_) * sizeof(glm::mat4));
+  morphWeights_ = storageBuffer(nullptr, 2 * size_t(weightCount_) * sizeof(float));
   const Pose rest = evaluatePose(a, 0.0, kRestPose);
   pose_ = rest.joints;
   poseWeights_ = rest.weights;
