@@ -1,7 +1,7 @@
 // glTF animation drawn on the GPU (issue 30): the vertices scene.vert emits
 // for SimpleSkin, RecursiveSkeletons, SimpleMorph, MorphPrimitivesTest and
-// AnimatedCube posed by RenderScene::setTime, read back by transform feedback
-// (deform_capture.h), against the CPU reference deformer (deformPrimitive of
+// AnimatedCube posed by RenderScene::setTime, read back from a storage buffer
+// scene.vert writes under CAPTURE_VERTICES (deform_capture.h), against the CPU reference deformer (deformPrimitive of
 // evaluatePose at the same time). Tolerance: 1e-5 of the scene's size (the
 // GPU sums the same joint matrices and deltas in float, in another order).
 // Each case also checks that its feature moves the vertices by far more than
