@@ -166,6 +166,23 @@ int runRender(const RenderOptions& options) {
     return kExitFailure;
   }
 
+  // The animation clock: --time >= 0 seconds, --fps > 0 frames per second.
+  auto number = [](const std::optional<std::string>& text, double& out) {
+    if (!text) return true;
+    char* end = nullptr;
+    out = std::strtod(text->c_str(), &end);
+    return !text->empty() && *end == '\0' && std::isfinite(out);
+  };
+  double time = 0.0, fps = 0.0;
+  if (!number(options.time, time) || time < 0.0) {
+    std::cerr << "error: --time '" << *options.time << "': not a number of seconds >= 0\n";
+    return kExitFailure;
+  }
+  if (!number(options.fps, fps) || (options.fps && fps <= 0.0)) {
+    std::cerr << "error: --fps '" << *options.fps << "': not a number of frames per second > 0\n";
+    return kExitFailure;
+  }
+
   const std::string pipelinePath = options.pipeline.empty() ? defaultPipelinePath() : options.pipeline;
   // Before any work: no output replaces an input or another output, and each can be written.
   std::vector<NamedPath> inputs = {{"the pipeline", pipelinePath}, {"--scene", options.scene}};
@@ -218,6 +235,7 @@ int runRender(const RenderOptions& options) {
     for (uint32_t i = 0; i < frames; ++i) {
       if (cuts.count(i)) renderer->cameraCut();
       if (orbit != 0.0f) renderer->setCamera(orbitCamera(start, orbit * static_cast<float>(i)));
+      scene->setTime(fps > 0.0 ? time + static_cast<double>(i) / fps : time);
       auto t0 = std::chrono::steady_clock::now();
       // One render per frame (a second would be a frame of its own to the
       // history and the jitter): in a window, with the copy into it.

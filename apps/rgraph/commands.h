@@ -46,6 +46,10 @@ struct RenderOptions {
   // --orbit DEGREES: the camera's turn about its target per frame (as given;
   // render checks it is a finite number).
   std::optional<std::string> orbit;
+  // --time SECONDS and --fps F (as given; render checks them): the scene's
+  // animation clock at the first frame, and its rate: frame i is at
+  // time + i / fps (without --fps every frame is at --time).
+  std::optional<std::string> time, fps;
   // --environment sky|color:R,G,B|FILE.hdr: image-based lighting for the
   // scene, over its own (a bare glTF has none).
   std::string environment;

@@ -145,6 +145,15 @@ CLI::App* addRender(CLI::App& app, Options& o) {
          "turn the camera this many degrees per frame about its up axis through its target "
          "(frame i: i times that; negative: the other way, as --orbit=-D)")
       ->type_name("DEGREES");
+  cmd->add_option_function<std::string>(
+         "--time", [&r](const std::string& v) { r.time = v; },
+         "the animation clock of the first frame (glTF animations, skins, morph targets; they loop)")
+      ->type_name("SECONDS");
+  cmd->add_option_function<std::string>(
+         "--fps", [&r](const std::string& v) { r.fps = v; },
+         "play the animation at this rate over --frames (frame i at --time + i / F; the last frame is written); "
+         "without it every frame is at --time")
+      ->type_name("F");
   cmd->add_option("--environment", r.environment,
                   "image-based lighting for the scene, over its own \"environment\": sky (the procedural sky), "
                   "color:R,G,B (uniform radiance) or an equirectangular .hdr file")

@@ -33,6 +33,18 @@ TEST(ViewScript, ParsesEveryCommandWithItsLine) {
   EXPECT_EQ(cmds[7].line, 10);
 }
 
+// The animation clock: time SECONDS, play, pause.
+TEST(ViewScript, TimePlayAndPause) {
+  std::string error;
+  const auto cmds = parseScript("time 1.25\nplay\npause\n", "s.txt", error);
+  ASSERT_EQ(error, "");
+  ASSERT_EQ(cmds.size(), 3u);
+  EXPECT_EQ(cmds[0].kind, K::Time);
+  EXPECT_EQ(cmds[0].numbers, std::vector<float>{1.25f});
+  EXPECT_EQ(cmds[1].kind, K::Play);
+  EXPECT_EQ(cmds[2].kind, K::Pause);
+}
+
 TEST(ViewScript, InspectTakesAResourceALayerAndAMip) {
   std::string error;
   const auto cmds =
@@ -86,6 +98,9 @@ TEST(ViewScript, ErrorsNameFileAndLine) {
            Case{"pick 1\n", "s.txt:1: error: 'pick' expects X Y, got 1 argument(s)"},
            Case{"pick 1 -2\n", "s.txt:1: error: 'pick' needs whole numbers from 0 to 65535"},
            Case{"pick 1 y\n", "s.txt:1: error: 'pick': 'y' is not a number (expected X Y)"},
+           Case{"time -1\n", "s.txt:1: error: 'time' needs seconds >= 0"},
+           Case{"time soon\n", "s.txt:1: error: 'time': 'soon' is not a number (expected SECONDS)"},
+           Case{"play 2\n", "s.txt:1: error: 'play' takes no arguments"},
        }) {
     std::string error;
     EXPECT_TRUE(parseScript(c.text, "s.txt", error).empty()) << c.text;

@@ -161,6 +161,9 @@ class Viewer {
   Extent goodSize_;                  // the size of the last frame drawn
   std::vector<double> uiOnMs_, uiOffMs_;
   bool ui_ = true;
+  // The animation clock (RenderScene::setTime): advanced by each frame's wall time while playing.
+  bool playing_ = false;
+  double clock_ = 0.0;
   std::string showTab_;  // a script's `panel`: the tab drawPanels brings to the front
   bool pickPending_ = false;
   std::optional<PickResult> selected_;  // the Selection panel's object (the last answer)
@@ -341,6 +344,15 @@ bool Viewer::runScript(std::string& shot) {
         glfwSetWindowSize(window_.handle, int(n[0]), int(n[1]));
         renderer_->setSize(Extent{uint32_t(n[0]), uint32_t(n[1])});
         break;
+      case K::Time:
+        clock_ = n[0];
+        break;
+      case K::Play:
+        playing_ = true;
+        break;
+      case K::Pause:
+        playing_ = false;
+        break;
       case K::Quit:
         return false;
     }
@@ -362,6 +374,13 @@ void Viewer::drawUi() {
   if (ImGui::Button("Copy")) glfwSetClipboardString(window_.handle, ("--camera " + camera_.cameraArgument()).c_str());
   ImGui::SameLine();
   ImGui::TextDisabled("orbit: left drag, fly: right drag + WASD/QE, zoom: wheel, R: reset, F1: UI");
+  if (!scene_->scene().animation.empty()) {  // glTF animations, skins, morph targets: the clock
+    if (ImGui::Button(playing_ ? "Pause" : "Play")) playing_ = !playing_;
+    ImGui::SameLine();
+    if (ImGui::Button("Rewind")) clock_ = 0.0;
+    ImGui::SameLine();
+    ImGui::Text("time %.2f s", clock_);
+  }
   ImGui::End();
   if (!errors_.empty()) {
     ImGui::Begin("Reload errors");
@@ -420,6 +439,8 @@ void Viewer::run() {
       if (ww > 0 && wh > 0 && input_.clickX >= 0 && input_.clickY >= 0)
         requestPick(uint32_t(input_.clickX * fw / ww), uint32_t(input_.clickY * fh / wh), 0);
     }
+    if (playing_) clock_ += seconds;
+    scene_->setTime(clock_);
     const auto t0 = Clock::now();
     renderFrame(fb);
     takeAnswer();

@@ -113,12 +113,23 @@ std::string parseLine(const std::vector<std::string>& w, ScriptCommand& c) {
     std::string e = numbers(2, 2, "X Y");
     return e.empty() ? whole(0, 65535) : e;
   }
+  if (op == "time") {  // the animation clock, in seconds (>= 0)
+    c.kind = K::Time;
+    std::string e = numbers(1, 1, "SECONDS");
+    if (e.empty() && c.numbers[0] < 0.0f) e = "'time' needs seconds >= 0";
+    return e;
+  }
+  if (op == "play" || op == "pause") {  // the animation clock runs with the frames' wall time, or stops
+    c.kind = op == "play" ? K::Play : K::Pause;
+    return args ? "'" + op + "' takes no arguments" : "";
+  }
   if (op == "quit") {
     c.kind = K::Quit;
     return args ? "'quit' takes no arguments" : "";
   }
   return "unknown command '" + op +
-         "' (commands: camera, wait, waitfile, screenshot, ui, param, resize, inspect, panel, pick, quit)";
+         "' (commands: camera, wait, waitfile, screenshot, ui, param, resize, inspect, panel, pick, time, play, "
+         "pause, quit)";
 }
 
 }  // namespace

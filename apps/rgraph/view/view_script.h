@@ -9,10 +9,11 @@
 namespace rgraph::view {
 
 struct ScriptCommand {
-  enum class Kind { Camera, Wait, WaitFile, Screenshot, Ui, Param, Resize, Inspect, Panel, Pick, Quit };
+  enum class Kind { Camera, Wait, WaitFile, Screenshot, Ui, Param, Resize, Inspect, Panel, Pick, Time, Play, Pause, Quit };
   Kind kind = Kind::Quit;
   int line = 0;
-  std::vector<float> numbers;  // camera: 6 (or 7 with fov); wait: 1; resize: 2; inspect: layer, mip; pick: x, y
+  // camera: 6 (or 7 with fov); wait: 1; resize: 2; inspect: layer, mip; pick: x, y; time: seconds
+  std::vector<float> numbers;
   // screenshot, waitfile: file; ui: on|off; param: pass, name, JSON value; inspect: resource; panel: its tab
   std::vector<std::string> words;
 };

@@ -228,6 +228,30 @@ class RenderScene {
   // removing, a material or material values; not transforms or visibility).
   uint64_t instancesVersion() const;
 
+  // ---- Animation (glTF animations, skins and morph targets; rgraph/animation.h).
+  // The scene's clock is the caller's: setTime(seconds) poses the scene at
+  // that time, playing `animation` (an index into scene().animation's
+  // animations; kAllAnimations: every one at once, each looping on its own
+  // duration; kRestPose: none). Animations loop (loopTime). From the next
+  // frame: objects drawn by animated glTF nodes move (as setTransform moves
+  // them, the previous transform into the velocity target; an object whose
+  // node did not move since the last setTime keeps a transform the caller
+  // gave it), skinned objects follow their joints (the skinned node's own
+  // transform is ignored, as glTF says) and morphed ones their weights (the
+  // mesh's default weights where not animated); motion vectors include
+  // skinning and morphing (the previous frame's joints and weights). Only
+  // the joint matrices and weights that changed are uploaded. Bounds
+  // (Primitive::bounds, culling and shadow fitting) cover the pose: a
+  // skinned object's box is the union of its local box (morphed) under
+  // each of its skin's joint matrices, which holds every vertex whose
+  // weights sum to 1 (glTF requires it); a morphed one's local box grows by
+  // each target's deltas times its weight. Before any setTime the scene is
+  // at rest (kRestPose). Throws RuntimeError (changing nothing) for a
+  // non-finite time or an animation index the scene does not have. A scene
+  // without animation ignores the clock.
+  void setTime(double seconds, int animation = kAllAnimations);
+  double time() const;  // the last setTime's seconds (0 before any)
+
   // The GPU copy, uploaded on first use (a GL context must be current; later
   // calls throw RuntimeError in any other context, see Contexts above).
   GpuScene& gpu();

@@ -278,12 +278,15 @@ void Executor::Impl::createRuns() {
   assignMemoryBarriers();
   planHistory();
   planPoison();
+  // Scene vertex shaders deform (skins, morph targets) only in scenes that need it.
+  std::vector<std::string> sceneDefines;
+  if (scene && GpuScene::sceneDeforms(*scene)) sceneDefines.push_back("SCENE_ANIMATION");
   for (auto& run : runs) {
     try {
       // The programs the type's spec names, before setup, so that a pass
       // takes them by index instead of building them itself.
       RequestRecorder record(shaders, builtPrograms, run->name);
-      run->programs.build(run->name, *run->type, run->paramSet, shaders);
+      run->programs.build(run->name, *run->type, run->paramSet, shaders, sceneDefines);
       run->programs.resolveSlots(*run);
       run->programs.resolveSamplers(pipeline, run->decl.value(), *run->type, samplerCache);
       run->instance->setup(*run);

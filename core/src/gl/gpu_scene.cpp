@@ -81,7 +81,7 @@ struct GpuScene::Locations {
   int model, prevModel, normalMatrix, baseColorFactor, metallicFactor, roughnessFactor, specular, normalScale,
       occlusionStrength, alphaCutoff, alphaMode, emissive, hasBaseColorTex, hasMetallicRoughnessTex, hasNormalTex,
       hasOcclusionTex, specularColorFactor, specularFactor, unlit, specularTextures, hasVertexColors, uvTransform, uvSet, instanceRange,
-      object;
+      object, skin, morph, poseStride;
 };
 
 GpuScene::GpuScene(const Scene& scene) : scene_(scene), uploadedIn_(gl::currentContext()) {
@@ -100,6 +100,7 @@ GpuScene::GpuScene(const Scene& scene) : scene_(scene), uploadedIn_(gl::currentC
     geometryBytes_ += meshes_.back().bytes;
   }
   uploadInstances();
+  uploadDeformation();
   hasVertexColors_ = scene.hasVertexColors();
   for (const Material& m : scene.materials) reflectancePerDraw_ = reflectancePerDraw_ || m.nonDefaultReflectance();
   // Per-draw texture coordinates only where some texture is transformed or samples a second UV set.
@@ -313,6 +314,7 @@ void GpuScene::updateFrame(Extent viewport, const Camera& cam) {
   modelsFrame_.reset();
   addedPrimitives_.clear();
   writeObjects();
+  writePose(std::nullopt, true);
   writeFrame(viewport, cam, nullptr);
 }
 
@@ -344,6 +346,7 @@ glm::mat4 GpuScene::updateFrame(Extent viewport, const Camera& cam, const FrameM
   modelsFrame_ = motion.frame;
   addedPrimitives_.clear();
   writeObjects();
+  writePose(motion.frame, !motion.prevViewProj);
   return writeFrame(viewport, cam, &motion);
 }
 
@@ -503,7 +506,7 @@ const GpuScene::Locations& GpuScene::locations(uint32_t program) const {
                    get("u_hasMetallicRoughnessTex"), get("u_hasNormalTex"), get("u_hasOcclusionTex"),
                    get("u_specularColorFactor"), get("u_specularFactor"), get("u_unlit"), get("u_specularTextures"),
                    get("u_hasVertexColors"), get("u_uvTransform"), get("u_uvSet"), get("u_instanceRange"),
-                   get("u_object")};
+                   get("u_object"), get("u_skin"), get("u_morph"), get("u_poseStride")};
   // clang-format on
   return *locations_.emplace(program, std::move(loc)).first->second;
 }
@@ -621,6 +624,9 @@ void GpuScene::drawList(uint32_t program, const std::vector<size_t>& order, Cull
   if (!order.empty() && objects_.size() != scene_.primitives.size()) writeObjects();
   const bool objects = loc.object >= 0 && !order.empty();
   if (objects) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBinding, objectBuffer_.id());
+  // Skins and morphs: only programs compiled with SCENE_ANIMATION read them.
+  const bool deform = deforms_ && !order.empty() && (loc.skin >= 0 || loc.morph >= 0);
+  if (deform) bindDeformation(program, loc.poseStride);
   for (size_t i : order) {
     const Primitive& p = scene_.primitives[i];
     const Material& m = scene_.materials[p.material];
@@ -640,6 +646,7 @@ void GpuScene::drawList(uint32_t program, const std::vector<size_t>& order, Cull
       drawUniformBytes_ += sizeof(glm::mat4) * (loc.prevModel >= 0 ? 2 : 1) + sizeof(glm::mat3);
     }
     bindMaterial(program, p.material, mesh.uv1);
+    if (deform) setDeformation(program, loc.skin, loc.morph, i);
     // (Both 0 until set: scenes without vertex colours or instances set nothing per draw.)
     if (hasVertexColors_ && loc.hasVertexColors >= 0) glProgramUniform1i(program, loc.hasVertexColors, mesh.colors ? 1 : 0);
     // Instanced primitives: instance j of view v is GL instance j * views + v
@@ -668,6 +675,7 @@ void GpuScene::drawList(uint32_t program, const std::vector<size_t>& order, Cull
   for (GLuint unit = 0; unit < 5; ++unit) glBindSampler(unit, 0);
   if (instances_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBinding, 0);  // left as found
   if (objects) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBinding, 0);
+  if (deform) unbindDeformation();
   bindVertexArray(0);
 }
 

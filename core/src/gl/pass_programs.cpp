@@ -15,7 +15,7 @@ std::string files(const ShaderProgramSpec& s) { return s.comp.empty() ? s.vert +
 }  // namespace
 
 void PassPrograms::build(const std::string& passName, const PassTypeDesc& type, const ParamSet& params,
-                         ShaderLibrary& shaders) {
+                         ShaderLibrary& shaders, const std::vector<std::string>& sceneDefines) {
   ids_.clear();
   units_.clear();
   if (!type.programs) return;
@@ -53,8 +53,12 @@ void PassPrograms::build(const std::string& passName, const PassTypeDesc& type, 
       }
       if (!known) units_.push_back({unit, m.slot});
     }
+    std::vector<std::string> defines = s.defines;
+    const std::string sceneVert = "scene.vert";
+    if (s.vert.size() >= sceneVert.size() && s.vert.compare(s.vert.size() - sceneVert.size(), sceneVert.size(), sceneVert) == 0)
+      defines.insert(defines.end(), sceneDefines.begin(), sceneDefines.end());
     const uint32_t id =
-        s.comp.empty() ? shaders.program(s.vert, s.frag, s.defines) : shaders.computeProgram(s.comp, s.defines);
+        s.comp.empty() ? shaders.program(s.vert, s.frag, defines) : shaders.computeProgram(s.comp, s.defines);
     // Once here, so that a shader without layout(binding) reads the unit too.
     for (const SamplerSlot& m : s.samplers) {
       const GLint loc = glGetUniformLocation(id, m.uniform.c_str());

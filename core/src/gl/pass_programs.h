@@ -24,7 +24,10 @@ class PassPrograms {
   // and sets each sampler uniform to its unit, once. Throws RuntimeError
   // naming the pass: programs() threw, a sampler names no unit or no sampled
   // slot of the type, two slots share a unit, a shader fails to compile.
-  void build(const std::string& passName, const PassTypeDesc& type, const ParamSet& params, ShaderLibrary& shaders);
+  // `sceneDefines` go to every program whose vertex shader is scene.vert
+  // (the scene's own variant: SCENE_ANIMATION where it deforms).
+  void build(const std::string& passName, const PassTypeDesc& type, const ParamSet& params, ShaderLibrary& shaders,
+             const std::vector<std::string>& sceneDefines = {});
 
   uint32_t program(size_t index, const std::string& passName) const;
   size_t count() const { return ids_.size(); }

@@ -37,6 +37,8 @@ std::shared_ptr<RenderScene> RenderScene::fromScene(Scene scene) {
   std::shared_ptr<RenderScene> s(new RenderScene());
   s->impl_->scene = std::move(scene);
   s->impl_->numberPrimitives();  // each primitive an object the API can move
+  // Animated scenes start at rest (skinned and morphed objects' bounds then cover their rest pose).
+  if (!s->impl_->scene.animation.empty()) s->impl_->applyPose(0.0, kRestPose);
   return s;
 }
 
@@ -111,6 +113,7 @@ GpuScene& RenderScene::gpu() {
   if (!impl_->gpu) {
     impl_->gpu = std::make_unique<GpuScene>(impl_->scene);
     ++impl_->uploads;
+    if (impl_->gpu->deforms()) impl_->gpu->setPose(impl_->pose.joints, impl_->pose.weights);
     for (size_t i = 0; i < impl_->hidden.size(); ++i)
       if (impl_->hidden[i]) impl_->gpu->setVisible(i, false);
   } else {

@@ -34,6 +34,17 @@ struct RenderScene::Impl {
   std::unordered_map<uint64_t, size_t> ownMaterial;
   std::vector<size_t> freeMaterials;
 
+  // Animation (render_scene_animation.cpp): the pose of the last setTime
+  // (evaluated at rest until then) and each node's world matrix as last
+  // given to its objects; the morph targets' delta boxes per mesh (made at
+  // the first use).
+  Pose pose;
+  double time = 0.0;
+  std::vector<glm::mat4> givenWorld;
+  std::vector<std::vector<Bounds>> targetBounds;
+  // Poses the scene (setTime's work, kRestPose from fromScene).
+  void applyPose(double seconds, int animation);
+
   std::string where() const { return scene.source.empty() ? std::string("scene") : scene.source; }
   void lightsEdited() {
     ++lightsVersion;

@@ -84,18 +84,8 @@ void GltfLoader::checkDraco() {
 }
 
 void GltfLoader::warnIgnoredFeatures() {
-  // Loaded into Scene::animation and evaluated on the CPU (rgraph/animation.h),
-  // but the renderer does not play them yet: said as what the picture shows.
-  auto notDrawn = [&](const std::string& what, const std::string& instead) {
-    if (ignoredFeatures_.insert(what).second) warn(what + ": " + instead);
-  };
-  if (!model_.skins.empty()) notDrawn("skins not applied", "drawn in bind pose");
-  if (!model_.animations.empty()) notDrawn("animations not played", "drawn at rest");
-  for (const tinygltf::Mesh& m : model_.meshes) {
-    for (const tinygltf::Primitive& p : m.primitives) {
-      if (!p.targets.empty()) notDrawn("morph targets not applied", "drawn undeformed (default weights not applied)");
-    }
-  }
+  // (Animations, skins and morph targets are drawn: RenderScene::setTime
+  // poses them, GpuScene deforms them in scene.vert. No warning.)
   for (const std::string& used : model_.extensionsUsed)
     for (const IgnoredExtension& e : kIgnoredExtensions)
       if (used == e.name) warnIgnored(e.name, e.instead);

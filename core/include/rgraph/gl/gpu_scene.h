@@ -31,6 +31,14 @@
 //                      written at upload: Primitive::instances edited later are not
 //                      seen, a primitive's transform is), bound for scene draws only
 //                      in scenes with instances
+//   storage buffers    only in scenes with skins or morph targets
+//   8, 9, 10, 11       (sceneDeforms; scene.vert's SCENE_ANIMATION):
+//                      8 Joints (every skin's joint matrices, this frame's then
+//                      the previous frame's), 9 MorphWeights (likewise), 10
+//                      Influences (per vertex of skinned meshes: records of 4
+//                      joints + weights, any number of sets), 11 MorphDeltas
+//                      (per vertex and target: position, normal, tangent
+//                      deltas); per draw u_skin, u_morph, per list u_poseStride
 //   texture units      0 base colour, 1 metallic-roughness, 2 normal, 3 occlusion, 4 emissive
 #pragma once
 
@@ -80,6 +88,9 @@ class GpuScene {
   static constexpr uint32_t kInstanceBinding = 7;
   // Storage buffer binding of the per-object matrices (scene.vert's Objects).
   static constexpr uint32_t kObjectBinding = 5;
+  // Storage buffer bindings of skinning and morphing (scene.vert's SCENE_ANIMATION blocks).
+  static constexpr uint32_t kJointBinding = 8, kMorphWeightBinding = 9, kInfluenceBinding = 10,
+                            kMorphDeltaBinding = 11;
   explicit GpuScene(const Scene& scene);  // uploads; needs a current GL context
   ~GpuScene();
   GpuScene(const GpuScene&) = delete;
@@ -272,11 +283,39 @@ class GpuScene {
   // on any device, with any scene.vert program (not LAYERED).
   void drawEachLayer(uint32_t program, const std::vector<View>& views, const std::function<void(size_t)>& bindLayer);
 
+  // ---- Skins and morph targets (gpu_scene_animation.cpp)
+  //
+  // Only in a scene where sceneDeforms(): its skinned meshes'
+  // influences and morphed meshes' deltas are uploaded with it (meshes added
+  // later are drawn undeformed), and the pose starts as the rest pose
+  // (evaluatePose with kRestPose: default morph weights). Other scenes
+  // upload, bind and set nothing of this.
+  bool deforms() const { return deforms_; }
+  // Whether `scene` has something to deform on the GPU: a primitive whose
+  // glTF node has a skin and whose mesh JOINTS/WEIGHTS, or whose mesh has
+  // morph targets and its node weights. Scene vertex shaders get
+  // SCENE_ANIMATION only then (the executor adds it).
+  static bool sceneDeforms(const Scene& scene);
+  // The pose to draw from the next updateFrame on (RenderScene::setTime):
+  // joint matrices and morph weights as rgraph::Pose lays them out (sizes
+  // SceneAnimation::jointCount and weightCount, else RuntimeError). Motion
+  // vectors use the previous frame's pose, as they use previous models.
+  void setPose(const std::vector<glm::mat4>& joints, const std::vector<float>& weights);
+  // Bytes written into the Joints and MorphWeights buffers since the upload:
+  // only the ranges that changed each frame (a still pose writes none).
+  uint64_t poseBytes() const { return poseBytes_; }
+  // Bytes of influences and morph deltas uploaded (once, with the scene).
+  uint64_t deformationBytes() const { return deformationBytes_; }
+
   // Whether vertex buffers carry tangents (only when the scene has normal maps).
   bool hasTangents() const { return hasTangents_; }
 
  private:
   struct GpuMesh {
+    // Skinning and morphing (gpu_scene_animation.cpp): first record and
+    // records per vertex in Influences (0: none), first vec4 in MorphDeltas,
+    // targets (0: none) and which attributes each target has (bits).
+    int32_t firstInfluence = 0, influenceSets = 0, firstDelta = 0, morphTargets = 0, morphAttributes = 0;
     gl::VertexArray vao;
     gl::Buffer vertices, indices;
     gl::Buffer extra;  // COLOR_0 then TEXCOORD_1, where the mesh has them (else none)
@@ -315,6 +354,28 @@ class GpuScene {
   void bindViewBlock(const View& view, Viewport viewport);
   const Locations& locations(uint32_t program) const;
   void bindMaterial(uint32_t program, int material, bool meshHasUv1) const;
+
+  // Skins and morph targets (gpu_scene_animation.cpp).
+  bool deforms_ = false;
+  gl::Buffer influences_, morphDeltas_, joints_, morphWeights_;
+  uint32_t jointCount_ = 0, weightCount_ = 0;  // per frame (the buffers hold two frames)
+  // The pose to draw (setPose), what the buffers hold (this frame's, the
+  // previous frame's), and the frame the drawn pose belongs to.
+  std::vector<glm::mat4> pose_, gpuJoints_;
+  std::vector<float> poseWeights_, gpuWeights_;
+  std::optional<uint64_t> poseFrame_;
+  uint64_t poseBytes_ = 0, deformationBytes_ = 0;
+  // Uploads influences and deltas, makes the pose buffers (the constructor).
+  void uploadDeformation();
+  // Writes this frame's pose and the previous frame's into the buffers,
+  // only the ranges that differ. `frame` nullopt (no motion) or a first
+  // frame / camera cut (`cut`): the previous pose is this one.
+  void writePose(std::optional<uint64_t> frame, bool cut);
+  // Binds the four buffers and sets u_poseStride (drawList, where the
+  // program reads them); per draw, u_skin and u_morph of primitive `i`.
+  void bindDeformation(uint32_t program, int poseStrideLocation) const;
+  void setDeformation(uint32_t program, int skinLocation, int morphLocation, size_t primitive) const;
+  void unbindDeformation() const;
 
   const Scene& scene_;
   gl::ContextIdentity uploadedIn_;
