@@ -204,27 +204,26 @@ json Level::state(const rgraph::Camera& camera) const {
   return out;
 }
 
-// ---- Waiting for rgraph features (see level.h).
+// ---- The animation clock and picking.
 
 void advanceClock(rgraph::RenderScene& scene, double seconds) {
-  (void)scene;
-  // With RenderScene::setTime (issue 30, skinned glTF): scene.setTime(seconds);
-  throw std::runtime_error("this rgraph cannot play animations yet (RenderScene::setTime), asked for time " +
-                           std::to_string(seconds));
+  scene.setTime(seconds);  // poses glTF animations, skins and morph targets; RuntimeError when not finite
 }
 
 void selectAt(rgraph::Renderer& renderer, int x, int y) {
-  (void)renderer;
-  // With Renderer::requestPick (issue 30): renderer.requestPick(uint32_t(x), uint32_t(y));
-  throw std::runtime_error("this rgraph cannot pick objects yet (Renderer::requestPick), asked for pixel " +
-                           std::to_string(x) + "," + std::to_string(y));
+  if (x < 0 || y < 0) throw std::runtime_error("pixel " + std::to_string(x) + "," + std::to_string(y) + " is outside the window");
+  renderer.requestPick(uint32_t(x), uint32_t(y));  // RuntimeError past the window's size
 }
 
-std::optional<std::optional<size_t>> pickedModel(rgraph::Renderer& renderer, const Level& level) {
-  (void)renderer, (void)level;
-  // With Renderer::pickResult (issue 30):
-  //   if (const auto result = renderer.pickResult()) return level.modelOf(result->instance);
-  return std::nullopt;
+std::optional<std::optional<size_t>> pickedModel(rgraph::Renderer& renderer, const Level& level,
+                                                 std::optional<uint64_t>& taken) {
+  const std::optional<rgraph::PickResult> result = renderer.pickResult();
+  // The answer stays until the next request: take each one once, so that the
+  // keyboard's selection is not overridden every frame.
+  if (!result || result->frame == taken) return std::nullopt;
+  taken = result->frame;
+  if (!result->problem.empty()) throw std::runtime_error("cannot pick: " + result->problem);
+  return level.modelOf(result->instance);  // nullopt inside: the background
 }
 
 }  // namespace editor

@@ -8,6 +8,7 @@
 // numbers mean the same models from its first line to its last.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -74,23 +75,20 @@ class Level {
   std::shared_ptr<rgraph::RenderScene> scene_;
 };
 
-// ---- Waiting for rgraph features being added (issue 30); each is one call.
+// ---- The animation clock and picking: one rgraph call each.
 
-// Sets the scene's clock (skinned and animated glTF models play at it).
-// Will call scene.setTime(seconds) (RenderScene::setTime); until then throws
-// std::runtime_error saying this rgraph cannot play animations.
+// Sets the scene's clock (RenderScene::setTime: skinned and animated glTF
+// models play at it).
 void advanceClock(rgraph::RenderScene& scene, double seconds);
 
-// Picking, answered a frame late (the GPU is not waited for). selectAt asks
-// which model is under window pixel (x, y), counted from the top left. Will
-// call renderer.requestPick(uint32_t(x), uint32_t(y)) (Renderer::requestPick,
-// with RendererOptions::picking on in main.cpp's makeRenderer); until then
-// throws std::runtime_error saying this rgraph cannot pick.
+// Asks which model is under window pixel (x, y), counted from the top left
+// (Renderer::requestPick; main.cpp's makeRenderer turns RendererOptions::
+// picking on). The answer comes a frame or so later, from pickedModel.
 void selectAt(rgraph::Renderer& renderer, int x, int y);
-// After each frame: the answer to the last selectAt once it is in (a model,
-// or nullopt inside: the background), nullopt while there is none. Will
-// return level.modelOf(result->instance) for renderer.pickResult()'s result
-// when there is one; until then there never is.
-std::optional<std::optional<size_t>> pickedModel(rgraph::Renderer& renderer, const Level& level);
+// After each frame: the answer to the last selectAt once it is in and not yet
+// taken (`taken`: the frame of the last answer taken): a model, or nullopt
+// inside for the background; nullopt while there is none.
+std::optional<std::optional<size_t>> pickedModel(rgraph::Renderer& renderer, const Level& level,
+                                                 std::optional<uint64_t>& taken);
 
 }  // namespace editor

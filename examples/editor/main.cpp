@@ -8,7 +8,10 @@
 //   rgraph_editor [--level FILE] [--pipeline FILE] [--size WxH] [--frames N]
 //                 [--script FILE] [--do "FRAME COMMAND ..."]... [--no-tint]
 //                 [--no-overlay] [--screenshot OUT.png] [--rgraph-out OUT.png]
-//                 [--save-state OUT.json]
+//                 [--save-state OUT.json] [--play FPS]
+//
+// --play FPS: the animation clock (skinned and animated glTF models) runs,
+// 1/FPS seconds a frame from the last `time` step (0 without one).
 //
 // Keys: Tab selects the next model, the arrows move it on the ground, a click
 // picks (selectAt). Every failure prints "error: ..." and exits 1.
@@ -47,6 +50,7 @@ struct Args {
   std::vector<editor::Step> steps;
   bool tint = true, overlay = true;
   std::string screenshot, rgraphOut, saveState;
+  long playFps = 0;  // 0: the clock moves only with `time` steps
 };
 
 [[noreturn]] void fail(const std::string& message) { throw std::runtime_error(message); }
@@ -93,6 +97,7 @@ Args parseArgs(int argc, char** argv) {
     else if (arg == "--screenshot") a.screenshot = value();
     else if (arg == "--rgraph-out") a.rgraphOut = value();
     else if (arg == "--save-state") a.saveState = value();
+    else if (arg == "--play") a.playFps = number(value(), "--play", 1, 1000);
     else if (arg == "--size") {
       const std::string v = value();
       const size_t x = v.find('x');
@@ -101,7 +106,7 @@ Args parseArgs(int argc, char** argv) {
       a.height = int(number(v.substr(x + 1), "--size height", 16, 8192));
     } else
       fail("unknown argument '" + arg + "' (options: --level FILE --pipeline FILE --size WxH --frames N " +
-           "--script FILE --do STEP --no-tint --no-overlay --screenshot PNG --rgraph-out PNG --save-state JSON)");
+           "--script FILE --do STEP --no-tint --no-overlay --screenshot PNG --rgraph-out PNG --save-state JSON --play FPS)");
   }
   const bool captures = !a.screenshot.empty() || !a.rgraphOut.empty() || !a.saveState.empty();
   if (captures && a.frames == 0) fail("--screenshot, --rgraph-out and --save-state need --frames N (the last frame)");
@@ -118,6 +123,7 @@ std::unique_ptr<rgraph::Renderer> makeRenderer(const Args& args, const rgraph::P
   options.size = {uint32_t(w), uint32_t(h)};
   options.registry = &types;
   options.keepDepth = true;  // the overlay's depth test reads it
+  options.picking = true;    // object ids for clicks (8 bytes a pixel; selectAt)
   rgraph::Diagnostics diags;
   std::unique_ptr<rgraph::Renderer> renderer;
   if (args.tint) {
@@ -220,10 +226,18 @@ int run(const Args& args) {
   if (args.overlay) overlay.emplace();
 
   for (long frame = 0; !glfwWindowShouldClose(window.get()) && (args.frames == 0 || frame < args.frames); ++frame) {
+    if (args.playFps > 0 && frame > 0) {  // before this frame's steps: a `time` step sets the clock outright
+      session.clock += 1.0 / double(args.playFps);
+      editor::advanceClock(*level.scene(), session.clock);
+    }
     for (const editor::Step& step : args.steps)
       if (step.frame == frame) editor::apply(step, session);
     renderer->render(0);  // rgraph's frame into the window; our GL state comes back as we left it
-    if (const auto picked = editor::pickedModel(*renderer, level)) session.selected = *picked;  // a click's answer
+    if (const auto picked = editor::pickedModel(*renderer, level, session.pickTaken)) {  // a click's answer
+      session.selected = *picked;
+      if (*picked) std::printf("selected model %zu\n", **picked);
+      else std::printf("selected nothing\n");
+    }
     if (overlay) {
       const rgraph::Camera& camera = renderer->camera();
       const glm::mat4 viewProjection = camera.projection(float(w) / float(h)) * camera.view();

@@ -83,6 +83,7 @@ void apply(const Step& step, Session& s) {
   try {
     if (step.command == "time") {
       advanceClock(*s.level.scene(), n[0]);
+      s.clock = n[0];
       return;
     }
     if (step.command == "click") {

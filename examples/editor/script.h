@@ -42,6 +42,8 @@ struct Session {
   Level& level;
   rgraph::Renderer& renderer;
   std::optional<size_t> selected;
+  std::optional<uint64_t> pickTaken;  // the frame of the last pick answer taken (pickedModel)
+  double clock = 0.0;      // the animation clock's last setting (advanceClock), seconds
 };
 
 // Applies one step. Throws std::runtime_error "WHERE: message" when the step

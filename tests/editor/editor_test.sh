@@ -14,6 +14,11 @@
 #   overlay_depth   the grid and gizmo are depth-tested against rgraph's depth: over
 #                   the crate, the lines behind it show the crate and the gizmo's arm
 #                   in front of it shows (runs with the crate shown and hidden)
+#   animation       levels/skin.json (SimpleSkin) at `time 0.5` played at 4 fps for
+#                   3 frames equals `rgraph render --time 0.5 --fps 4 --frames 3` of
+#                   its state within 1/255, and differs from the rest pose
+#   pick            a click on a model selects it a frame or two later (printed),
+#                   a click on the background selects nothing
 #   errors          argument, script and level mistakes (no window needed) and
 #   edit_errors     pipeline and edit mistakes (under X): "error: ..." naming the
 #                   place, exit 1, never a signal
@@ -52,9 +57,10 @@ edit() {
   cat "$out/$name.log"
   [[ $rc -eq 0 ]] || fail "the editor exited $rc"
 }
-render() {  # render SCENE OUT: the installed rgraph, default pipeline, same size
-  "$prefix/bin/rgraph" render --scene "$1" --width $W --height $H --out "$2" >"$out/render.log" 2>&1 ||
-    { cat "$out/render.log"; fail "rgraph render --scene $1: exit $?"; }
+render() {  # render SCENE OUT [OPTION...]: the installed rgraph, default pipeline, same size
+  local scene=$1 png=$2; shift 2
+  "$prefix/bin/rgraph" render --scene "$scene" --width $W --height $H --out "$png" "$@" >"$out/render.log" 2>&1 ||
+    { cat "$out/render.log"; fail "rgraph render --scene $scene $*: exit $?"; }
 }
 
 case "$case_" in
@@ -87,6 +93,27 @@ overlay_depth)
   "$overlay_check" "$out/shown-window.png" "$out/shown-rgraph.png" "$out/hidden-window.png" "$out/hidden-rgraph.png" ||
     fail "the overlay is not depth-tested against rgraph's depth (see the counts above)"
   echo "ok: the overlay hides behind the crate and shows in front of it" ;;
+animation)
+  run_x "$editor" --level "$source/levels/skin.json" --size ${W}x$H --frames 3 --no-tint --no-overlay \
+    --do "0 time 0.5" --play 4 --rgraph-out "$out/anim-rgraph.png" --save-state "$out/anim-state.json" \
+    >"$out/anim.log" 2>&1 || { cat "$out/anim.log"; fail "the editor exited $?"; }
+  render "$out/anim-state.json" "$out/reference.png" --time 0.5 --fps 4 --frames 3
+  "$compare" "$out/anim-rgraph.png" "$out/reference.png" 1 ||
+    fail "the editor's skinned frame at 1.0 s differs from rgraph render --time 0.5 --fps 4 --frames 3"
+  render "$out/anim-state.json" "$out/rest.png"
+  "$compare" "$out/anim-rgraph.png" "$out/rest.png" 1
+  rc=$?; [[ $rc -eq 2 ]] || fail "the played frame should differ from the rest pose (compare exit $rc)"
+  echo "ok: the editor plays the skinned model as rgraph render --time does" ;;
+pick)
+  run_x "$editor" --size ${W}x$H --frames 4 --no-overlay --do "0 click 80 45" >"$out/pick.log" 2>&1 ||
+    { cat "$out/pick.log"; fail "the editor exited $?"; }
+  cat "$out/pick.log"
+  grep -q "^selected model 1$" "$out/pick.log" || fail "a click at 80,45 did not select model 1"
+  run_x "$editor" --size ${W}x$H --frames 4 --no-overlay --do "0 click 2 2" >"$out/pick-bg.log" 2>&1 ||
+    { cat "$out/pick-bg.log"; fail "the editor exited $?"; }
+  cat "$out/pick-bg.log"
+  grep -q "^selected nothing$" "$out/pick-bg.log" || fail "a click on the background selected something"
+  echo "ok: a click selects the model under it, the background nothing" ;;
 errors)  # mistakes found before a window opens (arguments, scripts, levels)
   printf '0 select 1\n\n# a comment\n2 mvoe 1 0 0 0\n' >"$out/typo.txt"
   expect "^error: $out/typo.txt:4: unknown command 'mvoe'" "$editor" --script "$out/typo.txt"
@@ -115,8 +142,6 @@ edit_errors_under_x)
   expect "^error: --do '0 move 7 0 0 0': no model 7 \(the level has 5\)" "$editor" --frames 1 --do "0 move 7 0 0 0"
   expect "^error: --do '0 hide 3': model 3 was removed" "$editor" --frames 1 --do "0 remove 3" --do "0 hide 3"
   expect "^error: --do '0 scale 1 0': .*instance" "$editor" --frames 1 --do "0 scale 1 0"
-  # Until RenderScene::setTime and Renderer::requestPick are wired in (level.h): a clear refusal.
-  expect "^error: --do '0 time 1.5': this rgraph cannot play animations yet" "$editor" --frames 1 --do "0 time 1.5"
-  expect "^error: --do '0 click 80 45': this rgraph cannot pick objects yet" "$editor" --frames 1 --do "0 click 80 45" ;;
+  expect "^error: --do '0 click 500 45': .*pixel \\(500, 45\\)" "$editor" --size 160x90 --frames 1 --do "0 click 500 45" ;;
 *) fail "unknown case $case_" ;;
 esac
