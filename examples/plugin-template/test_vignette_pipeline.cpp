@@ -4,6 +4,7 @@
 //   cmake --build build && ctest --test-dir build
 #include <gtest/gtest.h>
 
+#include "rgraph/hazard_check.h"
 #include "rgraph/pass_decl.h"
 #include "rgraph/registry.h"
 #include "rgraph/testing.h"
@@ -84,4 +85,20 @@ TEST(VignettePipeline, AnInProcessTypeOfThePluginsNameStaysInItsTest) {
   EXPECT_EQ(p.order(), (std::vector<std::string>{"v"}));
   // The plugin's own vignette still loads for the next compile: no "already registered".
   EXPECT_TRUE(compileVignette().ok()) << compileVignette().describe();
+}
+
+// The hazard harness (docs/testing.md, "Hazard modes"): the pipeline rendered
+// plainly and under each hazard mode (poisoned transients, no aliasing, other
+// aliasing, other valid orders, hostile GL state before each pass, nothing
+// culled) keeps the same images, bit for bit: the vignette reads only what the
+// graph promises it and leaves no state behind. On a finding, describe() names
+// the mode, the pass (with its line in vignette.json), the resource and the
+// pixels. Renders in a headless GL context.
+TEST(VignettePipeline, IsHazardFree) {
+  rgraph::HazardCheckOptions options;
+  options.size = {32, 32};
+  options.frames = 2;
+  options.renderer.pluginDirectories = {VIGNETTE_PLUGIN_DIR};
+  const rgraph::HazardReport report = rt::expectHazardFree(VIGNETTE_PIPELINE, options);
+  EXPECT_TRUE(report.hazardFree()) << report.describe();
 }
