@@ -110,6 +110,9 @@ TEST(BenchAa, OnlyAaQuickWritesEveryMethodOnBothScenes) {
     EXPECT_GE(edge[s + "taa_orbit"], edge[s + "none_orbit"] + 2.9) << scene;
     EXPECT_GE(edge[s + "taa_moving"], edge[s + "none_moving"] + 2.9) << scene;
     EXPECT_GE(edge[s + "taa_moving"], edge[s + "taa_orbit"] - 1.0) << scene;
+    // The objects did move: TAA on them stays well below TAA at rest
+    // (measured 26.14 vs 30.22 and 21.85 vs 28.98 dB).
+    EXPECT_LT(edge[s + "taa_moving"], edge[s + "taa"] - 2.0) << scene;
   }
   // 4x MSAA resolves edges with real coverage: better than none on both scenes.
   for (const char* scene : {"learnopengl:overview", "thin"})
