@@ -201,12 +201,13 @@ struct AaPlan {
   int orbitFrames = 16;    // orbit and moving: scored frames (each against its own reference)
   float orbitDegrees = 1;  // orbit: camera turn per frame about the target's vertical axis (moving: the
                            // objects' turn, the other way)
+  double walkFps = 30;     // walk: the animation clock advances 1/walkFps seconds per frame
 };
 AaPlan aaPlan(bool quick);
 
 struct AaRow {
   std::string scene;     // loadSceneAny spec
-  std::string aa;        // none, fxaa, taa, taa_orbit, msaa4, none_moving, taa_moving
+  std::string aa;        // none, fxaa, taa, taa_orbit, msaa4, none_moving, taa_moving, none_walk, taa_walk
   std::string pipeline;  // file under pipelines/
   Extent size;
   int frames = 0;  // rendered before (the last) image was read
@@ -217,7 +218,7 @@ struct AaRow {
   std::string error;                  // non-empty: the row failed (message)
   bool ok() const { return error.empty(); }
 };
-extern const std::vector<std::string> kAaScenes;  // learnopengl:overview, thin
+extern const std::vector<std::string> kAaScenes;  // learnopengl:overview, thin, walker
 std::vector<AaRow> planAa(const AaPlan& plan);
 // Renders every row; returns the number that failed. timed false: no frame
 // times kept (--figures-only); the images are the same either way.

@@ -1,7 +1,7 @@
 // `rgraph bench`, the aa axis: anti-aliasing methods (none, FXAA, TAA
-// converged on a still camera, during an orbit and with moving objects, 4x
-// MSAA forward) on scenes
-// whose edges alias, each against a 16-sample reference of its own pipeline
+// converged on a still camera, during an orbit, with moving objects and on
+// skinned figures walking, 4x MSAA forward) on scenes whose edges alias,
+// each against a 16-sample reference of its own pipeline
 // (bench.h: AaPlan, AaRow; the maths in bench_aa_metrics.h). Rows carry the
 // axis name "aa" in the CSV's axes column.
 #include <algorithm>
@@ -16,8 +16,10 @@
 #include "bench.h"
 #include "bench_aa_metrics.h"
 #include "bench_chart.h"
+#include "rgraph/animation.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/executor.h"
+#include "rgraph/gl/gpu_scene.h"
 #include "rgraph/image.h"
 #include "rgraph/pipeline_load.h"
 
@@ -25,25 +27,38 @@ namespace rgraph::cli::bench {
 
 using nlohmann::json;
 
-const std::vector<std::string> kAaScenes = {"learnopengl:overview", "thin"};
+const std::vector<std::string> kAaScenes = {"learnopengl:overview", "thin", "walker"};
 
 namespace {
 
 // still: a still camera; converged: TAA's history filled on a still camera;
 // orbit: the camera turns about its target; moving: the camera and lights
 // stay, every object turns about the target's vertical axis (a turntable):
-// motion vectors from the objects' previous transforms, not the camera's.
-enum class AaKind { still, converged, orbit, moving };
+// motion vectors from the objects' previous transforms, not the camera's;
+// walk: the camera and lights stay, the scene's animation plays at
+// AaPlan::walkFps (skinned figures: motion vectors from the previous pose).
+enum class AaKind { still, converged, orbit, moving, walk };
+// Which scenes a method runs on: the static ones (overview, thin), the
+// animated one (walker) or both.
+enum AaScenes : unsigned { kStaticScenes = 1, kAnimatedScenes = 2, kBothScenes = 3 };
 struct AaMethod {
   const char* aa;
   const char* file;  // under pipelines/
   AaKind kind;
+  unsigned scenes;
 };
 const AaMethod kAaMethods[] = {
-    {"none", "default.json", AaKind::still},           {"none_orbit", "default.json", AaKind::orbit},
-    {"fxaa", "deferred-fxaa.json", AaKind::still},     {"taa", "deferred-taa.json", AaKind::converged},
-    {"taa_orbit", "deferred-taa.json", AaKind::orbit}, {"msaa4", "forward-msaa.json", AaKind::still},
-    {"none_moving", "default.json", AaKind::moving},   {"taa_moving", "deferred-taa.json", AaKind::moving}};
+    {"none", "default.json", AaKind::still, kBothScenes},
+    {"none_orbit", "default.json", AaKind::orbit, kBothScenes},
+    {"fxaa", "deferred-fxaa.json", AaKind::still, kStaticScenes},
+    {"taa", "deferred-taa.json", AaKind::converged, kBothScenes},
+    {"taa_orbit", "deferred-taa.json", AaKind::orbit, kBothScenes},
+    {"msaa4", "forward-msaa.json", AaKind::still, kStaticScenes},
+    {"none_moving", "default.json", AaKind::moving, kStaticScenes},
+    {"taa_moving", "deferred-taa.json", AaKind::moving, kStaticScenes},
+    {"none_walk", "default.json", AaKind::walk, kAnimatedScenes},
+    {"taa_walk", "deferred-taa.json", AaKind::walk, kAnimatedScenes}};
+bool animatedScene(const std::string& scene) { return scene == "walker"; }
 constexpr int kReferenceFactor = 4;  // 4x4 = 16 samples per pixel
 
 const AaMethod& methodOf(const AaRow& r) {
@@ -113,6 +128,19 @@ void runRow(AaRow& row, const AaPlan& plan, const Scene& rest, const std::string
   const std::unique_ptr<Executor> exec = makeExecutor(cfg, scene, row.size, shaders);
   const Extent big{row.size.width * kReferenceFactor, row.size.height * kReferenceFactor};
   const std::unique_ptr<Executor> ref = makeExecutor(refCfg, scene, big, shaders);
+  // An animated scene is drawn posed (its animations all playing, as
+  // `rgraph render --time` does): walk rows at frame i / walkFps, the others
+  // at its clock's start, both executors alike.
+  Pose pose;
+  PosedBounds posed;
+  auto poseAt = [&](double seconds) {
+    if (scene.animation.empty()) return;
+    evaluatePose(scene.animation, seconds, kAllAnimations, pose);
+    poseScene(scene, pose, posed);
+    for (Executor* e : {exec.get(), ref.get()})
+      if (GpuScene* g = e->gpuScene()) g->setPose(pose.joints, pose.weights);
+  };
+  poseAt(0.0);
   auto reference = [&](const Camera& camera) {
     ref->setCamera(camera);
     ref->cameraCut();  // a temporal pipeline shows this frame alone
@@ -121,13 +149,15 @@ void runRow(AaRow& row, const AaPlan& plan, const Scene& rest, const std::string
   };
   ErrorSum sum;
   exec->setCamera(scene.camera);
-  if (method.kind == AaKind::orbit || method.kind == AaKind::moving) {
+  if (method.kind == AaKind::orbit || method.kind == AaKind::moving || method.kind == AaKind::walk) {
     for (int i = 0; i < plan.orbitWarm + plan.orbitFrames; ++i) {
       Camera camera = scene.camera;
       if (method.kind == AaKind::orbit)
         camera = rgraph::orbitCamera(scene.camera, plan.orbitDegrees * float(i));  // as render --orbit
-      else
+      else if (method.kind == AaKind::moving)
         turnObjects(scene, rest, scene.camera.target, -plan.orbitDegrees * float(i));
+      else
+        poseAt(double(i) / plan.walkFps);
       exec->setCamera(camera);
       const double ms = timedFrame(*exec);
       if (i >= plan.warm) row.frameMs.push_back(ms);
@@ -169,6 +199,7 @@ std::vector<AaRow> planAa(const AaPlan& plan) {
   std::vector<AaRow> rows;
   for (const auto& scene : kAaScenes)
     for (const AaMethod& m : kAaMethods) {
+      if (!(m.scenes & (animatedScene(scene) ? kAnimatedScenes : kStaticScenes))) continue;
       AaRow r;
       r.scene = scene;
       r.aa = m.aa;

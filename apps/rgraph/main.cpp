@@ -132,7 +132,7 @@ CLI::App* addRender(CLI::App& app, Options& o) {
   cmd->add_option("--out,-o", r.out, "output PNG")->required()->check(kNotEmpty);
   cmd->add_option(
       "--scene", r.scene,
-      "scene file (.json), glTF (.gltf/.glb), learnopengl, learnopengl:overview (default), learnopengl:shadows, thin (thin edges that alias) or many-lights:N[:seed][:pillars]")
+      "scene file (.json), glTF (.gltf/.glb), learnopengl, learnopengl:overview (default), learnopengl:shadows, thin (thin edges that alias), walker (skinned figures walking) or many-lights:N[:seed][:pillars]")
       ->check(kNotEmpty);
   cmd->add_option("--frames", r.frames, "frames to render (timings are medians)")->check(CLI::Range(1u, 100000u));
   cmd->add_option_function<std::string>(
@@ -209,7 +209,7 @@ CLI::App* addBench(CLI::App& app, Options& o) {
   cmd->add_flag("--quick", b.quick, "fewer points and frames (light counts up to 1,024, 640x360 mostly)");
   cmd->add_option("--scene", b.scene,
                   "scene of the lighting axes (default: many-lights, N swept); a file's first N lights. The aa "
-                  "axis always uses learnopengl:overview and thin")
+                  "axis always uses learnopengl:overview, thin and walker")
       ->check(kNotEmpty);
   cmd->add_option("--only", b.only,
                   "run one axis only: lights (with lights_exact), lights_exact (the exact loop at each light count), "

@@ -90,7 +90,9 @@ TEST(BenchAa, OnlyAaQuickWritesEveryMethodOnBothScenes) {
   for (const char* scene : {"learnopengl:overview", "thin"})
     for (const char* aa : {"none", "none_orbit", "fxaa", "taa", "taa_orbit", "msaa4", "none_moving", "taa_moving"})
       EXPECT_TRUE(seen.count(std::string(scene) + "/" + aa)) << scene << " " << aa;
-  EXPECT_EQ(seen.size(), 16u);
+  for (const char* aa : {"none", "none_orbit", "taa", "taa_orbit", "none_walk", "taa_walk"})
+    EXPECT_TRUE(seen.count(std::string("walker/") + aa)) << aa;
+  EXPECT_EQ(seen.size(), 22u);
   // The must-show: edge PSNR taa > fxaa > none by 2 dB each, on both
   // scenes (docs/performance.md: on `thin` FXAA gains +2.7 dB since it no
   // longer blends the neighbours of lines one pixel thin as step edges, +1.7
@@ -114,13 +116,23 @@ TEST(BenchAa, OnlyAaQuickWritesEveryMethodOnBothScenes) {
     // (measured 26.14 vs 30.22 and 21.85 vs 28.98 dB).
     EXPECT_LT(edge[s + "taa_moving"], edge[s + "taa"] - 2.0) << scene;
   }
+  // TAA on skinned figures walking (30 frames per second, the camera still):
+  // motion vectors from the previous frame's joint matrices carry the
+  // history. Measured +3.99 dB over none_walk (27.24 vs 23.25), 0.05 dB below
+  // the orbit's on the same scene (27.29), and well below TAA at rest (33.71).
+  // With the previous pose taken as this frame's (no skinning in the motion
+  // vectors) TAA ghosts: 17.6 dB, below no AA.
+  EXPECT_GE(edge["walker/taa_walk"], edge["walker/none_walk"] + 2.9);
+  EXPECT_GE(edge["walker/taa_walk"], edge["walker/taa_orbit"] - 1.0);
+  EXPECT_GE(edge["walker/taa_orbit"], edge["walker/none_orbit"] + 2.9);
+  EXPECT_LT(edge["walker/taa_walk"], edge["walker/taa"] - 2.0);
   // 4x MSAA resolves edges with real coverage: better than none on both scenes.
   for (const char* scene : {"learnopengl:overview", "thin"})
     EXPECT_GT(edge[std::string(scene) + "/msaa4"], edge[std::string(scene) + "/none"] + 1.0) << scene;
 
   // JSON: the same rows, the reference described, the checks per scene.
   const nlohmann::json j = nlohmann::json::parse(slurp(dir / "results.json"));
-  EXPECT_EQ(j.at("aa").size(), 16u);
+  EXPECT_EQ(j.at("aa").size(), 22u);
   EXPECT_EQ(j.at("points").size(), 0u);
   EXPECT_NE(j.at("aa_reference").get<std::string>().find("4x4"), std::string::npos);
   EXPECT_TRUE(j.at("checks").contains("aa_thin"));

@@ -38,6 +38,8 @@
 namespace rgraph {
 
 struct Scene;
+struct Primitive;
+struct Bounds;
 
 // ---------------------------------------------------------------- per vertex
 
@@ -177,6 +179,28 @@ void sampleAnimation(const AnimationSampler& s, double t, bool rotation, float* 
 // animation.
 void evaluatePose(const SceneAnimation& a, double seconds, int animation, Pose& out);
 Pose evaluatePose(const SceneAnimation& a, double seconds, int animation = 0);
+
+// Where a primitive's vertices lie at a pose (culling, sorting and shadow
+// fitting read Primitive::bounds): the mesh's local box widened by its node's
+// morph weights (each target's box of position deltas times its weight),
+// then, skinned (its node has a skin and its mesh influences), the union of
+// that box under every joint matrix of the skin (a skinned vertex is a
+// weighted mean of its joints' images of it), else that box under the
+// primitive's transform and instances. Keeps each mesh's target boxes, made
+// at the first use.
+class PosedBounds {
+ public:
+  Bounds operator()(const Scene& scene, const Pose& pose, const Primitive& primitive);
+
+ private:
+  std::vector<std::vector<Bounds>> targetBounds_;  // per mesh, per target
+};
+
+// Poses `scene` as a renderer does when the caller edits nothing: each
+// primitive of an animated node takes its node's world matrix (skinned ones
+// keep theirs: skinning ignores it) and bounds that hold the pose. (The
+// GPU copy gets pose.joints and pose.weights through GpuScene::setPose.)
+void poseScene(Scene& scene, const Pose& pose, PosedBounds& bounds);
 
 // A primitive's vertices at a pose, in world space: the reference the GPU
 // path is compared with. Morph targets first (the node's weights), then the

@@ -555,7 +555,7 @@ Scene parseSceneText(const std::string& text, const std::string& file, const std
 // scene seen from above and behind, all 9 objects in view (rgraph render's default);
 // "learnopengl:shadows" -> makeLearnOpenGLShadowsScene(); "many-lights:N[:seed]" -> makeManyLightsScene(N, seed);
 // "many-lights:N[:seed]:pillars" -> makeManyLightsPillarsScene(N, seed);
-// "thin" -> makeThinScene().
+// "thin" -> makeThinScene(); "walker" -> makeWalkerScene().
 Scene loadSceneAny(const std::string& spec);
 
 // ---------------------------------------------------------------- procedural scenes
@@ -596,6 +596,16 @@ Scene makeManyLightsPillarsScene(int n, uint32_t seed = 1);
 // directional and 4 point lights, a camera at (0, 1.6, 5.5). Deterministic.
 inline constexpr int kThinScenePosts = 25, kThinSceneWires = 4, kThinSceneGridBars = 42;
 Scene makeThinScene();
+
+// Skinned figures on a walk cycle, for anti-aliasing in skinned motion (rgraph
+// bench's aa axis; loadSceneAny "walker"): three figures 1.8 high
+// ("walker0".."walker2", one skinned mesh of 11 joints: hips, spine, head,
+// thighs, shins, upper arms, forearms; 2 influences per vertex where a limb
+// meets its parent) side-on to the camera, out of step, on a floor ("floor")
+// before 5 tall boxes ("pillar<i>"); one animation "walk" (a 1-second
+// stride, LINEAR keys: joint rotations and the hips' bob); flat colours, one
+// directional and 3 point lights; a camera at (0, 1.3, 4.6). Deterministic.
+Scene makeWalkerScene();
 
 // glibc's rand()/random() (TYPE_3 additive feedback generator) reimplemented, so
 // the LearnOpenGL light placement is the same on every platform.

@@ -36,12 +36,11 @@ struct RenderScene::Impl {
 
   // Animation (render_scene_animation.cpp): the pose of the last setTime
   // (evaluated at rest until then) and each node's world matrix as last
-  // given to its objects; the morph targets' delta boxes per mesh (made at
-  // the first use).
+  // given to its objects; the objects' bounds at the pose.
   Pose pose;
   double time = 0.0;
   std::vector<glm::mat4> givenWorld;
-  std::vector<std::vector<Bounds>> targetBounds;
+  PosedBounds posedBounds;
   // Poses the scene (setTime's work, kRestPose from fromScene).
   void applyPose(double seconds, int animation);
 

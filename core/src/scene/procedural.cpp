@@ -1,14 +1,26 @@
-// Procedural scenes: the LearnOpenGL deferred-shading demo, a many-lights field and thin geometry.
+// Procedural scenes: the LearnOpenGL deferred-shading demo, a many-lights field and thin geometry
+// (the walker: procedural_walker.cpp).
 #include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "procedural_internal.h"
 #include "rgraph/error.h"
 #include "rgraph/scene.h"
 
 namespace rgraph {
+
+void addDraw(Scene& s, int mesh, int material, const glm::mat4& xf, const std::string& name) {
+  Primitive p;
+  p.mesh = mesh;
+  p.material = material;
+  p.transform = xf;
+  p.bounds = s.meshes[size_t(mesh)].bounds.transformed(xf);
+  p.name = name;
+  s.primitives.push_back(std::move(p));
+}
 
 // ---------------------------------------------------------------- GlibcRandom
 // glibc's random_r.c, TYPE_3: x[i] = x[i-3] + x[i-31] (mod 2^32), output x >> 1,
@@ -70,16 +82,6 @@ ImageData makeTileTexture(const std::string& name, int size, int tiles, glm::u8v
     }
   }
   return im;
-}
-
-void addDraw(Scene& s, int mesh, int material, const glm::mat4& xf, const std::string& name) {
-  Primitive p;
-  p.mesh = mesh;
-  p.material = material;
-  p.transform = xf;
-  p.bounds = s.meshes[size_t(mesh)].bounds.transformed(xf);
-  p.name = name;
-  s.primitives.push_back(std::move(p));
 }
 
 glm::vec3 hsvToRgb(float h, float s, float v) {

@@ -526,6 +526,7 @@ Scene loadSceneFile(const std::string& path) {
 Scene loadSceneAny(const std::string& spec) {
   if (spec == "learnopengl") return makeLearnOpenGLScene();
   if (spec == "thin") return makeThinScene();
+  if (spec == "walker") return makeWalkerScene();
   if (spec == "learnopengl:overview") return makeLearnOpenGLOverviewScene();
   if (spec == "learnopengl:shadows") return makeLearnOpenGLShadowsScene();
   const std::string prefix = "many-lights:";
@@ -558,7 +559,7 @@ Scene loadSceneAny(const std::string& spec) {
     return s;
   }
   throw RuntimeError("unknown scene '" + spec +
-                     "': expected a scene file (.json), a glTF model (.gltf, .glb), 'learnopengl', 'learnopengl:overview', 'learnopengl:shadows', 'thin' or 'many-lights:N'");
+                     "': expected a scene file (.json), a glTF model (.gltf, .glb), 'learnopengl', 'learnopengl:overview', 'learnopengl:shadows', 'thin', 'walker' or 'many-lights:N'");
 }
 
 }  // namespace rgraph
