@@ -100,7 +100,8 @@ class GraphBuilder {
   }
   // A "present" pass copying `src` into the output image "out".
   GraphBuilder& present(const std::string& src, const std::string& name = "present") {
-    return pass(name, "present", {readUse("src", Access::sampled, src), writeUse("dst", Access::color_attachment, "out")});
+    return pass(name, "present",
+                {readUse("src", Access::sampled, src), writeUse("dst", Access::color_attachment, "out")});
   }
   const PipelineConfig& config() const { return cfg_; }
   PipelineConfig& config() { return cfg_; }

@@ -233,9 +233,9 @@ TEST_F(GlTest, ClearOfAnAliasOfImageStoreTargetGetsTextureUpdateBarrier) {
   ASSERT_EQ(plan.order.size(), 4u);
   ASSERT_TRUE(plan.resources[0].physical.valid());
   ASSERT_EQ(plan.resources[0].physical, plan.resources[1].physical) << "a and c are expected to share memory";
-  EXPECT_TRUE(barriersAre(exec, {0, GL_TEXTURE_FETCH_BARRIER_BIT,
-                                 GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT,
-                                 GL_FRAMEBUFFER_BARRIER_BIT}));
+  EXPECT_TRUE(barriersAre(
+      exec, {0, GL_TEXTURE_FETCH_BARRIER_BIT, GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT,
+             GL_FRAMEBUFFER_BARRIER_BIT}));
   exec.renderFrame();
   EXPECT_TRUE(outputIsGradient(exec, kSize));
 }
