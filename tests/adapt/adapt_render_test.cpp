@@ -11,6 +11,7 @@
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
 #include "rgraph/pipeline_load.h"
+#include "support/cube_scene.h"
 
 namespace rgraph {
 namespace {
@@ -31,18 +32,11 @@ TEST(AdaptRender, ConstantMaterialRendersLikeTheMaterialTarget) {
           .build(processRegistry(), diags);
   ASSERT_FALSE(hasErrors(diags));
   // Suzanne-free, texture-free: a sphere with one metallic/roughness, lit by a point light.
-  Scene scene;
-  scene.meshes.push_back(makeUvSphere(1.0f, 24, 12));
   Material m;
   m.baseColorFactor = {0.8f, 0.3f, 0.2f, 1.0f};
   m.metallicFactor = 0.6f;
   m.roughnessFactor = 0.35f;
-  scene.materials.push_back(m);
-  Primitive p;
-  p.mesh = 0;
-  p.material = 0;
-  p.bounds = scene.meshes[0].bounds;
-  scene.primitives.push_back(p);
+  Scene scene = testsupport::singleMeshScene(makeUvSphere(1.0f, 24, 12), m);
   PointLight l;
   l.position = {1.5f, 1.5f, 2.0f};
   l.color = {1.0f, 0.9f, 0.8f};

@@ -11,6 +11,7 @@
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
 #include "rgraph/pipeline_load.h"
+#include "support/cube_scene.h"
 
 namespace rgraph {
 namespace {
@@ -38,17 +39,10 @@ const PlannedResource& resourceNamed(const Plan& plan, const std::string& name) 
 
 // A scene with one opaque cube, one material and nothing else.
 Scene cubeScene() {
-  Scene s;
-  s.meshes.push_back(makeCube(0.5f));
   Material m;
   m.metallicFactor = 0.25f;
   m.roughnessFactor = 0.75f;
-  s.materials.push_back(m);
-  Primitive p;
-  p.mesh = 0;
-  p.material = 0;
-  p.bounds = s.meshes[0].bounds;
-  s.primitives.push_back(p);
+  Scene s = testsupport::singleMeshScene(makeCube(0.5f), m);
   s.directionalLights.push_back(DirectionalLight{});
   return s;
 }

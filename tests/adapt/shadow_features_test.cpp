@@ -4,6 +4,7 @@
 
 #include "rgraph/pass.h"
 #include "rgraph/scene.h"
+#include "support/cube_scene.h"
 
 namespace rgraph {
 namespace {
@@ -15,18 +16,10 @@ using UnshadowedLight = SceneFeatures::UnshadowedLight;
 // A 20 x 20 floor (y = 0, x and z in -10..10) that casts, seen from (0, 5, 10)
 // looking at the origin (fov 45, near 0.1, far 100).
 Scene floorScene() {
-  Scene s;
-  s.meshes.push_back(makeCube(0.5f));
-  s.materials.push_back(Material{});
-  Primitive p;
-  p.mesh = 0;
-  p.material = 0;
-  p.bounds.min = {-10.0f, -0.1f, -10.0f};
-  p.bounds.max = {10.0f, 0.0f, 10.0f};
-  s.primitives.push_back(p);
-  s.camera.position = {0.0f, 5.0f, 10.0f};
-  s.camera.target = {0.0f, 0.0f, 0.0f};
-  s.hasCamera = true;
+  Scene s = testsupport::singleMeshScene(makeCube(0.5f));
+  s.primitives[0].bounds.min = {-10.0f, -0.1f, -10.0f};
+  s.primitives[0].bounds.max = {10.0f, 0.0f, 10.0f};
+  testsupport::lookAtOrigin(s, {0.0f, 5.0f, 10.0f});
   return s;
 }
 

@@ -24,25 +24,9 @@
 #                   place, exit 1, never a signal
 set -uo pipefail
 case_=$1; prefix=$2; build=$3; source=$4; compare=$5; overlay_check=$6; xvfb=$7
-unset RGRAPH_PLUGIN_PATH RGRAPH_SHADER_DIR RGRAPH_PIPELINE_DIR
 editor="$build/rgraph_editor"
-out="$build/out-$case_"; rm -rf "$out"; mkdir -p "$out"
-fail() {
-  echo "FAIL: $*" >&2
-  [[ -s "$out/xvfb-errors.log" ]] && { echo "Xvfb said:" >&2; cat "$out/xvfb-errors.log" >&2; }
-  exit 1
-}
-[[ -x "$editor" ]] || fail "the example did not build: no $editor"
-# Our own auth file: without one, xvfb-run's clean-up can fail (exit 5) and hide the command's status.
-run_x() { "$xvfb" -a -f "$out/Xauthority" -e "$out/xvfb-errors.log" -s '-screen 0 1024x768x24' "$@"; }
-
-expect() {  # expect REGEX COMMAND...: exit 1, REGEX in the output, no signal
-  local regex=$1; shift
-  local msg; msg=$("$@" 2>&1); local rc=$?
-  echo "$ $*"; echo "$msg"
-  [[ $rc -eq 1 ]] || fail "exit $rc, expected 1: $*"
-  grep -Eq -- "$regex" <<<"$msg" || fail "output does not match /$regex/: $*"
-}
+source "$(dirname "${BASH_SOURCE[0]}")/../support/example_test.sh"  # $out, fail, run_x, expect
+require_example "$editor"
 
 W=160; H=90
 script="$source/levels/workshop-edits.txt"

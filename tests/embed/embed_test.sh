@@ -15,18 +15,9 @@
 #                   "error: ..." and exit 1, never a signal
 set -uo pipefail
 case_=$1; prefix=$2; build=$3; probe=$4; compare=$5; xvfb=$6
-unset RGRAPH_PLUGIN_PATH RGRAPH_SHADER_DIR RGRAPH_PIPELINE_DIR
 example="$build/embed_glfw"
-out="$build/out-$case_"; rm -rf "$out"; mkdir -p "$out"
-fail() {
-  echo "FAIL: $*" >&2
-  [[ -s "$out/xvfb-errors.log" ]] && { echo "Xvfb said:" >&2; cat "$out/xvfb-errors.log" >&2; }
-  exit 1
-}
-[[ -x "$example" ]] || fail "the example did not build: no $example"
-# Our own auth file: without one, xvfb-run makes a temporary folder and its
-# clean-up can fail (exit 5) after the command, hiding the command's status.
-run_x() { "$xvfb" -a -f "$out/Xauthority" -e "$out/xvfb-errors.log" -s '-screen 0 1024x768x24' "$@"; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/example_test.sh"  # $out, fail, run_x, expect
+require_example "$example"
 
 # The picture's layout for W x H (examples/embed-glfw/main.cpp: kBorder, the inset):
 # frame 8 px; inset W/4 x H/4 in the lower right, inside the frame. Top-down y here.
@@ -102,13 +93,6 @@ import_mismatch)
   grep -q "$((W / 2))x$((H / 2))" <<<"$msg" || fail "the error does not give the texture's size $((W / 2))x$((H / 2))"
   echo "ok: a mismatched import is refused naming the resource and both sizes" ;;
 errors)
-  expect() {  # expect REGEX COMMAND...: exit 1, REGEX in the output, no signal
-    local regex=$1; shift
-    local msg; msg=$("$@" 2>&1); local rc=$?
-    echo "$ $*"; echo "$msg"
-    [[ $rc -eq 1 ]] || fail "exit $rc, expected 1: $*"
-    grep -Eq -- "$regex" <<<"$msg" || fail "output does not match /$regex/: $*"
-  }
   expect "^error: .*$out/missing.json" run_x "$example" --pipeline "$out/missing.json" --frames 1
   printf '{\n  "version": 1,\n  "resources": {\n    "a": { "format": "rgba8" }\n' >"$out/broken.json"
   expect "broken.json:[0-9]+:[0-9]+" run_x "$example" --pipeline "$out/broken.json" --frames 1

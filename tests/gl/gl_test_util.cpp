@@ -46,4 +46,11 @@ size_t gradientMismatches(const std::vector<uint8_t>& rgba, Extent e, std::strin
   return bad;
 }
 
+::testing::AssertionResult outputIsGradient(const Executor& exec, Extent e) {
+  std::string first;
+  const size_t bad = gradientMismatches(exec.readOutputRGBA8(), e, &first);
+  if (bad == 0) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << bad << " pixels differ from gradient.frag's; " << first;
+}
+
 }  // namespace rgraph::test

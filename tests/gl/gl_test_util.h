@@ -92,6 +92,17 @@ class GraphBuilder {
     cfg_.params.push_back(std::move(params));
     return *this;
   }
+  // A "fullscreen" pass drawing gradient.frag (gradientPixel's colours) into `target`.
+  GraphBuilder& gradient(const std::string& target, const std::string& name = "gradient") {
+    ParamSet p;
+    p.set("shader", std::string("gradient.frag"));
+    return pass(name, "fullscreen", {writeUse("color", Access::color_attachment, target)}, std::move(p));
+  }
+  // A "present" pass copying `src` into the output image "out".
+  GraphBuilder& present(const std::string& src, const std::string& name = "present") {
+    return pass(name, "present",
+                {readUse("src", Access::sampled, src), writeUse("dst", Access::color_attachment, "out")});
+  }
   const PipelineConfig& config() const { return cfg_; }
   PipelineConfig& config() { return cfg_; }
 
@@ -113,5 +124,8 @@ inline std::array<uint8_t, 4> gradientPixel(uint32_t x, uint32_t yGl) {
 
 // Compares a top-down RGBA8 readback with gradientPixel; returns the number of mismatches.
 size_t gradientMismatches(const std::vector<uint8_t>& rgba, Extent e, std::string* first = nullptr);
+// Whether the output image of `exec`'s last frame (`e`) is gradient.frag's,
+// every pixel exactly; the mismatches and the first of them when not.
+::testing::AssertionResult outputIsGradient(const Executor& exec, Extent e);
 
 }  // namespace rgraph::test

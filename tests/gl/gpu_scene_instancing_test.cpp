@@ -12,9 +12,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gl_test_util.h"
+#include "layered_target.h"
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/objects.h"
 #include "rgraph/scene.h"
+#include "support/cube_scene.h"
 
 using namespace rgraph;
 using namespace rgraph::test;
@@ -22,7 +24,6 @@ using namespace rgraph::test;
 namespace {
 
 constexpr uint32_t kSide = 64;
-using Pixels = std::vector<glm::vec4>;
 
 // Three instances of a cube under a node transform.
 std::vector<glm::mat4> instanceMatrices() {
@@ -40,12 +41,9 @@ const glm::mat4 kNode(1.0f);
 
 // instanced: one primitive with the instances; else one primitive per instance (transform = node * instance).
 Scene instancedScene(bool instanced) {
-  Scene s;
-  s.meshes.push_back(makeCube(0.5f));
-  s.materials.push_back(Material{});
-  Primitive p;
-  p.mesh = 0;
-  p.material = 0;
+  Scene s = testsupport::singleMeshScene(makeCube(0.5f));
+  Primitive p = s.primitives[0];
+  s.primitives.clear();
   if (instanced) {
     p.transform = kNode;
     p.instances = instanceMatrices();
@@ -58,43 +56,13 @@ Scene instancedScene(bool instanced) {
       s.primitives.push_back(p);
     }
   }
-  s.camera.position = {1.0f, 2.5f, 6.0f};
-  s.camera.target = {0.0f, 0.0f, 0.0f};
-  s.hasCamera = true;
+  testsupport::lookAtOrigin(s, {1.0f, 2.5f, 6.0f});
   return s;
 }
 
-// An rgba32f array of `layers` layers with depth, attached whole (layered) or one layer.
-struct Target {
-  int layers;
-  gl::Texture color = gl::createTexture(GL_TEXTURE_2D_ARRAY), depth = gl::createTexture(GL_TEXTURE_2D_ARRAY);
-  gl::Framebuffer fbo = gl::createFramebuffer();
-  explicit Target(int n) : layers(n) {
-    glTextureStorage3D(color.id(), 1, GL_RGBA32F, kSide, kSide, layers);
-    glTextureStorage3D(depth.id(), 1, GL_DEPTH_COMPONENT32F, kSide, kSide, layers);
-    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, color.id(), 0);
-    glNamedFramebufferTexture(fbo.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
-    bindAndClear();
-  }
-  void attachLayer(int layer) {
-    glNamedFramebufferTextureLayer(fbo.id(), GL_COLOR_ATTACHMENT0, color.id(), 0, layer);
-    glNamedFramebufferTextureLayer(fbo.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0, layer);
-    bindAndClear();
-  }
-  void bindAndClear() {
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-    glViewport(0, 0, kSide, kSide);
-    const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
-    glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, zero);
-    glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &one);
-    glEnable(GL_DEPTH_TEST);
-  }
-  Pixels read(int layer) const {
-    Pixels px(size_t(kSide) * kSide);
-    glGetTextureSubImage(color.id(), 0, 0, 0, layer, kSide, kSide, 1, GL_RGBA, GL_FLOAT,
-                         GLsizei(px.size() * sizeof(glm::vec4)), px.data());
-    return px;
-  }
+// An rgba32f array of `n` layers with depth, attached whole (layered) or one layer (layered_target.h).
+struct Target : LayeredTarget {
+  explicit Target(int n) : LayeredTarget(GL_TEXTURE_2D_ARRAY, kSide, n) {}
 };
 
 size_t differing(const Pixels& a, const Pixels& b) {
@@ -121,6 +89,7 @@ struct GpuSceneInstancing : GlTest {
   std::unique_ptr<GpuScene> gi, ge;
   void SetUp() override {
     GlTest::SetUp();
+    glEnable(GL_DEPTH_TEST);  // every draw of these tests
     gi = std::make_unique<GpuScene>(instanced);
     ge = std::make_unique<GpuScene>(expanded);
   }

@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gl_test_util.h"
+#include "layered_target.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/fullscreen.h"
 #include "rgraph/gl/gpu_scene.h"
@@ -26,57 +27,9 @@ namespace {
 constexpr uint32_t kSide = 48;  // square: cube map faces are
 constexpr int kArrayLayers = 3;
 
-using Pixels = std::vector<glm::vec4>;
-
-// A colour texture (rgba32f) and a depth texture of one shape, and a
-// framebuffer that attaches one layer of both, or all of them (layered).
-struct Target {
-  GLenum target;
-  int layers;
-  gl::Texture color, depth;
-  gl::Framebuffer fbo = gl::createFramebuffer();
-
-  Target(GLenum t, int n) : target(t), layers(t == GL_TEXTURE_CUBE_MAP ? 6 : n) {
-    color = gl::createTexture(target);
-    depth = gl::createTexture(target);
-    if (target == GL_TEXTURE_2D_ARRAY) {
-      glTextureStorage3D(color.id(), 1, GL_RGBA32F, kSide, kSide, layers);
-      glTextureStorage3D(depth.id(), 1, GL_DEPTH_COMPONENT32F, kSide, kSide, layers);
-    } else {
-      glTextureStorage2D(color.id(), 1, GL_RGBA32F, kSide, kSide);
-      glTextureStorage2D(depth.id(), 1, GL_DEPTH_COMPONENT32F, kSide, kSide);
-    }
-    attachAll();
-  }
-  void checkComplete() const {
-    ASSERT_EQ(glCheckNamedFramebufferStatus(fbo.id(), GL_DRAW_FRAMEBUFFER), GLenum(GL_FRAMEBUFFER_COMPLETE));
-  }
-  // Layer (or cube face) `layer` of both, bound and cleared.
-  void attachLayer(int layer) {
-    glNamedFramebufferTextureLayer(fbo.id(), GL_COLOR_ATTACHMENT0, color.id(), 0, layer);
-    glNamedFramebufferTextureLayer(fbo.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0, layer);
-    bindAndClear();
-  }
-  // Every layer (a layered attachment for arrays and cube maps), bound and cleared.
-  void attachAll() {
-    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, color.id(), 0);
-    glNamedFramebufferTexture(fbo.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
-    bindAndClear();
-  }
-  void bindAndClear() {
-    checkComplete();
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-    glViewport(0, 0, kSide, kSide);
-    const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
-    glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, zero);
-    glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &one);
-  }
-  Pixels read(int layer) const {
-    Pixels px(size_t(kSide) * kSide);
-    glGetTextureSubImage(color.id(), 0, 0, 0, layer, kSide, kSide, 1, GL_RGBA, GL_FLOAT,
-                         GLsizei(px.size() * sizeof(glm::vec4)), px.data());
-    return px;
-  }
+// A colour and a depth texture of kSide texels a side (layered_target.h).
+struct Target : LayeredTarget {
+  Target(GLenum t, int n) : LayeredTarget(t, kSide, n) {}
 };
 
 // Pixels where a and b differ (bit for bit), and how many pixels a surface covers.

@@ -91,6 +91,13 @@ std::string bitsText(const std::vector<uint32_t>& bits) {
   return "{" + s + "}";
 }
 
+// Whether the executor issues `want` (one set of bits a pass, in order); both lists when not.
+::testing::AssertionResult barriersAre(const Executor& exec, const std::vector<uint32_t>& want) {
+  if (exec.memoryBarriers() == want) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "memory barriers " << bitsText(exec.memoryBarriers()) << ", expected "
+                                       << bitsText(want);
+}
+
 }  // namespace
 
 // The case of the issue: a compute pass writes an image, a fragment pass
@@ -100,17 +107,14 @@ TEST_F(GlTest, ImageStoreThenSampledGetsTextureFetchBarrier) {
   GraphBuilder g;
   g.texture("img", Format::rgba8).output("out");
   g.pass("fill", "fill_image", {writeUse("image", Access::storage_write, "img")});
-  g.pass("present", "present",
-         {readUse("src", Access::sampled, "img"), writeUse("dst", Access::color_attachment, "out")});
+  g.present("img");
   Executor exec(g.config(), reg, *shaders);
   exec.resize(kSize);
-  const std::vector<uint32_t> want = {0, GL_TEXTURE_FETCH_BARRIER_BIT};
-  EXPECT_EQ(exec.memoryBarriers(), want) << bitsText(exec.memoryBarriers());
+  EXPECT_TRUE(barriersAre(exec, {0, GL_TEXTURE_FETCH_BARRIER_BIT}));
   // The fetch was ordered before the present pass; the rest is for readers after the frame.
   EXPECT_EQ(exec.frameEndMemoryBarrier(), kTextureAfterFrame & ~GL_TEXTURE_FETCH_BARRIER_BIT);
   exec.renderFrame();
-  std::string first;
-  EXPECT_EQ(gradientMismatches(exec.readOutputRGBA8(), kSize, &first), 0u) << first;
+  EXPECT_TRUE(outputIsGradient(exec, kSize));
   // Read back directly too (glGetTextureImage: the frame-end barrier's texture-update bit).
   const std::vector<float> img = exec.readTextureRGBA32F("img");
   ASSERT_EQ(img.size(), kSize.width * kSize.height * 4u);
@@ -129,15 +133,12 @@ TEST_F(GlTest, ImageStoreThenImageLoadGetsImageAccessBarrier) {
   g.pass("fill", "fill_image", {writeUse("image", Access::storage_write, "a")});
   g.pass("copy", "copy_image",
          {readUse("src", Access::storage_read, "a"), writeUse("dst", Access::storage_write, "b")});
-  g.pass("present", "present",
-         {readUse("src", Access::sampled, "b"), writeUse("dst", Access::color_attachment, "out")});
+  g.present("b");
   Executor exec(g.config(), reg, *shaders);
   exec.resize(kSize);
-  const std::vector<uint32_t> want = {0, GL_SHADER_IMAGE_ACCESS_BARRIER_BIT, GL_TEXTURE_FETCH_BARRIER_BIT};
-  EXPECT_EQ(exec.memoryBarriers(), want) << bitsText(exec.memoryBarriers());
+  EXPECT_TRUE(barriersAre(exec, {0, GL_SHADER_IMAGE_ACCESS_BARRIER_BIT, GL_TEXTURE_FETCH_BARRIER_BIT}));
   exec.renderFrame();
-  std::string first;
-  EXPECT_EQ(gradientMismatches(exec.readOutputRGBA8(), kSize, &first), 0u) << first;
+  EXPECT_TRUE(outputIsGradient(exec, kSize));
 }
 
 // A blit reads its source through a framebuffer.
@@ -149,11 +150,9 @@ TEST_F(GlTest, ImageStoreThenBlitGetsFramebufferBarrier) {
   g.pass("copy", "blit", {readUse("src", Access::blit_src, "img"), writeUse("dst", Access::blit_dst, "out")});
   Executor exec(g.config(), reg, *shaders);
   exec.resize(kSize);
-  const std::vector<uint32_t> want = {0, GL_FRAMEBUFFER_BARRIER_BIT};
-  EXPECT_EQ(exec.memoryBarriers(), want) << bitsText(exec.memoryBarriers());
+  EXPECT_TRUE(barriersAre(exec, {0, GL_FRAMEBUFFER_BARRIER_BIT}));
   exec.renderFrame();
-  std::string first;
-  EXPECT_EQ(gradientMismatches(exec.readOutputRGBA8(), kSize, &first), 0u) << first;
+  EXPECT_TRUE(outputIsGradient(exec, kSize));
 }
 
 // Storage-buffer writes read as a storage buffer: the shader-storage bit.
@@ -169,16 +168,13 @@ TEST_F(GlTest, BufferWriteThenBufferReadGetsShaderStorageBarrier) {
   g.pass("fill", "fill_buffer", {writeUse("buffer", Access::storage_write, "pixels")});
   g.pass("unpack", "buffer_to_image",
          {readUse("buffer", Access::storage_read, "pixels"), writeUse("image", Access::storage_write, "img")});
-  g.pass("present", "present",
-         {readUse("src", Access::sampled, "img"), writeUse("dst", Access::color_attachment, "out")});
+  g.present("img");
   Executor exec(g.config(), reg, *shaders);
   exec.resize(kSize);
-  const std::vector<uint32_t> want = {0, GL_SHADER_STORAGE_BARRIER_BIT, GL_TEXTURE_FETCH_BARRIER_BIT};
-  EXPECT_EQ(exec.memoryBarriers(), want) << bitsText(exec.memoryBarriers());
+  EXPECT_TRUE(barriersAre(exec, {0, GL_SHADER_STORAGE_BARRIER_BIT, GL_TEXTURE_FETCH_BARRIER_BIT}));
   EXPECT_NE(exec.frameEndMemoryBarrier() & GL_BUFFER_UPDATE_BARRIER_BIT, 0u);  // a buffer readback after the frame
   exec.renderFrame();
-  std::string first;
-  EXPECT_EQ(gradientMismatches(exec.readOutputRGBA8(), kSize, &first), 0u) << first;
+  EXPECT_TRUE(outputIsGradient(exec, kSize));
 }
 
 // Without image or storage writes nothing is issued (pipelines that never
@@ -187,11 +183,10 @@ TEST_F(GlTest, NoStorageWritesNoBarriers) {
   GraphBuilder g;
   g.texture("hdr", Format::rgba16f).output("out");
   g.pass("clear", "clear", {writeUse("color", Access::color_attachment, "hdr")});
-  g.pass("present", "present",
-         {readUse("src", Access::sampled, "hdr"), writeUse("dst", Access::color_attachment, "out")});
+  g.present("hdr");
   Executor exec(g.config(), processRegistry(), *shaders);
   exec.resize(kSize);
-  EXPECT_EQ(exec.memoryBarriers(), (std::vector<uint32_t>{0, 0}));
+  EXPECT_TRUE(barriersAre(exec, {0, 0}));
   EXPECT_EQ(exec.frameEndMemoryBarrier(), 0u);
 }
 
@@ -203,10 +198,8 @@ TEST_F(GlTest, AliasOfImageStoreTargetGetsFramebufferBarrier) {
   GraphBuilder g;
   g.texture("a", Format::rgba8).texture("c", Format::rgba8).output("out", Format::rgba8, "out_2");
   g.pass("fill", "fill_image", {writeUse("image", Access::storage_write, "a")});
-  g.pass("present", "present",
-         {readUse("src", Access::sampled, "a"), writeUse("dst", Access::color_attachment, "out")});
-  g.pass("gradient", "fullscreen", {writeUse("color", Access::color_attachment, "c")},
-         params({{"shader", std::string("gradient.frag")}}));
+  g.present("a");
+  g.gradient("c");
   g.pass("copy", "blit", {readUse("src", Access::blit_src, "c"), writeUse("dst", Access::blit_dst, "out_2", "out")});
   Executor exec(g.config(), reg, *shaders);
   exec.resize(kSize);
@@ -214,13 +207,11 @@ TEST_F(GlTest, AliasOfImageStoreTargetGetsFramebufferBarrier) {
   ASSERT_EQ(plan.order.size(), 4u);
   ASSERT_TRUE(plan.resources[0].physical.valid());
   ASSERT_EQ(plan.resources[0].physical, plan.resources[1].physical) << "a and c are expected to share memory";
-  const std::vector<uint32_t> want = {0, GL_TEXTURE_FETCH_BARRIER_BIT, GL_FRAMEBUFFER_BARRIER_BIT, 0};
-  EXPECT_EQ(exec.memoryBarriers(), want) << bitsText(exec.memoryBarriers());
+  EXPECT_TRUE(barriersAre(exec, {0, GL_TEXTURE_FETCH_BARRIER_BIT, GL_FRAMEBUFFER_BARRIER_BIT, 0}));
   EXPECT_EQ(exec.frameEndMemoryBarrier(),
             kTextureAfterFrame & ~(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT));
   exec.renderFrame();
-  std::string first;
-  EXPECT_EQ(gradientMismatches(exec.readOutputRGBA8(), kSize, &first), 0u) << first;
+  EXPECT_TRUE(outputIsGradient(exec, kSize));
 }
 
 // The executor clears a resource's first version before its first writer;
@@ -233,8 +224,7 @@ TEST_F(GlTest, ClearOfAnAliasOfImageStoreTargetGetsTextureUpdateBarrier) {
       .texture("c", Format::rgba8, SizeSpec::output(), std::vector<float>{1, 0, 0, 1})
       .output("out", Format::rgba8, "out_2");
   g.pass("fill", "fill_image", {writeUse("image", Access::storage_write, "a")});
-  g.pass("present", "present",
-         {readUse("src", Access::sampled, "a"), writeUse("dst", Access::color_attachment, "out")});
+  g.present("a");
   g.pass("refill", "fill_image", {writeUse("image", Access::storage_write, "c")});
   g.pass("copy", "blit", {readUse("src", Access::blit_src, "c"), writeUse("dst", Access::blit_dst, "out_2", "out")});
   Executor exec(g.config(), reg, *shaders);
@@ -243,11 +233,9 @@ TEST_F(GlTest, ClearOfAnAliasOfImageStoreTargetGetsTextureUpdateBarrier) {
   ASSERT_EQ(plan.order.size(), 4u);
   ASSERT_TRUE(plan.resources[0].physical.valid());
   ASSERT_EQ(plan.resources[0].physical, plan.resources[1].physical) << "a and c are expected to share memory";
-  const std::vector<uint32_t> want = {0, GL_TEXTURE_FETCH_BARRIER_BIT,
-                                      GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT,
-                                      GL_FRAMEBUFFER_BARRIER_BIT};
-  EXPECT_EQ(exec.memoryBarriers(), want) << bitsText(exec.memoryBarriers());
+  EXPECT_TRUE(barriersAre(
+      exec, {0, GL_TEXTURE_FETCH_BARRIER_BIT, GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT,
+             GL_FRAMEBUFFER_BARRIER_BIT}));
   exec.renderFrame();
-  std::string first;
-  EXPECT_EQ(gradientMismatches(exec.readOutputRGBA8(), kSize, &first), 0u) << first;
+  EXPECT_TRUE(outputIsGradient(exec, kSize));
 }

@@ -17,6 +17,7 @@
 #include "rgraph/gl/objects.h"
 #include "rgraph/jitter.h"
 #include "rgraph/scene.h"
+#include "support/cube_scene.h"
 
 using namespace rgraph;
 
@@ -30,18 +31,9 @@ constexpr Extent kSize{64, 48};
 constexpr float kTolUv = 1e-3f;
 
 Scene cubeScene() {
-  Scene s;
-  s.meshes.push_back(makeCube(0.5f));
-  s.materials.push_back(Material{});
-  Primitive p;
-  p.mesh = 0;
-  p.material = 0;
-  p.bounds = s.meshes[0].bounds;
-  p.name = "cube";
-  s.primitives.push_back(p);
-  s.camera.position = {0.6f, 0.9f, 3.0f};
-  s.camera.target = {0.0f, 0.0f, 0.0f};
-  s.hasCamera = true;
+  Scene s = testsupport::singleMeshScene(makeCube(0.5f));
+  s.primitives[0].name = "cube";
+  testsupport::lookAtOrigin(s, {0.6f, 0.9f, 3.0f});
   return s;
 }
 

@@ -14,11 +14,8 @@
 #include "support/render_util.h"
 #include "rgraph/scene.h"
 
-#if __has_include("rgraph/adapt.h")
 #include "rgraph/adapt.h"
 #include "rgraph/pipeline_load.h"
-#define RGRAPH_HAVE_ADAPT 1
-#endif
 
 using namespace rgraph;
 using namespace rgraph::rtest;
@@ -30,11 +27,7 @@ constexpr Extent kSize{128, 128};
 // The default pipeline as `rgraph render` runs it for this scene.
 PipelineConfig defaultPipelineFor(const Scene& scene) {
   PipelineConfig cfg = loadPipeline(repoPath("pipelines/default.json"));
-#ifdef RGRAPH_HAVE_ADAPT
   adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
-#else
-  (void)scene;
-#endif
   return cfg;
 }
 

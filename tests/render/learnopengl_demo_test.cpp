@@ -12,11 +12,8 @@
 #include "support/render_util.h"
 #include "rgraph/scene.h"
 
-#if __has_include("rgraph/adapt.h")
 #include "rgraph/adapt.h"
 #include "rgraph/pipeline_load.h"
-#define RGRAPH_HAVE_ADAPT 1
-#endif
 
 using namespace rgraph;
 using namespace rgraph::rtest;
@@ -59,9 +56,7 @@ class LearnOpenGLDemo : public RenderTest {
  protected:
   Image renderDefault(const Scene& scene) {
     PipelineConfig cfg = loadPipeline(repoPath("pipelines/default.json"));
-#ifdef RGRAPH_HAVE_ADAPT
     adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
-#endif
     return render(cfg, scene, kSize, *shaders);
   }
 };

@@ -12,11 +12,8 @@
 #include "rgraph/error.h"
 #include "rgraph/scene.h"
 
-#if __has_include("rgraph/adapt.h")
 #include "rgraph/adapt.h"
 #include "rgraph/pipeline_load.h"
-#define RGRAPH_HAVE_ADAPT 1
-#endif
 
 using namespace rgraph;
 using namespace rgraph::rtest;
@@ -141,9 +138,7 @@ TEST_F(ShippedPipelines, EveryPipelineRendersEveryKindOfScene) {
     for (const auto& [name, scene] : scenes) {
       SCOPED_TRACE(file + " with " + name);
       PipelineConfig cfg = base;
-#ifdef RGRAPH_HAVE_ADAPT
       adaptToScene(cfg, processRegistry(), sceneFeatures(scene));
-#endif
       const uint64_t errors = glContext().debugErrorCount();
       Image img;
       try {
@@ -156,9 +151,7 @@ TEST_F(ShippedPipelines, EveryPipelineRendersEveryKindOfScene) {
       EXPECT_GT(coverage(img, img.rgb(0, 0)), 0.05) << "empty image " << saveImage(img, "shipped-empty");
       const Scene unlit = ambientOnly(scene);
       PipelineConfig unlitCfg = base;
-#ifdef RGRAPH_HAVE_ADAPT
       adaptToScene(unlitCfg, processRegistry(), sceneFeatures(unlit));
-#endif
       const Image ambient = render(unlitCfg, unlit, {64, 64}, *shaders);
       const std::string stem = "shipped-" + std::filesystem::path(file).stem().string();
       if (showsGBuffer(cfg)) {

@@ -12,6 +12,7 @@
 #include "rgraph/scene.h"
 #include "rgraph/pipeline_load.h"
 #include "support/render_util.h"
+#include "support/cube_scene.h"
 
 using namespace rgraph;
 using namespace rgraph::rtest;
@@ -22,20 +23,12 @@ constexpr Extent kSize{96, 64};
 constexpr float kTolUv = 1e-3f;  // 1/10 of a pixel here; see tests/gl/motion_vectors_test.cpp
 
 Scene spinningCube() {
-  Scene s;
-  s.meshes.push_back(makeCube(0.5f));
-  s.materials.push_back(Material{});
-  Primitive p;
-  p.mesh = 0;
-  p.material = 0;
-  p.bounds = s.meshes[0].bounds;
+  Scene s = testsupport::singleMeshScene(makeCube(0.5f));
+  Primitive& p = s.primitives[0];
   p.spin.axis = glm::normalize(glm::vec3(0.3f, 1.0f, 0.0f));
   p.spin.degreesPerSecond = 180.0f;  // 3 degrees a frame
-  s.primitives.push_back(p);
   s.directionalLights.push_back(DirectionalLight{});
-  s.camera.position = {0.8f, 1.0f, 2.6f};
-  s.camera.target = {0.0f, 0.0f, 0.0f};
-  s.hasCamera = true;
+  testsupport::lookAtOrigin(s, {0.8f, 1.0f, 2.6f});
   return s;
 }
 

@@ -18,71 +18,26 @@
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/objects.h"
 #include "rgraph/renderer.h"
+#include "renderer_util.h"
 #include "test_support.h"
 
 namespace {
 using namespace rgraph;
+using testsupport::cubesScene;
 using testsupport::errorOf;
 
 const std::string kDefault = std::string(RGRAPH_SOURCE_DIR) + "/pipelines/default.json";
 // The G-buffer with motion vectors under a jittered camera, as
 // deferred-taa.json's geometry pass writes them (without the taa plugin).
-const char* kVelocityPipeline = R"({
-  "version": 1,
-  "jitter": 8,
-  "resources": {
-    "gPosition":   { "format": "rgba32f", "size": "output" },
-    "gNormal":     { "format": "rgba16f", "size": "output" },
-    "gAlbedoSpec": { "format": "rgba8",   "size": "output" },
-    "gVelocity":   { "format": "rg16f",   "size": "output" },
-    "gDepth":      { "format": "depth24_stencil8", "size": "output" }
-  },
-  "passes": [
-    { "name": "gbuffer", "type": "geometry", "params": { "layout": "learnopengl", "velocity": true },
-      "outputs": { "position": "gPosition", "normal": "gNormal", "albedo": "gAlbedoSpec", "depth": "gDepth",
-                   "velocity": "gVelocity" } }
-  ],
-  "output": "gAlbedoSpec"
-})";
+const std::string kVelocityPipeline = testsupport::gbufferPipeline({"velocity", "gVelocity", "rg16f", 8, "rgba32f"});
 constexpr Extent kSize{96, 64};
 
 glm::mat4 at(float x, float y = 0.0f, float z = 0.0f) { return glm::translate(glm::mat4(1.0f), {x, y, z}); }
 
-// A cube (edge 1) at each of `places` (an x, or a point), seen from (0, 0, 5)
-// looking down -z under a directional light; no point light (no light volumes).
-Scene cubes(const std::vector<glm::vec3>& places) {
-  Scene s;
-  s.source = "cubes";
-  s.meshes.push_back(makeCube(0.5f));
-  Material m;
-  m.baseColorFactor = glm::vec4(0.8f, 0.5f, 0.3f, 1.0f);
-  s.materials.push_back(m);
-  for (size_t i = 0; i < places.size(); ++i) {
-    Primitive p;
-    p.mesh = 0;
-    p.material = 0;
-    p.transform = at(places[i].x, places[i].y, places[i].z);
-    p.bounds = p.worldBounds(s.meshes[0].bounds);
-    p.name = "cube" + std::to_string(i);
-    s.primitives.push_back(p);
-  }
-  s.directionalLights.push_back(DirectionalLight{glm::normalize(glm::vec3(-0.3f, -0.6f, -1.0f)), glm::vec3(1.0f), 1.0f});
-  s.camera.position = {0.0f, 0.0f, 5.0f};
-  s.camera.target = {0.0f, 0.0f, 0.0f};
-  s.camera.fovY = 45.0f;
-  s.hasCamera = true;
-  return s;
-}
-
-std::unique_ptr<Renderer> makeRenderer(const std::string& path, std::shared_ptr<RenderScene> scene) {
+std::unique_ptr<Renderer> makeRenderer(const std::string& pipeline, std::shared_ptr<RenderScene> scene) {
   RendererOptions options;
   options.size = kSize;
-  Diagnostics diags;
-  auto r = path.front() == '{' ? Renderer::fromJson(path, "velocity.json", options, diags)
-                               : Renderer::fromFile(path, options, diags);
-  EXPECT_TRUE(r) << (diags.empty() ? std::string("no diagnostics") : formatDiagnostic(diags.front()));
-  if (r) r->setScene(std::move(scene));
-  return r;
+  return testsupport::makeRenderer(pipeline, options, std::move(scene), "velocity.json");
 }
 
 std::vector<uint8_t> frame(Renderer& r) {
@@ -118,7 +73,7 @@ class RendererInstances : public ::testing::Test {
 // built with it there draws (within 1/255), with no rebuild, no upload and
 // no GL object created.
 TEST_F(RendererInstances, AMovedObjectDrawsAsASceneBuiltWithItThere) {
-  auto scene = RenderScene::fromScene(cubes({{-1.2f, 0, 0}, {1.0f, 0, 0}}));
+  auto scene = RenderScene::fromScene(cubesScene({{-1.2f, 0, 0}, {1.0f, 0, 0}}));
   ASSERT_EQ(scene->instances().size(), 2u);
   auto r = makeRenderer(kDefault, scene);
   const std::vector<uint8_t> before = frame(*r);
@@ -132,7 +87,7 @@ TEST_F(RendererInstances, AMovedObjectDrawsAsASceneBuiltWithItThere) {
   EXPECT_EQ(r->builds(), 1u);
   EXPECT_EQ(scene->uploadCount(), 1u);
 
-  auto reference = makeRenderer(kDefault, RenderScene::fromScene(cubes({{-0.2f, 0.6f, 0.0f}, {1.0f, 0, 0}})));
+  auto reference = makeRenderer(kDefault, RenderScene::fromScene(cubesScene({{-0.2f, 0.6f, 0.0f}, {1.0f, 0, 0}})));
   const std::vector<uint8_t> expected = frame(*reference);
   const int diff = maxDiff(moved, expected);
   std::printf("[ measure  ] moved object against the scene built with it there: max diff %d/255\n", diff);
@@ -151,7 +106,7 @@ TEST_F(RendererInstances, AMovedObjectDrawsAsASceneBuiltWithItThere) {
 // model and normal matrices: 3 mat4s), and the frame after it stops the same
 // entry once more (its previous matrix catches up).
 TEST_F(RendererInstances, OnlyAMovedObjectsEntryIsWritten) {
-  auto scene = RenderScene::fromScene(cubes({{-1.2f, 0, 0}, {0.0f, 0, 0}, {1.2f, 0, 0}}));
+  auto scene = RenderScene::fromScene(cubesScene({{-1.2f, 0, 0}, {0.0f, 0, 0}, {1.2f, 0, 0}}));
   auto r = makeRenderer(kDefault, scene);
   frame(*r);
   GpuScene& gpu = scene->gpu();
@@ -174,7 +129,7 @@ TEST_F(RendererInstances, OnlyAMovedObjectsEntryIsWritten) {
 // deg) * aspect) in u, nothing in v; the object left alone and the
 // background hold none. A cut would have zeroed it all (and reset TAA).
 TEST_F(RendererInstances, TheVelocityTargetHoldsAMovedObjectsMotion) {
-  auto scene = RenderScene::fromScene(cubes({{-0.4f, 0, 0}, {1.4f, 0, 0}}));
+  auto scene = RenderScene::fromScene(cubesScene({{-0.4f, 0, 0}, {1.4f, 0, 0}}));
   auto r = makeRenderer(kVelocityPipeline, scene);
   frame(*r);
   frame(*r);
@@ -207,10 +162,10 @@ TEST_F(RendererInstances, TheVelocityTargetHoldsAMovedObjectsMotion) {
 // Hidden and removed objects are not drawn: the image is the scene's without
 // them. Other ids stay valid after a removal; the removed one is refused.
 TEST_F(RendererInstances, HiddenAndRemovedObjectsAreNotDrawn) {
-  auto scene = RenderScene::fromScene(cubes({{-1.2f, 0, 0}, {0.0f, 0, 0}, {1.2f, 0, 0}}));
+  auto scene = RenderScene::fromScene(cubesScene({{-1.2f, 0, 0}, {0.0f, 0, 0}, {1.2f, 0, 0}}));
   auto r = makeRenderer(kDefault, scene);
   const std::vector<uint8_t> all = frame(*r);
-  auto without = makeRenderer(kDefault, RenderScene::fromScene(cubes({{-1.2f, 0, 0}, {1.2f, 0, 0}})));
+  auto without = makeRenderer(kDefault, RenderScene::fromScene(cubesScene({{-1.2f, 0, 0}, {1.2f, 0, 0}})));
   const std::vector<uint8_t> expected = frame(*without);
   ASSERT_GT(maxDiff(all, expected), 10);
 
@@ -238,7 +193,7 @@ TEST_F(RendererInstances, HiddenAndRemovedObjectsAreNotDrawn) {
 // instances (what a scene built without the removed one draws).
 TEST_F(RendererInstances, RemovingAnObjectKeepsTheOthersInstancing) {
   auto instanced = [](bool withFirst) {
-    Scene s = cubes(withFirst ? std::vector<glm::vec3>{{-1.5f, 0.8f, 0.0f}, {0.0f, 0.0f, 0.0f}}
+    Scene s = cubesScene(withFirst ? std::vector<glm::vec3>{{-1.5f, 0.8f, 0.0f}, {0.0f, 0.0f, 0.0f}}
                               : std::vector<glm::vec3>{{0.0f, 0.0f, 0.0f}});
     Primitive& p = s.primitives.back();
     p.instances = {at(-1.2f, -0.5f), at(0.0f, 0.2f), at(1.2f, -0.5f)};
@@ -278,7 +233,7 @@ TEST_F(RendererInstances, ALoadedScenesPrimitivesAreObjects) {
 // A mesh made in code is uploaded once and shared: two objects drawing it
 // draw what a scene built with them draws; the scene's upload count stays 1.
 TEST_F(RendererInstances, AMeshMadeInCodeIsUploadedOnceAndShared) {
-  auto scene = RenderScene::fromScene(cubes({{-1.2f, 0, 0}}));
+  auto scene = RenderScene::fromScene(cubesScene({{-1.2f, 0, 0}}));
   auto r = makeRenderer(kDefault, scene);
   frame(*r);
   const uint64_t geometry = scene->gpu().geometryBytes();
@@ -304,7 +259,7 @@ TEST_F(RendererInstances, AMeshMadeInCodeIsUploadedOnceAndShared) {
   EXPECT_EQ(maxDiff(drawn, back), 0);
   EXPECT_EQ(scene->scene().primitives[scene->primitiveIndex(b)].mesh, int(mesh));
 
-  Scene built = cubes({{-1.2f, 0, 0}});
+  Scene built = cubesScene({{-1.2f, 0, 0}});
   MeshData filled = scene->scene().meshes[mesh];  // as addMesh completed it (normals, uv0, tangents)
   built.meshes.push_back(filled);
   for (auto [x, y] : {std::pair{0.3f, 0.0f}, std::pair{1.3f, 0.2f}}) {
@@ -322,7 +277,7 @@ TEST_F(RendererInstances, AMeshMadeInCodeIsUploadedOnceAndShared) {
 // Material values per object: the object gets its own copy, others keep
 // theirs; the edit shows in the image.
 TEST_F(RendererInstances, MaterialValuesArePerObject) {
-  auto scene = RenderScene::fromScene(cubes({{-1.2f, 0, 0}, {1.2f, 0, 0}}));
+  auto scene = RenderScene::fromScene(cubesScene({{-1.2f, 0, 0}, {1.2f, 0, 0}}));
   auto r = makeRenderer(kDefault, scene);
   const std::vector<uint8_t> before = frame(*r);
   const std::vector<InstanceId> ids = scene->instances();
@@ -347,7 +302,7 @@ TEST_F(RendererInstances, MaterialValuesArePerObject) {
 // Every call a caller can get wrong: RuntimeError naming the object and the
 // value, and nothing changed.
 TEST_F(RendererInstances, MisuseIsRefusedByNameAndChangesNothing) {
-  auto scene = RenderScene::fromScene(cubes({{0.0f, 0, 0}}));
+  auto scene = RenderScene::fromScene(cubesScene({{0.0f, 0, 0}}));
   const InstanceId id = scene->instances()[0];
   const glm::mat4 before = scene->transform(id);
   const uint64_t version = scene->instancesVersion();
@@ -396,7 +351,7 @@ TEST_F(RendererInstances, MisuseIsRefusedByNameAndChangesNothing) {
 // the pipeline again (once), as a first point light does; moving it then
 // does not.
 TEST_F(RendererInstances, AnEditThatChangesWhatTheSceneNeedsAdaptsOnce) {
-  auto scene = RenderScene::fromScene(cubes({{0.0f, 0, 0}}));
+  auto scene = RenderScene::fromScene(cubesScene({{0.0f, 0, 0}}));
   auto r = makeRenderer(kDefault, scene);
   frame(*r);
   ASSERT_EQ(r->builds(), 1u);

@@ -15,6 +15,7 @@
 
 #include "rgraph/error.h"
 #include "rgraph/renderer.h"
+#include "renderer_util.h"
 #include "test_support.h"
 
 namespace {
@@ -26,48 +27,15 @@ const std::string kForward = std::string(RGRAPH_SOURCE_DIR) + "/pipelines/forwar
 constexpr Extent kSize{96, 64};
 
 // default.json's G-buffer with ids asked for by the pipeline itself.
-const char* kIdsInConfig = R"({
-  "version": 1,
-  "resources": {
-    "gPosition":   { "format": "rgba16f", "size": "output" },
-    "gNormal":     { "format": "rgba16f", "size": "output" },
-    "gAlbedoSpec": { "format": "rgba8",   "size": "output" },
-    "ids":         { "format": "rg32ui",  "size": "output" },
-    "gDepth":      { "format": "depth24_stencil8", "size": "output" }
-  },
-  "passes": [
-    { "name": "gbuffer", "type": "geometry", "params": { "layout": "learnopengl", "object_id": true },
-      "outputs": { "position": "gPosition", "normal": "gNormal", "albedo": "gAlbedoSpec", "depth": "gDepth",
-                   "object_id": "ids" } }
-  ],
-  "output": "gAlbedoSpec"
-})";
+const std::string kIdsInConfig = testsupport::gbufferPipeline({"object_id", "ids", "rg32ui"});
 
 glm::mat4 at(float x, float y = 0.0f) { return glm::translate(glm::mat4(1.0f), {x, y, 0.0f}); }
 
-// Cubes (edge 1) at the given x, seen from (0, 0, 5) looking down -z.
+// Cubes (edge 1) at the given x (testsupport::cubesScene).
 Scene cubes(const std::vector<float>& xs) {
-  Scene s;
-  s.source = "cubes";
-  s.meshes.push_back(makeCube(0.5f));
-  Material m;
-  m.name = "clay";
-  m.baseColorFactor = glm::vec4(0.8f, 0.5f, 0.3f, 1.0f);
-  s.materials.push_back(m);
-  for (size_t i = 0; i < xs.size(); ++i) {
-    Primitive p;
-    p.mesh = 0;
-    p.material = 0;
-    p.transform = at(xs[i]);
-    p.name = "cube" + std::to_string(i);
-    s.primitives.push_back(p);
-  }
-  s.directionalLights.push_back(DirectionalLight{glm::normalize(glm::vec3(-0.3f, -0.6f, -1.0f)), glm::vec3(1.0f), 1.0f});
-  s.camera.position = {0.0f, 0.0f, 5.0f};
-  s.camera.target = {0.0f, 0.0f, 0.0f};
-  s.camera.fovY = 45.0f;
-  s.hasCamera = true;
-  return s;
+  std::vector<glm::vec3> places;
+  for (float x : xs) places.emplace_back(x, 0.0f, 0.0f);
+  return testsupport::cubesScene(places);
 }
 
 // The pixel (column, row from the top) where world point `p` lands.
@@ -82,12 +50,7 @@ std::unique_ptr<Renderer> makeRenderer(const std::string& pipeline, bool picking
   RendererOptions options;
   options.size = kSize;
   options.picking = picking;
-  Diagnostics diags;
-  auto r = pipeline.front() == '{' ? Renderer::fromJson(pipeline, "ids.json", options, diags)
-                                   : Renderer::fromFile(pipeline, options, diags);
-  EXPECT_TRUE(r) << (diags.empty() ? std::string("no diagnostics") : formatDiagnostic(diags.front()));
-  if (r) r->setScene(std::move(scene));
-  return r;
+  return testsupport::makeRenderer(pipeline, options, std::move(scene), "ids.json");
 }
 
 // Asks about `px`, renders the frame that reads it and one more, and takes

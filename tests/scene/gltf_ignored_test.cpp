@@ -18,12 +18,6 @@ using scenetest::TriangleGltf;
 
 namespace {
 
-size_t countOf(const std::string& text, const std::string& needle) {
-  size_t n = 0;
-  for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + needle.size())) ++n;
-  return n;
-}
-
 // Every warning this file's table knows, by the words that start it (those of
 // features now drawn, skins, animations, morph targets, COLOR_0, instancing,
 // texture transforms and TEXCOORD_1, stay listed: no file may give them).
@@ -58,8 +52,8 @@ void expectIgnored(const std::string& file, const std::vector<std::string>& expe
   for (const std::string& w : s.warnings) kept += w + "\n";
   for (const std::string& w : kAll) {
     const bool want = std::find(expected.begin(), expected.end(), w) != expected.end();
-    EXPECT_EQ(countOf(text, w), want ? 1u : 0u) << w << "\n--- log:\n" << text;
-    EXPECT_EQ(countOf(kept, w), want ? 1u : 0u) << w << "\n--- Scene::warnings:\n" << kept;
+    EXPECT_EQ(scenetest::countOf(text, w), want ? 1u : 0u) << w << "\n--- log:\n" << text;
+    EXPECT_EQ(scenetest::countOf(kept, w), want ? 1u : 0u) << w << "\n--- Scene::warnings:\n" << kept;
   }
 }
 
@@ -104,8 +98,8 @@ TEST_F(GltfIgnoredFiles, MaterialExtensionsWarnAndTexCoordOneDoesNot) {
   scenetest::LogCapture log;
   const Scene s = loadGltf(path("m.gltf"));
   const std::string text = log.text();
-  for (const std::string& e : exts) EXPECT_EQ(countOf(text, e + " ignored: "), 1u) << e << "\n" << text;
-  EXPECT_EQ(countOf(text, "TEXCOORD_1 ignored"), 0u) << text;
+  for (const std::string& e : exts) EXPECT_EQ(scenetest::countOf(text, e + " ignored: "), 1u) << e << "\n" << text;
+  EXPECT_EQ(scenetest::countOf(text, "TEXCOORD_1 ignored"), 0u) << text;
   EXPECT_EQ(s.warnings.size(), exts.size()) << text;
 }
 
@@ -135,7 +129,7 @@ TEST_F(GltfIgnoredFiles, AMissingTextureIsReportedOnce) {
   } catch (const RuntimeError& e) {
     error = e.what();
   }
-  EXPECT_EQ(countOf(error, "missing_texture.png"), 2u) << error;  // "image 0 ('missing_texture.png') ... file .../missing_texture.png"
+  EXPECT_EQ(scenetest::countOf(error, "missing_texture.png"), 2u) << error;  // "image 0 ('missing_texture.png') ... file .../missing_texture.png"
   EXPECT_NE(error.find("missing or unreadable file " + path("missing_texture.png")), std::string::npos) << error;
-  EXPECT_EQ(countOf(log.text(), "missing_texture.png"), 0u) << log.text();
+  EXPECT_EQ(scenetest::countOf(log.text(), "missing_texture.png"), 0u) << log.text();
 }

@@ -18,13 +18,6 @@ using scenetest::TriangleGltf;
 
 namespace {
 
-// Counts non-overlapping occurrences of `needle` in `text`.
-size_t countOf(const std::string& text, const std::string& needle) {
-  size_t n = 0;
-  for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + needle.size())) ++n;
-  return n;
-}
-
 // The unnormalised face normal of triangle t (twice its area).
 glm::vec3 faceNormal(const MeshData& m, size_t t) {
   const glm::vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]], c = m.positions[m.indices[3 * t + 2]];
@@ -125,7 +118,7 @@ TEST_F(GltfModes, TooShortAStripIsSkippedWithAWarning) {
   scenetest::LogCapture log;
   Scene s = load(t);
   EXPECT_TRUE(s.primitives.empty());
-  EXPECT_EQ(countOf(log.text(), "no triangles; skipped"), 1u) << log.text();
+  EXPECT_EQ(scenetest::countOf(log.text(), "no triangles; skipped"), 1u) << log.text();
 }
 
 TEST_F(GltfModes, PointsAndLinesAreSkippedNamingTheMode) {
@@ -140,7 +133,7 @@ TEST_F(GltfModes, PointsAndLinesAreSkippedNamingTheMode) {
   Scene s = load(t);
   EXPECT_EQ(s.primitives.size(), 1u);
   for (const char* name : {"(POINTS)", "(LINES)", "(LINE_LOOP)", "(LINE_STRIP)"})
-    EXPECT_EQ(countOf(log.text(), name), 1u) << name << "\n" << log.text();
+    EXPECT_EQ(scenetest::countOf(log.text(), name), 1u) << name << "\n" << log.text();
   EXPECT_EQ(s.warnings.size(), 4u);
 }
 
@@ -163,7 +156,7 @@ TEST(GltfModesSample, MeshPrimitiveModesStripAndFanMatchTheTriangles) {
     for (size_t i = 0; i < s.meshes[k].triangleCount(); ++i) EXPECT_GT(faceNormal(s.meshes[k], i).z, 0.0f) << k << " " << i;
   }
   for (const char* name : {"(POINTS)", "(LINES)", "(LINE_LOOP)", "(LINE_STRIP)"})
-    EXPECT_EQ(countOf(log.text(), name), 1u) << name << "\n" << log.text();
+    EXPECT_EQ(scenetest::countOf(log.text(), name), 1u) << name << "\n" << log.text();
 }
 
 // ------------------------------------------------------------ KHR_mesh_quantization
@@ -331,6 +324,6 @@ TEST_F(GltfModes, DracoUsedWithUncompressedDataDrawsItAndWarnsOnce) {
   Scene s = load(t);
   EXPECT_EQ(s.primitives.size(), 2u);
   EXPECT_EQ(s.triangleCount(), 2u);
-  EXPECT_EQ(countOf(log.text(), "KHR_draco_mesh_compression ignored: the primitives' uncompressed accessors are drawn"), 1u)
+  EXPECT_EQ(scenetest::countOf(log.text(), "KHR_draco_mesh_compression ignored: the primitives' uncompressed accessors are drawn"), 1u)
       << log.text();
 }

@@ -37,6 +37,13 @@ inline void writeBytes(const std::string& path, const void* data, size_t size) {
 
 inline void writeText(const std::string& path, const std::string& text) { writeBytes(path, text.data(), text.size()); }
 
+// Counts non-overlapping occurrences of `needle` in `text` (a warning in a log, say).
+inline size_t countOf(const std::string& text, const std::string& needle) {
+  size_t n = 0;
+  for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + needle.size())) ++n;
+  return n;
+}
+
 // Collects what spdlog prints while it lives (warnings the loaders give).
 class LogCapture {
  public:

@@ -314,33 +314,6 @@ double halfUlp(double v) {
 
 // ---------------------------------------------------------------- scenes
 
-int addMaterial(Scene& s, glm::vec4 color, float metallic, float roughness, float specular) {
-  Material m;
-  m.name = "material" + std::to_string(s.materials.size());
-  m.baseColorFactor = color;
-  m.metallicFactor = metallic;
-  m.roughnessFactor = roughness;
-  m.specular = specular;
-  s.materials.push_back(m);
-  return static_cast<int>(s.materials.size()) - 1;
-}
-
-int addMesh(Scene& s, MeshData mesh) {
-  mesh.updateBounds();
-  s.meshes.push_back(std::move(mesh));
-  return static_cast<int>(s.meshes.size()) - 1;
-}
-
-void addDraw(Scene& s, int mesh, int material, const glm::mat4& xf, const std::string& name) {
-  Primitive p;
-  p.mesh = mesh;
-  p.material = material;
-  p.transform = xf;
-  p.bounds = s.meshes[static_cast<size_t>(mesh)].bounds.transformed(xf);
-  p.name = name.empty() ? "draw" + std::to_string(s.primitives.size()) : name;
-  s.primitives.push_back(std::move(p));
-}
-
 PointLight pointLight(glm::vec3 pos, glm::vec3 color, float intensity, float constant, float linear, float quadratic) {
   PointLight l;
   l.position = pos;

@@ -25,6 +25,7 @@
 #include "rgraph/graph.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "render/test_scenes.h"
 
 namespace rgraph::stab {
 
@@ -127,12 +128,13 @@ double halfUlp(double v);
 
 // ---------------------------------------------------------------- scenes
 
-int addMaterial(Scene& s, glm::vec4 color, float metallic, float roughness, float specular = 0.5f);
-int addMesh(Scene& s, MeshData mesh);
-void addDraw(Scene& s, int mesh, int material, const glm::mat4& xf, const std::string& name = {});
+// The image tests' scene builders (render/test_scenes.h).
+using rtest::addDraw;
+using rtest::addMaterial;
+using rtest::addMesh;
+using rtest::translate;
 PointLight pointLight(glm::vec3 pos, glm::vec3 color, float intensity = 1.0f, float constant = 1.0f,
                       float linear = 0.7f, float quadratic = 1.8f);
-inline glm::mat4 translate(glm::vec3 t) { return glm::translate(glm::mat4(1.0f), t); }
 // Gives the scene its camera: at `position` looking at `target`, `fovY`
 // degrees vertically, between `nearPlane` and `farPlane`, `up` up.
 void placeCamera(Scene& s, glm::vec3 position, glm::vec3 target, float fovY, float nearPlane, float farPlane,

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "renderer_util.h"
 #include "rgraph/renderer.h"
 
 namespace rgraph::viewtest {
@@ -45,11 +46,7 @@ inline const char* kAliasing = R"({
 inline std::unique_ptr<Renderer> defaultRenderer(Extent size) {
   RendererOptions options;
   options.size = size;
-  Diagnostics diags;
-  auto r = Renderer::fromFile(kDefaultPipeline, options, diags);
-  EXPECT_TRUE(r) << (diags.empty() ? std::string("no diagnostics") : formatDiagnostic(diags.front()));
-  if (r) r->setScene(RenderScene::load("learnopengl:overview"));
-  return r;
+  return testsupport::makeRenderer(kDefaultPipeline, options, RenderScene::load("learnopengl:overview"));
 }
 
 // The shipped shadow pipeline (issue 28) with small maps, as the parameter editor would write it, and a
@@ -70,11 +67,7 @@ inline std::unique_ptr<Renderer> shadowRenderer(const std::string& json, const s
                                                 Extent size = {128, 72}) {
   RendererOptions options;
   options.size = size;
-  Diagnostics diags;
-  auto r = Renderer::fromJson(json, kShadowPipeline, options, diags);
-  EXPECT_TRUE(r) << (diags.empty() ? "" : formatDiagnostic(diags.front()));
-  if (r) r->setScene(RenderScene::load(scene));
-  return r;
+  return testsupport::makeRenderer(json, options, RenderScene::load(scene), kShadowPipeline);
 }
 
 }  // namespace rgraph::viewtest

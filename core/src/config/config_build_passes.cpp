@@ -211,18 +211,18 @@ void Builder::checkSlots(const PassInfo& info, PassDecl& decl) {
     // checkSlotName) counts as bound, so it is not also reported missing.
     bool inBound = info.inputKeys.count(slot.name) != 0 || (!writing && info.outputKeys.count(slot.name) != 0);
     bool outBound = info.outputKeys.count(slot.name) != 0 || (writing && !mayLoad && info.inputKeys.count(slot.name));
+    ResourceUse use;  // the slot as its pass type declares it; what it is bound to below
+    use.slot = slot.name;
+    use.access = slot.access;
+    use.acceptsMultisample = slot.acceptsMultisample;
 
     if (!writing) {
       if (slot.required && !inBound)
         missing(true, "input '" + slot.name + "' of " + info.label + " is required but not bound", slot.name);
       if (in != info.inputs.end()) {
-        ResourceUse use;
-        use.slot = slot.name;
-        use.access = slot.access;
         use.input = in->second.name;
         use.inputWhere = at(in->second.pointer);
         use.sub = in->second.sub;
-        use.acceptsMultisample = slot.acceptsMultisample;
         decl.uses.push_back(std::move(use));
       }
       continue;
@@ -241,9 +241,6 @@ void Builder::checkSlots(const PassInfo& info, PassDecl& decl) {
                   " is not bound but its input is: name the version the pass produces",
               slot.name);
     if (out != info.outputs.end()) {
-      ResourceUse use;
-      use.slot = slot.name;
-      use.access = slot.access;
       use.output = out->second.name;
       use.outputWhere = at(out->second.pointer);
       use.sub = out->second.sub;
@@ -252,7 +249,6 @@ void Builder::checkSlots(const PassInfo& info, PassDecl& decl) {
         use.inputWhere = at(in->second.pointer);
         loadedPart(in->second, out->second, slot.name, decl.name, use.sub);
       }
-      use.acceptsMultisample = slot.acceptsMultisample;
       decl.uses.push_back(std::move(use));
     }
   }

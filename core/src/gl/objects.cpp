@@ -64,37 +64,23 @@ void destroy(ObjectKind k, uint32_t id) {
 }
 }  // namespace detail
 
-Texture createTexture(unsigned target) {
+namespace {
+// One object named by a glCreate* call (`create(args..., 1, &id)`).
+template <typename Object, typename Create, typename... Args>
+Object createOne(Create create, Args... args) {
   GLuint id = 0;
-  glCreateTextures(target, 1, &id);
-  return Texture(id);
+  create(args..., 1, &id);
+  return Object(id);
 }
-Framebuffer createFramebuffer() {
-  GLuint id = 0;
-  glCreateFramebuffers(1, &id);
-  return Framebuffer(id);
-}
-Buffer createBuffer() {
-  GLuint id = 0;
-  glCreateBuffers(1, &id);
-  return Buffer(id);
-}
+}  // namespace
+
+Texture createTexture(unsigned target) { return createOne<Texture>(glCreateTextures, target); }
+Framebuffer createFramebuffer() { return createOne<Framebuffer>(glCreateFramebuffers); }
+Buffer createBuffer() { return createOne<Buffer>(glCreateBuffers); }
 Program createProgram() { return Program(glCreateProgram()); }
 Shader createShader(unsigned stage) { return Shader(glCreateShader(stage)); }
-VertexArray createVertexArray() {
-  GLuint id = 0;
-  glCreateVertexArrays(1, &id);
-  return VertexArray(id);
-}
-Query createQuery(unsigned target) {
-  GLuint id = 0;
-  glCreateQueries(target, 1, &id);
-  return Query(id);
-}
-Sampler createSampler() {
-  GLuint id = 0;
-  glCreateSamplers(1, &id);
-  return Sampler(id);
-}
+VertexArray createVertexArray() { return createOne<VertexArray>(glCreateVertexArrays); }
+Query createQuery(unsigned target) { return createOne<Query>(glCreateQueries, target); }
+Sampler createSampler() { return createOne<Sampler>(glCreateSamplers); }
 
 }  // namespace rgraph::gl
