@@ -1,7 +1,7 @@
 // Shared by the public-API renderer tests (renderer/, view_panels/): a
 // pipeline of the geometry pass alone with one more output asked for, and a
-// renderer made of either a pipeline file or JSON text, failing the test by
-// its first diagnostic. Their scenes: cube_scene.h.
+// renderer made of either a pipeline file or JSON text, throwing its first
+// diagnostic. Their scenes: cube_scene.h.
 #pragma once
 
 #include <memory>
@@ -28,8 +28,8 @@ std::string gbufferPipeline(const GBufferExtra& extra);
 
 // A renderer of `pipeline` (JSON text when it starts with '{' after white
 // space, named `name` in diagnostics; otherwise a file's path) drawing
-// `scene`; nullptr, and a test failure naming the first diagnostic, when it
-// cannot be made.
+// `scene`; std::runtime_error naming the first diagnostic when it cannot be
+// made (gtest fails the test with it).
 std::unique_ptr<Renderer> makeRenderer(const std::string& pipeline, const RendererOptions& options,
                                        std::shared_ptr<RenderScene> scene, const std::string& name = "pipeline.json");
 
