@@ -5,66 +5,21 @@
 #include <algorithm>
 #include <cstring>
 #include <string>
+#include <vector>
 
-#include "rgraph/error.h"
 #include "rgraph/gl/gl_state.h"
 
 namespace rgraph::hazard_detail {
 
 namespace {
 
-// Each sample's four components as their bits (floats through
-// floatBitsToUint), at ((layer * height + y) * width + x) * samples + sample.
-constexpr const char* kFetchSamples = R"(
-layout(local_size_x = 8, local_size_y = 8) in;
-#if ARRAYED
-layout(binding = 0) uniform PREFIX sampler2DMSArray u_src;
-#else
-layout(binding = 0) uniform PREFIX sampler2DMS u_src;
-#endif
-layout(std430, binding = 0) writeonly buffer Words { uvec4 words[]; };
-uniform int u_samples;
-void main() {
-  const ivec3 p = ivec3(gl_GlobalInvocationID);
-#if ARRAYED
-  const ivec2 size = textureSize(u_src).xy;
-#else
-  const ivec2 size = textureSize(u_src);
-#endif
-  if (p.x >= size.x || p.y >= size.y) return;
-  for (int s = 0; s < u_samples; ++s) {
-#if ARRAYED
-    const TEXEL v = texelFetch(u_src, p, s);
-#else
-    const TEXEL v = texelFetch(u_src, p.xy, s);
-#endif
-    words[((p.z * size.y + p.y) * size.x + p.x) * u_samples + s] = BITS(v);
-  }
-}
-)";
-
-gl::Program buildProgram(int kind, bool arrayed) {
-  static const char* prefixes[] = {"", "i", "u"};
-  static const char* texels[] = {"vec4", "ivec4", "uvec4"};
-  static const char* bits[] = {"floatBitsToUint", "uvec4", ""};
-  const std::string source = std::string("#version 450 core\n#define ARRAYED ") + (arrayed ? "1" : "0") +
-                             "\n#define PREFIX " + prefixes[kind] + "\n#define TEXEL " + texels[kind] +
-                             "\n#define BITS " + bits[kind] + "\n" + kFetchSamples;
-  gl::Shader shader = gl::createShader(GL_COMPUTE_SHADER);
-  const char* text = source.c_str();
-  glShaderSource(shader.id(), 1, &text, nullptr);
-  glCompileShader(shader.id());
-  gl::Program program = gl::createProgram();
-  glAttachShader(program.id(), shader.id());
-  glLinkProgram(program.id());
-  GLint linked = 0;
-  glGetProgramiv(program.id(), GL_LINK_STATUS, &linked);
-  if (!linked) {
-    char log[1024] = {};
-    glGetProgramInfoLog(program.id(), sizeof log, nullptr, log);
-    throw RuntimeError(std::string("hazard check: the multisample read-back program does not build: ") + log);
-  }
-  return program;
+// shaders/hazard_samples.comp's defines for a texture of this kind.
+std::vector<std::string> fetchDefines(int kind, bool arrayed) {
+  std::vector<std::string> d;
+  if (arrayed) d.push_back("ARRAYED");
+  if (kind == 1) d.push_back("INT_TEXELS");
+  if (kind == 2) d.push_back("UINT_TEXELS");
+  return d;
 }
 
 }  // namespace
@@ -126,12 +81,11 @@ Snapshot SnapshotReader::readMultisampled(uint32_t texture, unsigned target) {
     glNamedBufferStorage(words_.id(), static_cast<GLsizeiptr>(bytes), nullptr, 0);
     wordCapacity_ = bytes;
   }
-  gl::Program& program = programs_[kind * 2 + (arrayed ? 1 : 0)];
-  if (!program) program = buildProgram(kind, arrayed);
+  const uint32_t program = shaders_.computeProgram("hazard_samples.comp", fetchDefines(kind, arrayed));
   {
     gl::GlStateGuard guard;  // the next pass finds the units, buffers and program the frame left
-    glUseProgram(program.id());
-    glProgramUniform1i(program.id(), glGetUniformLocation(program.id(), "u_samples"), samples);
+    glUseProgram(program);
+    glProgramUniform1i(program, glGetUniformLocation(program, "u_samples"), samples);
     glBindTextureUnit(0, texture);
     glBindSampler(0, 0);
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, words_.id(), 0, static_cast<GLsizeiptr>(bytes));

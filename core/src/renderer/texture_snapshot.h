@@ -4,10 +4,10 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <map>
 #include <vector>
 
 #include "rgraph/gl/objects.h"
+#include "rgraph/gl/shader_library.h"
 
 namespace rgraph::hazard_detail {
 
@@ -33,8 +33,7 @@ class SnapshotReader {
 
  private:
   Snapshot readMultisampled(uint32_t texture, unsigned target);
-  // The compute programs, by sampler kind (float, int, unsigned) and arrayness.
-  std::map<int, gl::Program> programs_;
+  ShaderLibrary shaders_;  // the built-in shaders (hazard_samples.comp)
   gl::Buffer words_;
   size_t wordCapacity_ = 0;
 };
