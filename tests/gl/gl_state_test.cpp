@@ -626,14 +626,6 @@ TEST_F(GlStateTest, CallerStateLeftBehindDoesNotChangeTheFrame) {
   const std::vector<uint8_t> clean = frame();
   gl::Buffer junk = gl::createBuffer();
   glNamedBufferStorage(junk.id(), 64, nullptr, 0);
-  // Nearest filtering, mirrored wrapping and no mip level past 0: what a
-  // caller's sampler would do to a pass sampling with its texture's parameters.
-  gl::Sampler nearest = gl::createSampler();
-  glSamplerParameteri(nearest.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glSamplerParameteri(nearest.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-    glSamplerParameteri(nearest.id(), wrap, GL_MIRRORED_REPEAT);
-  glSamplerParameterf(nearest.id(), GL_TEXTURE_MAX_LOD, 0.0f);
   struct Case {
     const char* name;
     std::function<void()> set;
@@ -667,11 +659,6 @@ TEST_F(GlStateTest, CallerStateLeftBehindDoesNotChangeTheFrame) {
       {"pack row length", [] { glPixelStorei(GL_PACK_ROW_LENGTH, 7); }, GL_PACK_ROW_LENGTH},
       {"pixel unpack buffer", [&] { glBindBuffer(GL_PIXEL_UNPACK_BUFFER, junk.id()); }, GL_PIXEL_UNPACK_BUFFER_BINDING},
       {"pixel pack buffer", [&] { glBindBuffer(GL_PIXEL_PACK_BUFFER, junk.id()); }, GL_PIXEL_PACK_BUFFER_BINDING},
-      {"a sampler object on units 0-15",
-       [&] {
-         for (GLuint unit = 0; unit < 16; ++unit) glBindSampler(unit, nearest.id());
-       },
-       GL_SAMPLER_BINDING},  // unit 0's, read back
   };
   for (const Case& c : cases) {
     resetToDefaults();
