@@ -182,6 +182,26 @@ const HazardFinding* expectFinding(const HazardReport& r, const std::string& mod
   return f;
 }
 
+// `file` run in `mode` only: its finding names `pass` and `resource`, every
+// one of the 32x32 pixels differing.
+const HazardFinding* expectWholeResource(const char* file, const char* mode, const char* pass,
+                                         const char* resource, HazardReport& r) {
+  r = check(file, mode);
+  const HazardFinding* f = expectFinding(r, mode, pass, resource);
+  if (f) {
+    EXPECT_EQ(f->pixels, 32u * 32u) << f->message;
+  }
+  return f;
+}
+
+// `file` under state-scramble: the state check after `pass` fails, saying `what`.
+void expectStateCheck(const char* file, const char* pass, const char* what) {
+  const HazardReport r = check(file, "state-scramble");
+  if (const HazardFinding* f = expectFinding(r, "state-scramble", pass, nullptr)) {
+    EXPECT_NE(f->message.find(what), std::string::npos) << f->message;
+  }
+}
+
 TEST(HazardFixtures, CorrectPipelineHasNoFinding) {
   const HazardReport r = check("correct.json");
   ASSERT_TRUE(r.error.empty()) << r.error;
@@ -191,10 +211,9 @@ TEST(HazardFixtures, CorrectPipelineHasNoFinding) {
 }
 
 TEST(HazardFixtures, ReadOfAnUnwrittenTransientIsCaughtByPoison) {
-  const HazardReport r = check("unwritten.json", "poison");
-  const HazardFinding* f = expectFinding(r, "poison", "unwritten", "t");
+  HazardReport r;
+  const HazardFinding* f = expectWholeResource("unwritten.json", "poison", "unwritten", "t", r);
   ASSERT_TRUE(f);
-  EXPECT_EQ(f->pixels, 32u * 32u);
   EXPECT_EQ(f->where.line, 9) << f->message;
   EXPECT_NE(f->message.find("unwritten.json:9:"), std::string::npos) << f->message;
 }
@@ -223,10 +242,7 @@ TEST(HazardFixtures, ReadWithoutAnEdgeIsCaughtByReorderAndStateScramble) {
 }
 
 TEST(HazardFixtures, BlendingLeftOnIsCaughtByStateScramble) {
-  const HazardReport r = check("blend-left-on.json", "state-scramble");
-  if (const HazardFinding* f = expectFinding(r, "state-scramble", "leaky", nullptr)) {
-    EXPECT_NE(f->message.find("GL_BLEND is on"), std::string::npos) << f->message;
-  }
+  expectStateCheck("blend-left-on.json", "leaky", "GL_BLEND is on");
 }
 
 TEST(HazardFixtures, AnUndeclaredColourWriteIsCaughtByStateScramble) {
@@ -240,29 +256,23 @@ TEST(HazardFixtures, AnUndeclaredColourWriteIsCaughtByStateScramble) {
 // (f) A buffer binding left by an earlier pass: state-scramble binds a buffer
 // of its own at every uniform and storage binding point before each pass.
 TEST(HazardFixtures, AnInheritedBufferBindingIsCaughtByStateScramble) {
-  const HazardReport r = check("inherited-buffer.json", "state-scramble");
-  const HazardFinding* f = expectFinding(r, "state-scramble", "heir", "b");
-  ASSERT_TRUE(f);
-  EXPECT_EQ(f->pixels, 32u * 32u);
+  HazardReport r;
+  EXPECT_TRUE(expectWholeResource("inherited-buffer.json", "state-scramble", "heir", "b", r));
 }
 
 // (g) A sampler object left bound: every pass is promised sampler 0 on every
 // unit, so the pass that leaves one is named (the one after it did nothing wrong).
 TEST(HazardFixtures, ASamplerLeftBoundIsCaughtByStateScramble) {
-  const HazardReport r = check("sampler-left-bound.json", "state-scramble");
-  if (const HazardFinding* f = expectFinding(r, "state-scramble", "leaky_sampler", nullptr)) {
-    EXPECT_NE(f->message.find("left sampler object"), std::string::npos) << f->message;
-  }
+  expectStateCheck("sampler-left-bound.json", "leaky_sampler", "left sampler object");
 }
 
 // (h) Multisampled targets are compared sample by sample: the pass that left
 // the samples unwritten is named, not the resolve after it, which is where a
 // comparison of single-sample textures alone would first see it.
 TEST(HazardFixtures, AnUnwrittenMultisampledTargetIsNamedWithItsPass) {
-  const HazardReport r = check("msaa-unwritten.json", "poison");
-  const HazardFinding* f = expectFinding(r, "poison", "unwritten_ms", "ms");
+  HazardReport r;
+  const HazardFinding* f = expectWholeResource("msaa-unwritten.json", "poison", "unwritten_ms", "ms", r);
   ASSERT_TRUE(f);
-  EXPECT_EQ(f->pixels, 32u * 32u);
   EXPECT_EQ(f->comparedPixels, 32u * 32u);
 }
 
