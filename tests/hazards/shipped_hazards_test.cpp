@@ -3,26 +3,15 @@
 // 2 frames: history compared once); `rgraph check-hazards` runs larger ones.
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
 #include <string>
-#include <vector>
 
+#include "hazards/shipped_pipelines.h"
 #include "rgraph/hazard_check.h"
 #include "test_support.h"
 
 namespace {
 
 using namespace rgraph;
-
-std::vector<std::string> shippedPipelines() {
-  std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(RGRAPH_SOURCE_DIR) + "/pipelines"))
-    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
 
 class HazardShipped : public ::testing::TestWithParam<std::string> {};
 
@@ -39,12 +28,7 @@ TEST_P(HazardShipped, NoFindingInAnyMode) {
   for (const HazardModeRun& run : r.runs) EXPECT_GT(run.comparedPixels, 0u) << run.mode;
 }
 
-INSTANTIATE_TEST_SUITE_P(Pipelines, HazardShipped, ::testing::ValuesIn(shippedPipelines()),
-                         [](const ::testing::TestParamInfo<std::string>& i) {
-                           std::string n = i.param;
-                           for (char& c : n)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(Pipelines, HazardShipped, ::testing::ValuesIn(hazardtest::shippedPipelines()),
+                         [](const ::testing::TestParamInfo<std::string>& i) { return hazardtest::testName(i.param); });
 
 }  // namespace

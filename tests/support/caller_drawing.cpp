@@ -5,6 +5,7 @@
 #include <array>
 #include <cstring>
 
+#include "fixed_state.h"
 #include "rgraph/error.h"
 #include "rgraph/gl/objects.h"
 
@@ -95,6 +96,32 @@ struct CallerDrawing::Impl {
   gl::Buffer tint = gl::createBuffer();
   gl::Buffer offset = gl::createBuffer();
 
+  // The fixed-function state its drawing uses, each item away from GL's
+  // initial value (core/src/gl/fixed_state.h: the setter the executor's
+  // hostile state goes through too).
+  static gl::FixedState fixedState(Extent size) {
+    gl::FixedState s;
+    s.viewport = {3, 5, static_cast<int32_t>(size.width) - 10, static_cast<int32_t>(size.height) - 14};
+    s.scissor = {6, 2, static_cast<int32_t>(size.width) - 14, static_cast<int32_t>(size.height) - 6};
+    s.scissorTest = true;
+    s.blend = true;
+    s.blendSrcRgb = GL_SRC_ALPHA, s.blendDstRgb = GL_CONSTANT_COLOR, s.blendSrcAlpha = GL_ONE, s.blendDstAlpha = GL_ZERO;
+    s.blendEquationRgb = GL_FUNC_ADD, s.blendEquationAlpha = GL_MIN;
+    s.blendColor = {0.25f, 0.5f, 0.75f, 1.0f};
+    s.depthTest = true;
+    s.depthFunc = GL_GREATER;
+    s.depthMask = true;
+    s.stencilTest = true;
+    s.stencilFunc = GL_NOTEQUAL, s.stencilRef = 2, s.stencilValueMask = 0xFF;
+    s.stencilFail = GL_KEEP, s.stencilDepthFail = GL_KEEP, s.stencilPass = GL_INCR;
+    s.stencilWriteMask = 0xFF;
+    s.cullFace = true;
+    s.cullMode = GL_BACK, s.frontFace = GL_CW;
+    s.framebufferSrgb = true;
+    s.colorMask = {true, true, false, true};
+    return s;
+  }
+
   void setState(Extent size) const {
     glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
     glUseProgram(program.id());
@@ -108,27 +135,9 @@ struct CallerDrawing::Impl {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    glViewport(3, 5, static_cast<GLsizei>(size.width) - 10, static_cast<GLsizei>(size.height) - 14);
-    glScissor(6, 2, static_cast<GLsizei>(size.width) - 14, static_cast<GLsizei>(size.height) - 6);
-    glEnable(GL_SCISSOR_TEST);
-    glEnable(GL_BLEND);
-    glBlendFuncSeparate(GL_SRC_ALPHA, GL_CONSTANT_COLOR, GL_ONE, GL_ZERO);
-    glBlendEquationSeparate(GL_FUNC_ADD, GL_MIN);
-    glBlendColor(0.25f, 0.5f, 0.75f, 1.0f);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_GREATER);
-    glDepthMask(GL_TRUE);
-    glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_NOTEQUAL, 2, 0xFF);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-    glStencilMask(0xFF);
-    glEnable(GL_CULL_FACE);
-    glCullFace(GL_BACK);
-    glFrontFace(GL_CW);
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     glDisable(GL_POLYGON_OFFSET_FILL);
-    glEnable(GL_FRAMEBUFFER_SRGB);
-    glColorMask(GL_TRUE, GL_TRUE, GL_FALSE, GL_TRUE);
+    gl::applyFixedState(fixedState(size));
   }
 };
 

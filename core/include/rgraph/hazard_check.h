@@ -11,7 +11,8 @@
 // Comparison: bit-exact (NaN equal to the same NaN), by default for every
 // format: one device runs the same draws on the same data in every mode, so
 // a correct pipeline gives the same bits (Mesa llvmpipe, the CI's device, is
-// deterministic). HazardCheckOptions::floatTolerance allows an absolute
+// deterministic). Multisampled textures are compared sample by sample (a
+// pixel differs when any of its samples does). HazardCheckOptions::floatTolerance allows an absolute
 // difference in float formats for devices that are not (a GPU's atomics
 // may sum in another order).
 #pragma once

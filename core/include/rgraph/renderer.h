@@ -64,10 +64,10 @@
 // and the pixel pack and unpack parameters (alignment, row length, image height, skips). For its own work it first
 // resets what a caller may have changed and rgraph relies on (always, restoreGlState or not): polygon mode fill,
 // multisample on, no polygon offset, rasterizer discard, logic op, primitive restart or sample coverage, the default
-// clip control and pixel store, no pixel pack or unpack buffer. Not restored: the contents of rgraph's own objects,
-// viewports and scissor boxes past index 0, draw buffers 8 and up; rgraph never changes clear values, depth range,
-// polygon offset factors, the logic op, the primitive restart index or the sample coverage value. A program the
-// caller deleted while it was current is not made current again. See docs/embedding.md.
+// clip control and pixel store, no pixel pack or unpack buffer, no sampler object on units 0-15. Not restored: the
+// contents of rgraph's own objects, viewports and scissor boxes past index 0, draw buffers 8 and up; rgraph never
+// changes clear values, depth range, polygon offset factors, the logic op, the primitive restart index or the sample
+// coverage value. A program the caller deleted while it was current is not made current again. See docs/embedding.md.
 //
 // Threading: use a renderer on the thread whose context is current, and
 // destroy renderers and scenes while that context is still current.

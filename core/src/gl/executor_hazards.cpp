@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "executor_internal.h"
+#include "fixed_state.h"
 #include "rgraph/gl/format.h"
 
 namespace rgraph {
@@ -20,6 +21,11 @@ using exec_detail::PassRun;
 namespace {
 // Integer formats (ids) take integer clears and uploads: asked of the texture,
 // whatever formats rgraph/format.h lists.
+// Larger than any uniform block or storage buffer a shipped pass declares
+// (the Frame block is under 1 KiB): a block bound to a buffer smaller than
+// itself reads undefined values.
+constexpr GLsizeiptr kHostileBufferBytes = 64 * 1024;
+
 bool integerTexture(uint32_t texture) {
   GLint type = 0;
   glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_RED_TYPE, &type);
@@ -102,9 +108,11 @@ void Executor::Impl::poison(const PassRun& run) {
 // equations, stencil functions and operations, cull face mode and front face,
 // scissor box, viewport, the draw framebuffer, program and vertex array, the
 // textures on every unit (the pass's own slots are bound after this), colour
-// masks of draw buffers 1-7 before the reset. Polygon mode, multisample and
-// the other enables the renderer resets once per frame are part of that
-// promise and left alone.
+// masks of draw buffers 1-7 before the reset, and the uniform and storage
+// buffer binding points (below). Polygon mode, multisample and the other
+// enables the renderer resets once per frame are part of that promise and
+// left alone; so are sampler objects: the executor promises sampler 0 on
+// every unit (pass_programs.h), and checkState() names a pass that leaves one.
 void Executor::Impl::scrambleState() {
   if (!hostileTexture) {
     hostileTexture = std::make_unique<gl::Texture>(gl::createTexture(Format::rgba8, Extent{1, 1}, 1, 1, 1, false));
@@ -113,30 +121,32 @@ void Executor::Impl::scrambleState() {
     hostileFramebuffer = gl::createFramebuffer();
     glNamedFramebufferTexture(hostileFramebuffer.id(), GL_COLOR_ATTACHMENT0, hostileTexture->id(), 0);
     hostileVao = gl::createVertexArray();
+    hostileBuffer = gl::createBuffer();
+    glNamedBufferStorage(hostileBuffer.id(), kHostileBufferBytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    GLint uniformPoints = 0, storagePoints = 0;
+    glGetIntegerv(GL_MAX_UNIFORM_BUFFER_BINDINGS, &uniformPoints);
+    glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &storagePoints);
+    hostileBufferBindings = static_cast<uint32_t>(std::clamp(std::min(uniformPoints, storagePoints), 0, 16));
   }
-  glEnable(GL_BLEND);
-  glBlendFunc(GL_ONE, GL_ONE);
-  glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);
-  glBlendColor(0.5f, 0.25f, 0.125f, 0.0f);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_NEVER);
-  glDepthMask(GL_FALSE);
-  glEnable(GL_STENCIL_TEST);
-  glStencilFunc(GL_NEVER, 0x5A, 0x0F);
-  glStencilOp(GL_INVERT, GL_INVERT, GL_INVERT);
-  glStencilMask(0);
-  glEnable(GL_CULL_FACE);
-  glCullFace(GL_FRONT_AND_BACK);
-  glFrontFace(GL_CW);
-  glEnable(GL_SCISSOR_TEST);
-  glScissor(1, 1, 1, 1);
-  glViewport(3, 5, 7, 9);
-  for (GLuint i = 0; i < 8; ++i) glColorMaski(i, GL_FALSE, GL_TRUE, GL_FALSE, GL_TRUE);
-  glDisable(GL_FRAMEBUFFER_SRGB);
+  gl::applyFixedState(gl::hostileFixedState());
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, hostileFramebuffer.id());
   glUseProgram(0);
   glBindVertexArray(hostileVao.id());
   for (GLuint unit = 0; unit < 16; ++unit) glBindTextureUnit(unit, hostileTexture->id());
+  // Buffer binding points 0-15, uniform and storage: no pass may inherit one
+  // from an earlier pass. What the executor binds for a pass (the Frame block
+  // at uniform 0: resetState() forgets the scene's record, selectJitter()
+  // binds it again) and what a pass binds itself (lights, clusters, shadow
+  // information, the scene's instances, objects and skins) goes over this.
+  // Refilled each time (a pass may write through what it inherited): words
+  // of 255, a float near 0 and a small count, so that a shader looping over
+  // an inherited count ends.
+  const GLuint word = 0xFFu;
+  glClearNamedBufferData(hostileBuffer.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &word);
+  for (GLuint point = 0; point < hostileBufferBindings; ++point) {
+    glBindBufferBase(GL_UNIFORM_BUFFER, point, hostileBuffer.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, point, hostileBuffer.id());
+  }
   dirtyState = kGlStateAll;  // resetState: every group put back, the binding records forgotten
 }
 

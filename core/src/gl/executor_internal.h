@@ -220,6 +220,8 @@ struct Executor::Impl {
   std::unique_ptr<gl::Texture> hostileTexture;
   gl::Framebuffer hostileFramebuffer;
   gl::VertexArray hostileVao;
+  gl::Buffer hostileBuffer;  // bound at every uniform and storage buffer binding point scrambled
+  uint32_t hostileBufferBindings = 0;
   uint32_t dirtyState = kGlStateAll;      // GlStateGroup bits resetState() puts back
   bool depthMaskOff = false;              // the last pass read depth only: its mask alone to put back
   GlBindings bound;                       // PassContext::bindings: forgotten with kGlStateBindings
@@ -280,6 +282,7 @@ struct Executor::Impl {
     historyCopies.clear();
     hostileFramebuffer = {};
     hostileVao = {};
+    hostileBuffer = {};
     hostileTexture.reset();
     historyHeld = false;
     persistentHeld = false;
@@ -328,6 +331,7 @@ struct Executor::Impl {
   // pass's changedState() leaves out (executor_state_check.cpp).
   void checkState(const exec_detail::PassRun& run) const;
   void checkBindings(const exec_detail::PassRun& run) const;
+  void checkSamplers(const exec_detail::PassRun& run) const;  // none left bound (executor_state_check.cpp)
   void assignMemoryBarriers();
   // Hazard modes (executor_hazards.cpp): the plan's options, what each run
   // poisons (after the runs exist), the poison before a pass and the hostile

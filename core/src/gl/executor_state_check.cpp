@@ -41,6 +41,28 @@ void Executor::Impl::checkState(const exec_detail::PassRun& run) const {
       throw RuntimeError("pass '" + run.name + "' of type '" + run.typeName + "' left state changed: " + i.what +
                          ", but its changedState() says it leaves that group as it found it");
   if (!(declared & kGlStateBindings)) checkBindings(run);
+  checkSamplers(run);
+}
+
+// Sampler 0 on every unit when a pass starts is a promise to every pass
+// (pass_programs.h: a pass binding a texture itself needs no sampler call),
+// kept by each pass putting back 0 where it bound a sampler object: whatever
+// its changedState() says, a pass that leaves one changes how the next pass
+// to sample that unit filters.
+void Executor::Impl::checkSamplers(const exec_detail::PassRun& run) const {
+  GLint active = GL_TEXTURE0;
+  glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+  GLuint unit = 0;
+  GLint sampler = 0;
+  for (; unit < 16 && sampler == 0; ++unit) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glGetIntegerv(GL_SAMPLER_BINDING, &sampler);
+  }
+  glActiveTexture(static_cast<GLenum>(active));
+  if (sampler != 0)
+    throw RuntimeError("pass '" + run.name + "' of type '" + run.typeName + "' left sampler object " +
+                       std::to_string(sampler) + " bound on texture unit " + std::to_string(unit - 1) +
+                       ": every pass starts with sampler 0 on every unit, so a pass that binds a sampler puts 0 back");
 }
 
 // The executor's record (GlBindings) against what is bound: a pass that binds

@@ -286,6 +286,7 @@ void applyRendererDefaults() {
     glPixelStorei(pname, pname == GL_PACK_ALIGNMENT || pname == GL_UNPACK_ALIGNMENT ? 4 : 0);
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  glBindSamplers(0, kTextureUnits, nullptr);  // passes are promised sampler 0 (pass_programs.h)
 }
 
 }  // namespace rgraph::gl

@@ -673,6 +673,8 @@ void GpuScene::drawList(uint32_t program, const std::vector<size_t>& order, Cull
   glFrontFace(GL_CCW);
   glDisable(GL_CULL_FACE);
   for (GLuint unit = 0; unit < 5; ++unit) glBindSampler(unit, 0);
+  if (reflectancePerDraw_)  // the specular units bound above: no sampler object left for a later pass
+    for (GLuint unit = 11; unit < 13; ++unit) glBindSampler(unit, 0);
   if (instances_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBinding, 0);  // left as found
   if (objects) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBinding, 0);
   if (deform) unbindDeformation();

@@ -19,51 +19,15 @@
 #include "rgraph/gl/context_identity.h"
 #include "rgraph/gl/executor.h"
 #include "rgraph/testing.h"
+#include "texture_snapshot.h"
 
 namespace rgraph {
 
 namespace {
 
-// One level of a texture as floats: RGBA per texel, or depth alone.
-struct Level {
-  uint32_t width = 0, height = 0, layers = 1, channels = 4;
-  bool integer = false;  // texels hold integer bits, compared exactly
-  std::vector<float> texels;
-};
-using Snapshot = std::vector<Level>;
-
-// Every level (all layers and faces) of a single-sample texture.
-Snapshot readTexture(uint32_t texture, bool depth) {
-  Snapshot s;
-  GLint target = 0, levels = 0;
-  glGetTextureParameteriv(texture, GL_TEXTURE_TARGET, &target);
-  glGetTextureParameteriv(texture, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
-  if (target == GL_TEXTURE_2D_MULTISAMPLE || target == GL_TEXTURE_2D_MULTISAMPLE_ARRAY) return s;
-  for (GLint l = 0; l < std::max(levels, 1); ++l) {
-    GLint w = 0, h = 0, d = 1;
-    glGetTextureLevelParameteriv(texture, l, GL_TEXTURE_WIDTH, &w);
-    glGetTextureLevelParameteriv(texture, l, GL_TEXTURE_HEIGHT, &h);
-    glGetTextureLevelParameteriv(texture, l, GL_TEXTURE_DEPTH, &d);
-    Level level;
-    level.width = static_cast<uint32_t>(w), level.height = static_cast<uint32_t>(h);
-    level.layers = target == GL_TEXTURE_CUBE_MAP ? 6u : static_cast<uint32_t>(std::max(d, 1));
-    level.channels = depth ? 1 : 4;
-    level.texels.resize(size_t{level.width} * level.height * level.layers * level.channels);
-    const auto bytes = static_cast<GLsizei>(level.texels.size() * sizeof(float));
-    GLint type = 0;
-    glGetTextureLevelParameteriv(texture, l, GL_TEXTURE_RED_TYPE, &type);
-    level.integer = !depth && (type == GL_INT || type == GL_UNSIGNED_INT);
-    if (level.integer) {  // the bits, compared as such (sameValue compares bits first)
-      std::vector<uint32_t> ids(level.texels.size());
-      glGetTextureImage(texture, l, GL_RGBA_INTEGER, GL_UNSIGNED_INT, bytes, ids.data());
-      if (!ids.empty()) std::memcpy(level.texels.data(), ids.data(), ids.size() * sizeof(uint32_t));
-    } else {
-      glGetTextureImage(texture, l, depth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, bytes, level.texels.data());
-    }
-    s.push_back(std::move(level));
-  }
-  return s;
-}
+using hazard_detail::Level;
+using hazard_detail::Snapshot;
+using hazard_detail::SnapshotReader;
 
 bool sameValue(float a, float b, float tolerance) {
   if (std::memcmp(&a, &b, sizeof a) == 0) return true;
@@ -125,10 +89,9 @@ Selection select(const Plan& plan, const PipelineConfig& pipeline) {
   Selection s;
   s.live.resize(plan.passes.size());
   s.written.resize(plan.passes.size());
-  auto comparable = [&](uint32_t r) {
+  auto comparable = [&](uint32_t r) {  // multisampled ones too, sample by sample
     const PlannedResource& pr = plan.resources[r];
-    return pr.kind == ResourceKind::texture && pr.firstPass.valid() &&
-           pipeline.graph.resources[r].texture.samples <= 1;
+    return pr.kind == ResourceKind::texture && pr.firstPass.valid();
   };
   for (uint32_t r = 0; r < plan.resources.size(); ++r) {
     if (!comparable(r)) continue;
@@ -152,7 +115,8 @@ bool isDepthResource(const PipelineConfig& pipeline, uint32_t r) {
 
 // One run: `modes` (none: the plain run, which also fixes `selection`).
 RunResult run(const std::string& path, const HazardCheckOptions& options, const HazardModes& modes,
-              const std::shared_ptr<RenderScene>& scene, std::optional<Selection>& selection) {
+              const std::shared_ptr<RenderScene>& scene, std::optional<Selection>& selection,
+              SnapshotReader& reader) {
   RunResult out;
   RendererOptions ro = options.renderer;
   ro.size = options.size;
@@ -178,7 +142,7 @@ RunResult run(const std::string& path, const HazardCheckOptions& options, const 
     if (p >= selection->live.size()) return;
     for (uint32_t r : reorder ? selection->written[p] : selection->live[p]) {
       const uint32_t texture = exec->textureOf(plan.resources[r].name);
-      if (texture) out.snapshots[{frame, p, r}] = readTexture(texture, isDepthResource(renderer->pipeline(), r));
+      if (texture) out.snapshots[{frame, p, r}] = reader.read(texture, isDepthResource(renderer->pipeline(), r));
     }
   });
   try {
@@ -191,7 +155,7 @@ RunResult run(const std::string& path, const HazardCheckOptions& options, const 
       if (!selection) break;  // no pass ran
       for (uint32_t r : selection->kept) {
         const uint32_t texture = renderer->executor()->textureOf(out.plan.resources[r].name);
-        if (texture) out.snapshots[{frame, kFrameEnd, r}] = readTexture(texture, isDepthResource(out.pipeline, r));
+        if (texture) out.snapshots[{frame, kFrameEnd, r}] = reader.read(texture, isDepthResource(out.pipeline, r));
       }
     }
   } catch (const RuntimeError& e) {
@@ -321,7 +285,8 @@ HazardReport checkHazards(const std::string& pipelinePath, const HazardCheckOpti
     return report;
   }
   std::optional<Selection> selection;
-  const RunResult plain = run(pipelinePath, options, HazardModes{}, scene, selection);
+  SnapshotReader reader;
+  const RunResult plain = run(pipelinePath, options, HazardModes{}, scene, selection, reader);
   if (!plain.error.empty()) {
     report.error = plain.error;
     return report;
@@ -333,7 +298,7 @@ HazardReport checkHazards(const std::string& pipelinePath, const HazardCheckOpti
       HazardModes modes = HazardModes::of(m);
       modes.reorder = k;
       const std::string label = hazardModesLabel(modes);
-      const RunResult other = run(pipelinePath, options, modes, scene, selection);
+      const RunResult other = run(pipelinePath, options, modes, scene, selection, reader);
       report.runs.push_back(judge(pipelinePath, label, plain, other, options.floatTolerance));
     }
   }

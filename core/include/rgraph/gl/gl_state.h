@@ -70,7 +70,9 @@ class SavedState {
 // fill, rasterizer discard, colour logic op, primitive restart, sample alpha
 // to coverage, sample coverage and sample mask off; clip control lower-left,
 // -1..1; pixel pack and unpack store at their defaults and no pixel pack or
-// unpack buffer (scene uploads and read-backs go through them). Only state
+// unpack buffer (scene uploads and read-backs go through them); no sampler
+// object on units 0-15 (a pass sampling through a unit it was given no
+// sampler for filters with the texture's own parameters). Only state
 // SavedState saves: call it inside a GlStateGuard.
 void applyRendererDefaults();
 
