@@ -1,14 +1,13 @@
 // Shipped pipelines on the other scenes (issue 31): every pipeline on each
-// procedural scene, and the pipelines that draw the scene in every shipped
-// way on each shared glTF sample (../shared/assets/gltf; a missing sample fails its
-// test, naming the file). Modes: poison and state-scramble, the two whose
-// outcome depends on what the scene makes the passes do (which materials,
-// textures, skins, lights and shadow casters they draw, which of them have
-// work at all); the modes that change only the plan (no-alias, alias-shuffle,
-// reorder, no-cull) and history over several frames run on the default scene
-// in shipped_hazards_test.cpp. 32x32, one frame; each test takes one scene
-// and a part of its pipelines. Each run's compared pixels are printed
-// (docs/testing.md's table).
+// procedural scene under every mode over 2 frames (scene adaptation gives
+// each scene its own plan: what aliasing, order and culling act on), and the
+// pipelines that draw the scene in every shipped way on each shared glTF
+// sample (../shared/assets/gltf; a missing sample fails its test, naming the
+// file) under poison and state-scramble, the two modes whose outcome depends
+// on what the scene makes the passes do (which materials, textures, skins,
+// lights and shadow casters they draw), over one frame. 32x32; each test
+// takes one scene and a part of its pipelines. Each run's compared pixels are
+// printed (docs/testing.md's table).
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -62,24 +61,25 @@ struct SceneCase {
   std::string scene;  // RenderScene::load's spec
   std::vector<std::string> pipelines;
   size_t part = 0;  // of the scene's pipelines, in parts small enough for a sanitizer build
+  bool everyMode = false;  // every mode over 2 frames, else poison and state-scramble over 1
 };
 
 // The scene's pipelines in parts of `per`: each test stays under ~10 s in
 // the ASan+UBSan Debug build (the whole scene in one test took up to 17 s there).
 void addParts(std::vector<SceneCase>& out, const std::string& scene, const std::vector<std::string>& pipelines,
-              size_t per) {
+              size_t per, bool everyMode) {
   for (size_t first = 0, part = 1; first < pipelines.size(); first += per, ++part)
     out.push_back({scene,
                    std::vector<std::string>(pipelines.begin() + static_cast<std::ptrdiff_t>(first),
                                             pipelines.begin() + static_cast<std::ptrdiff_t>(
                                                                     std::min(first + per, pipelines.size()))),
-                   part});
+                   part, everyMode});
 }
 
 std::vector<SceneCase> cases() {
   std::vector<SceneCase> c;
   for (const char* scene : {"learnopengl", "learnopengl:shadows", "many-lights:64", "thin", "walker"})
-    addParts(c, scene, hazardtest::shippedPipelines(), 4);
+    addParts(c, scene, hazardtest::shippedPipelines(), 2, true);
   for (const char* model :
        {"AlphaBlendModeTest/AlphaBlendModeTest.glb", "AnimatedCube/AnimatedCube.gltf", "Box/Box.glb",
         "BoxTextured/BoxTextured.glb", "Cube/Cube.gltf", "DamagedHelmet/DamagedHelmet.glb",
@@ -92,20 +92,20 @@ std::vector<SceneCase> cases() {
         "TextureLinearInterpolationTest/TextureLinearInterpolationTest.glb",
         "TextureSettingsTest/TextureSettingsTest.glb", "TextureTransformTest/TextureTransformTest.gltf",
         "UnlitTest/UnlitTest.glb", "VertexColorTest/VertexColorTest.glb"})
-    addParts(c, std::string(RGRAPH_ASSETS_DIR) + "/gltf/" + model, kGltfPipelines, 2);
+    addParts(c, std::string(RGRAPH_ASSETS_DIR) + "/gltf/" + model, kGltfPipelines, 2, false);
   return c;
 }
 
 class HazardScenes : public ::testing::TestWithParam<SceneCase> {};
 
-TEST_P(HazardScenes, NoFindingUnderPoisonOrStateScramble) {
+TEST_P(HazardScenes, NoFinding) {
   testsupport::sharedGlContext();
   const SceneCase& c = GetParam();
   HazardCheckOptions o;
   o.scene = c.scene;
   o.size = {32, 32};
-  o.frames = 1;
-  o.modes = HazardModes{}.add(HazardMode::poison).add(HazardMode::stateScramble);
+  o.frames = c.everyMode ? 2 : 1;
+  if (!c.everyMode) o.modes = HazardModes{}.add(HazardMode::poison).add(HazardMode::stateScramble);
   o.renderer.runChecks = false;  // validate's own tests check them; here only what runs
   for (const std::string& name : c.pipelines) {
     const std::string file = pipelineFile(name);
@@ -113,7 +113,7 @@ TEST_P(HazardScenes, NoFindingUnderPoisonOrStateScramble) {
     if (file.find("rgraph-hazard-") != std::string::npos) std::filesystem::remove(file);
     ASSERT_TRUE(r.error.empty()) << name << ": " << r.error;
     EXPECT_TRUE(r.hazardFree()) << r.describe();
-    ASSERT_EQ(r.runs.size(), 2u) << name;
+    ASSERT_EQ(r.runs.size(), c.everyMode ? 8u : 2u) << name;
     for (const HazardModeRun& run : r.runs) {
       EXPECT_GT(run.comparedPixels, 0u) << name << " " << run.mode;
       std::printf("[ hazards  ] %s %s %s %zu\n", name.c_str(), run.mode.c_str(), c.scene.c_str(),
@@ -124,9 +124,7 @@ TEST_P(HazardScenes, NoFindingUnderPoisonOrStateScramble) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, HazardScenes, ::testing::ValuesIn(cases()),
                          [](const ::testing::TestParamInfo<SceneCase>& i) {
-                           // glTF samples' tests start "gltf_" (scripts/test.sh --sanitize leaves them
-                           // to the release stage: 8-22 s each under ASan, for no memory coverage the
-                           // glTF suites lack).
+                           // glTF samples' tests start "gltf_".
                            const bool gltf = i.param.scene.find('/') != std::string::npos;
                            const std::string file = i.param.scene.substr(i.param.scene.rfind('/') + 1);
                            return hazardtest::testName((gltf ? "gltf_" : "") + file.substr(0, file.find('.')) +
