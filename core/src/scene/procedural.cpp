@@ -22,6 +22,39 @@ void addDraw(Scene& s, int mesh, int material, const glm::mat4& xf, const std::s
   s.primitives.push_back(std::move(p));
 }
 
+int addFlatMaterial(Scene& s, const std::string& name, glm::vec3 color, float specular, float roughness) {
+  Material m;
+  m.name = name;
+  m.baseColorFactor = glm::vec4(color, 1.0f);
+  m.metallicFactor = 0.0f;
+  m.roughnessFactor = roughness;
+  m.specular = specular;
+  s.materials.push_back(m);
+  return int(s.materials.size()) - 1;
+}
+
+void addFalloffLights(Scene& s, const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& colors) {
+  for (size_t i = 0; i < positions.size() && i < colors.size(); ++i) {
+    PointLight l;
+    l.position = positions[i];
+    l.color = colors[i];
+    l.constant = 1.0f;
+    l.linear = 0.22f;
+    l.quadratic = 0.2f;
+    l.radius = lightRadius(l);
+    s.pointLights.push_back(l);
+  }
+}
+
+void placeCamera(Scene& s, glm::vec3 position, glm::vec3 target, float far) {
+  s.camera.position = position;
+  s.camera.target = target;
+  s.camera.fovY = 45.0f;
+  s.camera.near = 0.1f;
+  s.camera.far = far;
+  s.hasCamera = true;
+}
+
 // ---------------------------------------------------------------- GlibcRandom
 // glibc's random_r.c, TYPE_3: x[i] = x[i-3] + x[i-31] (mod 2^32), output x >> 1,
 // state seeded with the Park-Miller generator and 310 outputs discarded.
@@ -328,14 +361,7 @@ Scene makeThinScene() {
   s.meshes.push_back(makeCube(1.0f));                 // mesh 0: scaled into posts, wires and bars
   s.meshes.push_back(makePlane(10.0f, 14.0f, 1.0f));  // mesh 1: the floor, 20 x 28
   auto material = [&](const std::string& name, glm::vec3 color, float specular) {
-    Material m;
-    m.name = name;
-    m.baseColorFactor = glm::vec4(color, 1.0f);
-    m.metallicFactor = 0.0f;
-    m.roughnessFactor = 0.7f;
-    m.specular = specular;
-    s.materials.push_back(m);
-    return int(s.materials.size()) - 1;
+    return addFlatMaterial(s, name, color, specular, 0.7f);
   };
   const int floorMat = material("floor", {0.18f, 0.18f, 0.2f}, 0.1f);
   const int postMat = material("post", {0.85f, 0.7f, 0.5f}, 0.3f);
@@ -372,26 +398,11 @@ Scene makeThinScene() {
   sun.color = glm::vec3(1.0f, 0.97f, 0.9f);
   sun.intensity = 0.8f;
   s.directionalLights.push_back(sun);
-  const glm::vec3 lightPos[4] = {{-4.0f, 1.5f, 1.5f}, {0.0f, 3.0f, 4.0f}, {4.0f, 1.5f, 1.5f}, {0.0f, 1.0f, -10.0f}};
-  const glm::vec3 lightColor[4] = {{1.0f, 0.6f, 0.4f}, {0.6f, 0.8f, 1.0f}, {0.7f, 1.0f, 0.6f}, {1.0f, 1.0f, 0.8f}};
-  for (int i = 0; i < 4; ++i) {
-    PointLight l;
-    l.position = lightPos[i];
-    l.color = lightColor[i];
-    l.constant = 1.0f;
-    l.linear = 0.22f;
-    l.quadratic = 0.2f;
-    l.radius = lightRadius(l);
-    s.pointLights.push_back(l);
-  }
+  addFalloffLights(s, {{-4.0f, 1.5f, 1.5f}, {0.0f, 3.0f, 4.0f}, {4.0f, 1.5f, 1.5f}, {0.0f, 1.0f, -10.0f}},
+                   {{1.0f, 0.6f, 0.4f}, {0.6f, 0.8f, 1.0f}, {0.7f, 1.0f, 0.6f}, {1.0f, 1.0f, 0.8f}});
 
   s.ambient = glm::vec3(0.08f);
-  s.camera.position = glm::vec3(0.0f, 1.6f, 5.5f);
-  s.camera.target = glm::vec3(0.0f, 0.5f, -4.0f);
-  s.camera.fovY = 45.0f;
-  s.camera.near = 0.1f;
-  s.camera.far = 60.0f;
-  s.hasCamera = true;
+  placeCamera(s, {0.0f, 1.6f, 5.5f}, {0.0f, 0.5f, -4.0f}, 60.0f);
   return s;
 }
 

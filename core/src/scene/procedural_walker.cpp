@@ -228,14 +228,7 @@ Scene makeWalkerScene() {
   s.meshes.push_back(makePlane(8.0f, 8.0f, 1.0f));    // mesh 1: the floor
   s.meshes.push_back(makeCube(1.0f));                 // mesh 2: the backdrop's boxes
   auto material = [&](const std::string& name, glm::vec3 color, float specular) {
-    Material m;
-    m.name = name;
-    m.baseColorFactor = glm::vec4(color, 1.0f);
-    m.metallicFactor = 0.0f;
-    m.roughnessFactor = 0.6f;
-    m.specular = specular;
-    s.materials.push_back(m);
-    return int(s.materials.size()) - 1;
+    return addFlatMaterial(s, name, color, specular, 0.6f);
   };
   const int floorMat = material("floor", {0.2f, 0.2f, 0.22f}, 0.1f);
   const int wallMat = material("wall", {0.45f, 0.5f, 0.55f}, 0.2f);
@@ -268,25 +261,10 @@ Scene makeWalkerScene() {
   sun.color = glm::vec3(1.0f, 0.97f, 0.92f);
   sun.intensity = 0.9f;
   s.directionalLights.push_back(sun);
-  const glm::vec3 lightPos[3] = {{-2.5f, 2.0f, 2.0f}, {0.0f, 2.5f, 3.0f}, {2.5f, 2.0f, 2.0f}};
-  const glm::vec3 lightColor[3] = {{1.0f, 0.7f, 0.5f}, {0.7f, 0.8f, 1.0f}, {0.8f, 1.0f, 0.7f}};
-  for (int i = 0; i < 3; ++i) {
-    PointLight l;
-    l.position = lightPos[i];
-    l.color = lightColor[i];
-    l.constant = 1.0f;
-    l.linear = 0.22f;
-    l.quadratic = 0.2f;
-    l.radius = lightRadius(l);
-    s.pointLights.push_back(l);
-  }
+  addFalloffLights(s, {{-2.5f, 2.0f, 2.0f}, {0.0f, 2.5f, 3.0f}, {2.5f, 2.0f, 2.0f}},
+                   {{1.0f, 0.7f, 0.5f}, {0.7f, 0.8f, 1.0f}, {0.8f, 1.0f, 0.7f}});
   s.ambient = glm::vec3(0.1f);
-  s.camera.position = glm::vec3(0.0f, 1.3f, 4.6f);
-  s.camera.target = glm::vec3(0.0f, 0.9f, 0.0f);
-  s.camera.fovY = 45.0f;
-  s.camera.near = 0.1f;
-  s.camera.far = 40.0f;
-  s.hasCamera = true;
+  placeCamera(s, {0.0f, 1.3f, 4.6f}, {0.0f, 0.9f, 0.0f}, 40.0f);
   return s;
 }
 
