@@ -28,6 +28,7 @@
 #include "rgraph/gl/gpu_scene.h"
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/renderer.h"
+#include "support/posed_bounds_check.h"
 #include "support/test_support.h"
 
 using namespace rgraph;
@@ -194,14 +195,7 @@ TEST_F(GpuDeform, BoundsHoldEveryDeformedVertex) {
       rs->setTime(t);
       const Scene& s = rs->scene();
       const Pose pose = evaluatePose(s.animation, t, kAllAnimations);
-      size_t outside = 0;
-      for (size_t i = 0; i < s.primitives.size(); ++i) {
-        const Bounds& b = s.primitives[i].bounds;
-        const glm::vec3 slack = 1e-4f * glm::max(glm::abs(b.min), glm::abs(b.max)) + 1e-6f;
-        for (const glm::vec3& p : deformPrimitive(s, pose, i).positions)
-          outside += glm::any(glm::lessThan(p, b.min - slack)) || glm::any(glm::greaterThan(p, b.max + slack));
-      }
-      EXPECT_EQ(outside, 0u) << file << " at " << t << " s";
+      EXPECT_EQ(testsupport::verticesOutsideBounds(s, pose), 0u) << file << " at " << t << " s";
     }
   }
 }

@@ -10,6 +10,7 @@
 
 #include "rgraph/animation.h"
 #include "rgraph/scene.h"
+#include "support/posed_bounds_check.h"
 
 using namespace rgraph;
 
@@ -22,18 +23,6 @@ float largestMove(const Scene& s, size_t i, double t0, double t1) {
   float most = 0.0f;
   for (size_t v = 0; v < a.positions.size(); ++v) most = std::max(most, glm::distance(a.positions[v], b.positions[v]));
   return most;
-}
-
-// How many deformed vertices of `s` lie outside their primitive's bounds.
-size_t outsideBounds(const Scene& s, const Pose& pose) {
-  size_t outside = 0;
-  for (size_t i = 0; i < s.primitives.size(); ++i) {
-    const Bounds& b = s.primitives[i].bounds;
-    const glm::vec3 slack = 1e-4f * glm::max(glm::abs(b.min), glm::abs(b.max)) + 1e-6f;
-    for (const glm::vec3& p : deformPrimitive(s, pose, i).positions)
-      outside += glm::any(glm::lessThan(p, b.min - slack)) || glm::any(glm::greaterThan(p, b.max + slack));
-  }
-  return outside;
 }
 
 }  // namespace
@@ -132,9 +121,9 @@ TEST(PoseScene, BoundsHoldTheWalk) {
   size_t restMisses = 0;
   for (double t : {0.1, 0.35, 0.6, 0.85}) {
     const Pose pose = evaluatePose(s.animation, t, kAllAnimations);
-    restMisses += outsideBounds(s, pose);  // still the previous (or rest) bounds
+    restMisses += testsupport::verticesOutsideBounds(s, pose);  // still the previous (or rest) bounds
     poseScene(s, pose, bounds);
-    EXPECT_EQ(outsideBounds(s, pose), 0u) << "t = " << t;
+    EXPECT_EQ(testsupport::verticesOutsideBounds(s, pose), 0u) << "t = " << t;
   }
   EXPECT_GT(restMisses, 0u) << "the walk never left its previous bounds: the test shows nothing";
 }
