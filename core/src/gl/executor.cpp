@@ -19,6 +19,7 @@
 #include "rgraph/gl/shader_library.h"
 #include "rgraph/registry.h"
 #include "rgraph/scene.h"
+#include "rgraph/scene_program.h"
 
 namespace rgraph {
 
@@ -280,7 +281,7 @@ void Executor::Impl::createRuns() {
   planPoison();
   // Scene vertex shaders deform (skins, morph targets) only in scenes that need it.
   std::vector<std::string> sceneDefines;
-  if (scene && GpuScene::sceneDeforms(*scene)) sceneDefines.push_back("SCENE_ANIMATION");
+  if (scene && GpuScene::sceneDeforms(*scene)) sceneDefines.push_back(kSceneAnimationDefine);
   for (auto& run : runs) {
     try {
       // The programs the type's spec names, before setup, so that a pass

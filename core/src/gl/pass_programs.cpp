@@ -7,6 +7,7 @@
 
 #include "rgraph/config.h"
 #include "rgraph/error.h"
+#include "rgraph/scene_program.h"
 
 namespace rgraph {
 
@@ -54,9 +55,7 @@ void PassPrograms::build(const std::string& passName, const PassTypeDesc& type, 
       if (!known) units_.push_back({unit, m.slot});
     }
     std::vector<std::string> defines = s.defines;
-    const std::string sceneVert = "scene.vert";
-    if (s.vert.size() >= sceneVert.size() && s.vert.compare(s.vert.size() - sceneVert.size(), sceneVert.size(), sceneVert) == 0)
-      defines.insert(defines.end(), sceneDefines.begin(), sceneDefines.end());
+    if (drawsScene(s)) defines.insert(defines.end(), sceneDefines.begin(), sceneDefines.end());
     const uint32_t id =
         s.comp.empty() ? shaders.program(s.vert, s.frag, defines) : shaders.computeProgram(s.comp, s.defines);
     // Once here, so that a shader without layout(binding) reads the unit too.

@@ -20,6 +20,7 @@
 #include "rgraph/config.h"
 #include "sampler_shape.h"
 #include "rgraph/registry.h"
+#include "rgraph/scene_program.h"
 #include "uniform_blocks.h"
 
 namespace rgraph {
@@ -613,6 +614,14 @@ Diagnostics ShaderChecker::checkPass(const std::string& passName, const PassType
     checked_.push_back({passName, spec});
     f.reportMessages(pc);
     if (!pc.ok) continue;
+    if (drawsScene(spec)) {
+      // The variant a deforming scene runs (rgraph/scene_program.h): the
+      // same fragment shader, so only the compiler's messages can differ.
+      ShaderProgramSpec animated = spec;
+      animated.defines.push_back(kSceneAnimationDefine);
+      f.reportMessages(program(animated));
+      checked_.push_back({passName, std::move(animated)});
+    }
     const std::string shader = pc.files.empty() ? spec.frag : pc.files.back();
     if (!spec.frag.empty() && spec.drawsToAttachments) {
       const LocatedOutputs located = locateOutputs(pc, shader, f);
